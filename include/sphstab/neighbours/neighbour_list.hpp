@@ -1,0 +1,34 @@
+#pragma once
+/// \file neighbour_list.hpp
+/// Cell-list neighbour search producing compressed-row (CSR) neighbour lists.
+#include <vector>
+
+#include "sphstab/particles/particle_set.hpp"
+
+namespace sphstab {
+
+/// Neighbours of each particle in CSR form: the neighbours of i are indices[offsets[i] .. offsets[i+1]),
+/// sorted ascending, including i itself, and every j with |x_i - x_j| < radius (minimum image in periodic
+/// axes; coincident points included). The pattern is symmetric. It is the sparsity pattern of every operator
+/// matrix, so a row maps directly onto a row-major Eigen sparse row.
+struct NeighbourList {
+  std::vector<long> offsets;  ///< N + 1 entries
+  std::vector<int> indices;   ///< offsets[N] entries
+  double radius = 0;
+
+  int size() const { return offsets.empty() ? 0 : static_cast<int>(offsets.size()) - 1; }
+  long nonzeros() const { return offsets.empty() ? 0 : offsets.back(); }
+  int count(int i) const { return static_cast<int>(offsets[i + 1] - offsets[i]); }
+};
+
+/// O(N) cell-list search with cells of edge >= radius. Throws std::invalid_argument for radius <= 0 or
+/// non-finite, an invalid particle set, or a periodic box shorter than 2 * radius in a periodic axis (the
+/// minimum-image convention would then miss images).
+template <int Dim>
+NeighbourList find_neighbours(const ParticleSet<Dim>& particles, double radius);
+
+/// O(N^2) reference search with the same conventions (for tests and small sets).
+template <int Dim>
+NeighbourList find_neighbours_brute_force(const ParticleSet<Dim>& particles, double radius);
+
+}  // namespace sphstab

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# README main job: install dependencies, build, run every default study into results/.
+# A study is studies/<name>/ with main.cpp (built to build/bin/study_<name>) and optionally plot.py.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+bash scripts/build.sh
+bin=${BUILD_DIR:-build}/bin
+only=${1:-}
+for dir in studies/*/; do
+  name=$(basename "$dir")
+  [ -n "$only" ] && [ "$only" != "$name" ] && continue
+  exe="$bin/study_${name//-/_}"
+  [ -x "$exe" ] || continue
+  echo "== study $name"
+  mkdir -p "results/$name"
+  start=$SECONDS
+  "$exe" --out "results/$name"
+  if [ -f "$dir/plot.py" ]; then python3 "$dir/plot.py" "results/$name"; fi
+  echo "== study $name done in $((SECONDS - start)) s"
+done

@@ -1,0 +1,15 @@
+#pragma once
+// Subcommands of the sphstab program: each registers itself on the CLI11 app.
+#include <CLI/CLI.hpp>
+
+namespace sphstab::cli {
+
+void register_kernels_command(CLI::App& app);
+void register_operators_command(CLI::App& app);
+
+inline void register_commands(CLI::App& app) {
+  register_kernels_command(app);
+  register_operators_command(app);
+}
+
+}  // namespace sphstab::cli

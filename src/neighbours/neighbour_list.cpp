@@ -1,0 +1,154 @@
+#include "sphstab/neighbours/neighbour_list.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace sphstab {
+
+namespace {
+
+template <int Dim>
+void check_inputs(const ParticleSet<Dim>& p, double radius, const char* who) {
+  p.validate(who);
+  if (!(radius > 0) || !std::isfinite(radius))
+    throw std::invalid_argument(std::string(who) + ": search radius must be finite and > 0 (got " +
+                                std::to_string(radius) + ")");
+  for (int a = 0; a < Dim; ++a)
+    if (p.periodic[a] && p.box_hi[a] - p.box_lo[a] < 2.0 * radius)
+      throw std::invalid_argument(std::string(who) + ": periodic box length " +
+                                  std::to_string(p.box_hi[a] - p.box_lo[a]) + " in axis " + std::to_string(a) +
+                                  " is shorter than 2 x search radius " + std::to_string(radius));
+}
+
+}  // namespace
+
+template <int Dim>
+NeighbourList find_neighbours(const ParticleSet<Dim>& p, double radius) {
+  check_inputs(p, radius, "find_neighbours");
+  const int n = p.size();
+  const double r2 = radius * radius;
+
+  // Cell grid over the bounding box (or the periodic box); cell edge >= radius, at most ~n cells.
+  using Point = typename ParticleSet<Dim>::Point;
+  Point lo = p.x.colwise().minCoeff(), hi = p.x.colwise().maxCoeff();
+  std::array<int, Dim> cells;
+  std::array<double, Dim> edge;
+  long ncells = 1;
+  for (int a = 0; a < Dim; ++a) {
+    if (p.periodic[a]) {
+      lo[a] = p.box_lo[a];
+      hi[a] = p.box_hi[a];
+    }
+    double L = std::max(hi[a] - lo[a], 0.0);
+    cells[a] = std::max(1, static_cast<int>(std::floor(L / radius)));
+    cells[a] = static_cast<int>(std::min<long>(cells[a], 4L * n + 4));
+  }
+  // Sparse sets spread far apart: coarsen so the grid never has more than ~4N cells.
+  auto product = [&] {
+    long c = 1;
+    for (int a = 0; a < Dim; ++a) c *= cells[a];
+    return c;
+  };
+  while (product() > 4L * n + 64) {
+    int big = static_cast<int>(std::max_element(cells.begin(), cells.end()) - cells.begin());
+    cells[big] = std::max(1, cells[big] / 2);
+  }
+  for (int a = 0; a < Dim; ++a) {
+    double L = std::max(hi[a] - lo[a], 0.0);
+    edge[a] = L > 0 ? L / cells[a] : 1.0;
+    if (!p.periodic[a]) edge[a] = std::max(edge[a], radius);
+    ncells *= cells[a];
+  }
+  auto cell_coord = [&](int i, int a) {
+    int c = static_cast<int>(std::floor((p.x(i, a) - lo[a]) / edge[a]));
+    return std::clamp(c, 0, cells[a] - 1);
+  };
+
+  // Counting sort of particles into cells.
+  std::vector<long> cell_start(ncells + 1, 0);
+  std::vector<long> cell_of(n);
+  for (int i = 0; i < n; ++i) {
+    long c = 0;
+    for (int a = Dim - 1; a >= 0; --a) c = c * cells[a] + cell_coord(i, a);
+    cell_of[i] = c;
+    ++cell_start[c + 1];
+  }
+  for (long c = 0; c < ncells; ++c) cell_start[c + 1] += cell_start[c];
+  std::vector<int> sorted(n);
+  {
+    std::vector<long> fill(cell_start.begin(), cell_start.end() - 1);
+    for (int i = 0; i < n; ++i) sorted[fill[cell_of[i]]++] = i;
+  }
+
+  NeighbourList list;
+  list.radius = radius;
+  list.offsets.assign(n + 1, 0);
+  list.indices.reserve(static_cast<size_t>(n) * (Dim == 1 ? 8 : Dim == 2 ? 30 : 120));
+  std::vector<int> row;
+  for (int i = 0; i < n; ++i) {
+    row.clear();
+    std::array<int, Dim> ci;
+    for (int a = 0; a < Dim; ++a) ci[a] = cell_coord(i, a);
+    // Visit the 3^Dim surrounding cells (fewer when an axis has < 3 cells, to avoid double visits).
+    std::array<int, Dim> span;
+    for (int a = 0; a < Dim; ++a) span[a] = std::min(3, cells[a]);
+    int combos = 1;
+    for (int a = 0; a < Dim; ++a) combos *= span[a];
+    for (int k = 0; k < combos; ++k) {
+      int rest = k;
+      long c = 0;
+      bool skip = false;
+      std::array<int, Dim> cc;
+      for (int a = 0; a < Dim; ++a) {
+        int off = rest % span[a] - (span[a] == 3 ? 1 : 0);
+        rest /= span[a];
+        int v = span[a] == 3 ? ci[a] + off : off;  // fewer than 3 cells: visit all of them
+        if (v < 0 || v >= cells[a]) {
+          if (!p.periodic[a]) {
+            skip = true;
+            break;
+          }
+          v = (v + cells[a]) % cells[a];
+        }
+        cc[a] = v;
+      }
+      if (skip) continue;
+      for (int a = Dim - 1; a >= 0; --a) c = c * cells[a] + cc[a];
+      for (long s = cell_start[c]; s < cell_start[c + 1]; ++s) {
+        int j = sorted[s];
+        if (j == i || p.separation(i, j).squaredNorm() < r2) row.push_back(j);
+      }
+    }
+    std::sort(row.begin(), row.end());
+    row.erase(std::unique(row.begin(), row.end()), row.end());
+    list.indices.insert(list.indices.end(), row.begin(), row.end());
+    list.offsets[i + 1] = static_cast<long>(list.indices.size());
+  }
+  return list;
+}
+
+template <int Dim>
+NeighbourList find_neighbours_brute_force(const ParticleSet<Dim>& p, double radius) {
+  check_inputs(p, radius, "find_neighbours_brute_force");
+  const int n = p.size();
+  NeighbourList list;
+  list.radius = radius;
+  list.offsets.assign(n + 1, 0);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j)
+      if (j == i || p.separation(i, j).squaredNorm() < radius * radius) list.indices.push_back(j);
+    list.offsets[i + 1] = static_cast<long>(list.indices.size());
+  }
+  return list;
+}
+
+template NeighbourList find_neighbours<1>(const ParticleSet<1>&, double);
+template NeighbourList find_neighbours<2>(const ParticleSet<2>&, double);
+template NeighbourList find_neighbours<3>(const ParticleSet<3>&, double);
+template NeighbourList find_neighbours_brute_force<1>(const ParticleSet<1>&, double);
+template NeighbourList find_neighbours_brute_force<2>(const ParticleSet<2>&, double);
+template NeighbourList find_neighbours_brute_force<3>(const ParticleSet<3>&, double);
+
+}  // namespace sphstab

@@ -1,0 +1,140 @@
+#include "sphstab/operators/operators.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace sphstab {
+
+template <class Scalar>
+SparseMatrix<Scalar> pattern_matrix(const NeighbourList& nl) {
+  const int n = nl.size();
+  SparseMatrix<Scalar> m(n, n);
+  m.resizeNonZeros(nl.nonzeros());
+  for (int i = 0; i <= n; ++i) m.outerIndexPtr()[i] = static_cast<int>(nl.offsets[i]);
+  std::copy(nl.indices.begin(), nl.indices.end(), m.innerIndexPtr());
+  std::fill(m.valuePtr(), m.valuePtr() + nl.nonzeros(), Scalar(0));
+  return m;
+}
+
+template <int Dim, class Scalar>
+Operators<Dim, Scalar> assemble_operators(const ParticleSet<Dim>& p, const NeighbourList& nl, const Kernel<Dim>& kernel,
+                                          double h, OperatorRequest req, const Positions<Dim, Scalar>* positions) {
+  p.validate("assemble_operators");
+  if (!(h > 0) || !std::isfinite(h))
+    throw std::invalid_argument("assemble_operators: smoothing length h must be finite and > 0 (got " +
+                                std::to_string(h) + ")");
+  if (nl.size() != p.size())
+    throw std::invalid_argument("assemble_operators: neighbour list has " + std::to_string(nl.size()) +
+                                " rows but the particle set has " + std::to_string(p.size()) + " particles");
+  if (positions && positions->rows() != p.size())
+    throw std::invalid_argument("assemble_operators: positions have the wrong number of rows");
+  if (nl.radius + 1e-12 * h < kernel.support_radius(h) * (1 - 1e-12))
+    throw std::invalid_argument("assemble_operators: neighbour radius " + std::to_string(nl.radius) +
+                                " is smaller than the kernel support " + std::to_string(kernel.support_radius(h)));
+
+  Operators<Dim, Scalar> ops;
+  if (req.kernel) ops.W = pattern_matrix<Scalar>(nl);
+  if (req.gradient)
+    for (int a = 0; a < Dim; ++a) ops.G[a] = pattern_matrix<Scalar>(nl);
+  if (req.hessian)
+    for (int a = 0; a < Dim; ++a)
+      for (int b = a; b < Dim; ++b) ops.H[a][b] = pattern_matrix<Scalar>(nl);
+
+  Scalar* w = req.kernel ? ops.W.valuePtr() : nullptr;
+  std::array<Scalar*, Dim> g{};
+  std::array<std::array<Scalar*, Dim>, Dim> hh{};
+  if (req.gradient)
+    for (int a = 0; a < Dim; ++a) g[a] = ops.G[a].valuePtr();
+  if (req.hessian)
+    for (int a = 0; a < Dim; ++a)
+      for (int b = a; b < Dim; ++b) hh[a][b] = ops.H[a][b].valuePtr();
+
+  const double w0 = kernel.value(0.0, h);
+  const double d20 = kernel.d2(0.0, h);
+  for (int i = 0; i < p.size(); ++i) {
+    for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
+      const int j = nl.indices[k];
+      const double vj = p.volume[j];
+      if (i == j) {
+        if (w) w[k] = Scalar(w0 * vj);
+        continue;  // G_ii = 0 and H_ii = 0 by convention
+      }
+      // Minimum-image separation; the image shift is decided on the real part.
+      Eigen::Matrix<Scalar, 1, Dim> d;
+      for (int a = 0; a < Dim; ++a) {
+        if (positions)
+          d[a] = (*positions)(i, a) - (*positions)(j, a);
+        else
+          d[a] = Scalar(p.x(i, a) - p.x(j, a));
+        if (p.periodic[a]) {
+          double L = p.box_hi[a] - p.box_lo[a];
+          d[a] -= L * std::round(detail::re(d[a]) / L);
+        }
+      }
+      using std::sqrt;
+      Scalar r2(0);  // analytic square (not |.|^2) so that complex steps pass through
+      for (int a = 0; a < Dim; ++a) r2 += d[a] * d[a];
+      if (detail::re(r2) == 0.0) {  // coincident points: the limits of W, grad W (0) and the Hessian
+        if (w) w[k] = Scalar(w0 * vj);
+        if (req.hessian)
+          for (int a = 0; a < Dim; ++a) hh[a][a][k] = Scalar(d20 * vj);
+        continue;
+      }
+      const Scalar r = sqrt(r2);
+      if (w) w[k] = kernel.value(r, h) * vj;
+      if (req.gradient || req.hessian) {
+        const Scalar dw = kernel.d1(r, h);
+        if (req.gradient)
+          for (int a = 0; a < Dim; ++a) g[a][k] = dw * d[a] / r * vj;
+        if (req.hessian) {
+          const Scalar ddw = kernel.d2(r, h);
+          const Scalar over_r = dw / r;
+          for (int a = 0; a < Dim; ++a)
+            for (int b = a; b < Dim; ++b) {
+              Scalar eab = d[a] * d[b] / r2;
+              hh[a][b][k] = (ddw * eab + over_r * ((a == b ? 1.0 : 0.0) - eab)) * vj;
+            }
+        }
+      }
+    }
+  }
+  if (req.hessian)
+    for (int a = 0; a < Dim; ++a)
+      for (int b = 0; b < a; ++b) ops.H[a][b] = ops.H[b][a];
+  return ops;
+}
+
+template <int Dim>
+SparseMatrix<> kernel_matrix(const ParticleSet<Dim>& p, const NeighbourList& nl, const Kernel<Dim>& k, double h) {
+  return assemble_operators<Dim, double>(p, nl, k, h, {.kernel = true, .gradient = false, .hessian = false}).W;
+}
+
+template <int Dim>
+SparseMatrix<> gradient_matrix(const ParticleSet<Dim>& p, const NeighbourList& nl, const Kernel<Dim>& k, double h,
+                               int axis) {
+  if (axis < 0 || axis >= Dim)
+    throw std::invalid_argument("gradient_matrix: axis " + std::to_string(axis) + " out of range for dimension " +
+                                std::to_string(Dim));
+  return assemble_operators<Dim, double>(p, nl, k, h, {.kernel = false, .gradient = true, .hessian = false}).G[axis];
+}
+
+template SparseMatrix<double> pattern_matrix<double>(const NeighbourList&);
+template SparseMatrix<std::complex<double>> pattern_matrix<std::complex<double>>(const NeighbourList&);
+
+#define SPHSTAB_INSTANTIATE(D)                                                                                      \
+  template Operators<D, double> assemble_operators<D, double>(const ParticleSet<D>&, const NeighbourList&,          \
+                                                              const Kernel<D>&, double, OperatorRequest,            \
+                                                              const Positions<D, double>*);                         \
+  template Operators<D, std::complex<double>> assemble_operators<D, std::complex<double>>(                          \
+      const ParticleSet<D>&, const NeighbourList&, const Kernel<D>&, double, OperatorRequest,                       \
+      const Positions<D, std::complex<double>>*);                                                                   \
+  template SparseMatrix<> kernel_matrix<D>(const ParticleSet<D>&, const NeighbourList&, const Kernel<D>&, double);  \
+  template SparseMatrix<> gradient_matrix<D>(const ParticleSet<D>&, const NeighbourList&, const Kernel<D>&, double, \
+                                             int);
+SPHSTAB_INSTANTIATE(1)
+SPHSTAB_INSTANTIATE(2)
+SPHSTAB_INSTANTIATE(3)
+#undef SPHSTAB_INSTANTIATE
+
+}  // namespace sphstab

@@ -1,0 +1,157 @@
+#include "sphstab/particles/lattice.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+namespace sphstab {
+
+LatticeType parse_lattice_type(const std::string& name) {
+  if (name == "line") return LatticeType::Line;
+  if (name == "square") return LatticeType::Square;
+  if (name == "hex" || name == "hexagonal") return LatticeType::Hexagonal;
+  if (name == "face-centred" || name == "fcc") return LatticeType::FaceCentred;
+  if (name == "cubic") return LatticeType::Cubic;
+  throw std::invalid_argument("unknown lattice '" + name + "' (valid: line, square, hex, face-centred, cubic)");
+}
+
+std::string lattice_name(LatticeType type) {
+  switch (type) {
+    case LatticeType::Line:
+      return "line";
+    case LatticeType::Square:
+      return "square";
+    case LatticeType::Hexagonal:
+      return "hex";
+    case LatticeType::FaceCentred:
+      return "face-centred";
+    case LatticeType::Cubic:
+      return "cubic";
+  }
+  return "?";
+}
+
+int fixed_layers_needed(double support_radius, double dx) {
+  if (!(dx > 0)) throw std::invalid_argument("fixed_layers_needed: spacing must be > 0");
+  if (!(support_radius > 0)) throw std::invalid_argument("fixed_layers_needed: support radius must be > 0");
+  // Largest k with k dx < support_radius (tolerance: a neighbour at exactly the support has W = 0).
+  return std::max(0, static_cast<int>(std::ceil(support_radius / dx - 1e-9)) - 1);
+}
+
+template <int Dim>
+ParticleSet<Dim> make_lattice(LatticeType type, int n, const LatticeOptions& opt) {
+  const bool dim_ok =
+      (type == LatticeType::Line && Dim == 1) ||
+      ((type == LatticeType::Square || type == LatticeType::Hexagonal || type == LatticeType::FaceCentred) &&
+       Dim == 2) ||
+      (type == LatticeType::Cubic && Dim == 3);
+  if (!dim_ok)
+    throw std::invalid_argument("make_lattice: lattice '" + lattice_name(type) + "' does not exist in dimension " +
+                                std::to_string(Dim));
+  if (n <= 0)
+    throw std::invalid_argument("make_lattice: number of particles per side must be > 0 (got " + std::to_string(n) +
+                                ")");
+  const double dx = opt.spacing;
+  if (!(dx > 0) || !std::isfinite(dx)) throw std::invalid_argument("make_lattice: spacing must be finite and > 0");
+  if (!(opt.stretch > 0) || !std::isfinite(opt.stretch))
+    throw std::invalid_argument("make_lattice: stretch must be finite and > 0");
+  if (opt.perturbation < 0 || !std::isfinite(opt.perturbation))
+    throw std::invalid_argument("make_lattice: perturbation must be finite and >= 0");
+  const bool shifted = type == LatticeType::Hexagonal || type == LatticeType::FaceCentred;
+  if (opt.periodic && shifted && n % 2 != 0)
+    throw std::invalid_argument("make_lattice: periodic hex/face-centred lattices need an even n");
+
+  std::array<double, Dim> step;
+  step.fill(dx);
+  if (type == LatticeType::Hexagonal) step[1] = dx * std::sqrt(3.0) / 2.0;
+
+  std::array<int, Dim> layers;
+  layers.fill(0);
+  if (!opt.periodic) {
+    if (opt.fixed_layers >= 0) {
+      layers.fill(opt.fixed_layers);
+    } else {
+      if (!(opt.support_radius > 0))
+        throw std::invalid_argument("make_lattice: support_radius must be > 0 to choose the fixed layers");
+      for (int a = 0; a < Dim; ++a) {
+        // Shifted rows put a neighbour up to dx/2 further along x.
+        double reach = opt.support_radius + ((shifted && a == 0) ? 0.5 * dx : 0.0);
+        layers[a] = fixed_layers_needed(reach, step[a]);
+      }
+    }
+  }
+
+  // Enumerate the index box; free block first, then fixed particles, each in lexicographic order.
+  std::array<int, Dim> lo, extent;
+  long total = 1;
+  for (int a = 0; a < Dim; ++a) {
+    lo[a] = -layers[a];
+    extent[a] = n + 2 * layers[a];
+    total *= extent[a];
+  }
+  ParticleSet<Dim> set;
+  set.x.resize(total, Dim);
+  set.volume.resize(total);
+  set.role.resize(total);
+  set.depth.resize(total);
+  const double volume = (type == LatticeType::Hexagonal) ? dx * step[1] : std::pow(dx, Dim);
+  long next_free = 0, next_fixed = static_cast<long>(std::pow(n, Dim));
+  for (long flat = 0; flat < total; ++flat) {
+    std::array<int, Dim> idx;
+    long rest = flat;
+    for (int a = 0; a < Dim; ++a) {
+      idx[a] = lo[a] + static_cast<int>(rest % extent[a]);
+      rest /= extent[a];
+    }
+    bool free = true;
+    int depth = opt.periodic ? n : (1 << 29);
+    for (int a = 0; a < Dim; ++a) {
+      free = free && idx[a] >= 0 && idx[a] < n;
+      if (!opt.periodic) depth = std::min({depth, idx[a] - lo[a], lo[a] + extent[a] - 1 - idx[a]});
+    }
+    long row = free ? next_free++ : next_fixed++;
+    for (int a = 0; a < Dim; ++a) set.x(row, a) = (idx[a] + 0.5) * step[a];
+    if (shifted && (((idx[1] % 2) + 2) % 2) == 1) set.x(row, 0) += 0.5 * dx;
+    set.volume[row] = volume;
+    set.role[row] = free ? Role::Free : Role::Fixed;
+    set.depth[row] = depth;
+  }
+
+  set.spacing = dx;
+  if (opt.periodic) {
+    set.periodic.fill(true);
+    for (int a = 0; a < Dim; ++a) {
+      set.box_lo[a] = 0.0;
+      set.box_hi[a] = n * step[a];
+    }
+  }
+  if (opt.perturbation > 0) {
+    std::mt19937_64 rng(opt.seed);
+    std::uniform_real_distribution<double> u(-opt.perturbation * dx, opt.perturbation * dx);
+    for (int i = 0; i < set.size(); ++i)
+      if (set.role[i] == Role::Free)
+        for (int a = 0; a < Dim; ++a) {
+          set.x(i, a) += u(rng);
+          if (set.periodic[a]) {  // wrap back into the box
+            double L = set.box_hi[a] - set.box_lo[a];
+            set.x(i, a) -= L * std::floor((set.x(i, a) - set.box_lo[a]) / L);
+          }
+        }
+  }
+  if (opt.stretch != 1.0) {
+    set.x *= opt.stretch;
+    set.volume *= std::pow(opt.stretch, Dim);
+    set.spacing *= opt.stretch;
+    set.box_lo *= opt.stretch;
+    set.box_hi *= opt.stretch;
+  }
+  return set;
+}
+
+template ParticleSet<1> make_lattice<1>(LatticeType, int, const LatticeOptions&);
+template ParticleSet<2> make_lattice<2>(LatticeType, int, const LatticeOptions&);
+template ParticleSet<3> make_lattice<3>(LatticeType, int, const LatticeOptions&);
+
+}  // namespace sphstab

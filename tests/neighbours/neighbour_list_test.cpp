@@ -1,0 +1,83 @@
+#include "sphstab/neighbours/neighbour_list.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "sphstab/particles/lattice.hpp"
+
+namespace sphstab {
+namespace {
+
+template <int Dim>
+ParticleSet<Dim> random_set(int n, double box, bool periodic, unsigned seed) {
+  ParticleSet<Dim> p;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, box);
+  p.x.resize(n, Dim);
+  for (int i = 0; i < n; ++i)
+    for (int a = 0; a < Dim; ++a) p.x(i, a) = u(rng);
+  // Coincident points: duplicate a few particles exactly.
+  for (int i = 0; i + 1 < n && i < 6; i += 2) p.x.row(i + 1) = p.x.row(i);
+  p.volume = Eigen::VectorXd::Ones(n);
+  p.role.assign(n, Role::Free);
+  if (periodic) {
+    p.periodic.fill(true);
+    p.box_lo.setZero();
+    p.box_hi.setConstant(box);
+  }
+  return p;
+}
+
+template <int Dim>
+void expect_same(const ParticleSet<Dim>& p, double radius) {
+  auto a = find_neighbours(p, radius);
+  auto b = find_neighbours_brute_force(p, radius);
+  ASSERT_EQ(a.offsets, b.offsets);
+  ASSERT_EQ(a.indices, b.indices);
+}
+
+TEST(NeighbourList, MatchesBruteForceOnRandomSets) {
+  for (bool periodic : {false, true})
+    for (unsigned seed : {1u, 2u, 3u}) {
+      expect_same(random_set<1>(300, 10.0, periodic, seed), 0.37);
+      expect_same(random_set<2>(600, 10.0, periodic, seed), 0.81);
+      expect_same(random_set<3>(800, 6.0, periodic, seed), 1.3);
+    }
+}
+
+TEST(NeighbourList, MatchesBruteForceOnLattices) {
+  LatticeOptions opt{.spacing = 0.1, .support_radius = 0.26};
+  expect_same(make_lattice<1>(LatticeType::Line, 40, opt), 0.26);
+  expect_same(make_lattice<2>(LatticeType::Square, 17, opt), 0.26);
+  expect_same(make_lattice<2>(LatticeType::Hexagonal, 16, opt), 0.26);
+  expect_same(make_lattice<3>(LatticeType::Cubic, 7, opt), 0.26);
+  opt.periodic = true;
+  expect_same(make_lattice<1>(LatticeType::Line, 40, opt), 0.26);
+  expect_same(make_lattice<2>(LatticeType::Square, 12, opt), 0.26);
+  expect_same(make_lattice<2>(LatticeType::Hexagonal, 12, opt), 0.26);
+  expect_same(make_lattice<3>(LatticeType::Cubic, 6, opt), 0.26);
+}
+
+TEST(NeighbourList, PeriodicWrapFindsImages) {
+  auto p = make_lattice<1>(LatticeType::Line, 10, {.spacing = 1.0, .periodic = true});
+  auto nl = find_neighbours(p, 1.5);
+  // Particle 0 at 0.5 sees 9 (at 9.5) through the wrap.
+  std::vector<int> row0(nl.indices.begin() + nl.offsets[0], nl.indices.begin() + nl.offsets[1]);
+  EXPECT_EQ(row0, (std::vector<int>{0, 1, 9}));
+}
+
+TEST(NeighbourList, RejectsBadInput) {
+  auto p = make_lattice<1>(LatticeType::Line, 10, {.spacing = 1.0, .periodic = true});
+  EXPECT_THROW(find_neighbours(p, 0.0), std::invalid_argument);
+  EXPECT_THROW(find_neighbours(p, -1.0), std::invalid_argument);
+  EXPECT_THROW(find_neighbours(p, 6.0), std::invalid_argument);  // box 10 < 2 x 6
+  ParticleSet<2> empty;
+  EXPECT_THROW(find_neighbours(empty, 1.0), std::invalid_argument);
+  auto q = random_set<2>(10, 1.0, false, 1);
+  q.x(3, 1) = std::nan("");
+  EXPECT_THROW(find_neighbours(q, 0.3), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace sphstab
