@@ -1,18 +1,36 @@
 #include "sphstab/operators/operators.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 namespace sphstab {
 
+namespace detail {
+
+/// Gives m the neighbour-list pattern in place (Eigen 3.4 sparse matrices have no move semantics, so
+/// building a temporary and assigning it would copy every array). Values are left for the caller.
+template <class Scalar>
+void set_pattern(SparseMatrix<Scalar>& m, const NeighbourList& nl) {
+  const int n = nl.size();
+  if (m.rows() == n && m.cols() == n && m.isCompressed() && m.nonZeros() == nl.nonzeros() &&
+      std::equal(nl.offsets.begin(), nl.offsets.end(), m.outerIndexPtr()) &&
+      std::equal(nl.indices.begin(), nl.indices.end(), m.innerIndexPtr()))
+    return;  // already this pattern: keep the storage
+  m.resize(n, n);
+  m.resizeNonZeros(nl.nonzeros());
+  int* outer = m.outerIndexPtr();
+  for (int i = 0; i <= n; ++i) outer[i] = static_cast<int>(nl.offsets[i]);
+  std::copy(nl.indices.begin(), nl.indices.end(), m.innerIndexPtr());
+}
+
+}  // namespace detail
+
 template <class Scalar>
 SparseMatrix<Scalar> pattern_matrix(const NeighbourList& nl) {
-  const int n = nl.size();
-  SparseMatrix<Scalar> m(n, n);
-  m.resizeNonZeros(nl.nonzeros());
-  for (int i = 0; i <= n; ++i) m.outerIndexPtr()[i] = static_cast<int>(nl.offsets[i]);
-  std::copy(nl.indices.begin(), nl.indices.end(), m.innerIndexPtr());
+  SparseMatrix<Scalar> m;
+  detail::set_pattern(m, nl);
   std::fill(m.valuePtr(), m.valuePtr() + nl.nonzeros(), Scalar(0));
   return m;
 }
@@ -20,6 +38,15 @@ SparseMatrix<Scalar> pattern_matrix(const NeighbourList& nl) {
 template <int Dim, class Scalar>
 Operators<Dim, Scalar> assemble_operators(const ParticleSet<Dim>& p, const NeighbourList& nl, const Kernel<Dim>& kernel,
                                           double h, OperatorRequest req, const Positions<Dim, Scalar>* positions) {
+  Operators<Dim, Scalar> ops;
+  assemble_operators_into(ops, p, nl, kernel, h, req, positions);
+  return ops;
+}
+
+template <int Dim, class Scalar>
+void assemble_operators_into(Operators<Dim, Scalar>& ops, const ParticleSet<Dim>& p, const NeighbourList& nl,
+                             const Kernel<Dim>& kernel, double h, OperatorRequest req,
+                             const Positions<Dim, Scalar>* positions) {
   p.validate("assemble_operators");
   if (!(h > 0) || !std::isfinite(h))
     throw std::invalid_argument("assemble_operators: smoothing length h must be finite and > 0 (got " +
@@ -33,13 +60,12 @@ Operators<Dim, Scalar> assemble_operators(const ParticleSet<Dim>& p, const Neigh
     throw std::invalid_argument("assemble_operators: neighbour radius " + std::to_string(nl.radius) +
                                 " is smaller than the kernel support " + std::to_string(kernel.support_radius(h)));
 
-  Operators<Dim, Scalar> ops;
-  if (req.kernel) ops.W = pattern_matrix<Scalar>(nl);
+  if (req.kernel) detail::set_pattern(ops.W, nl);
   if (req.gradient)
-    for (int a = 0; a < Dim; ++a) ops.G[a] = pattern_matrix<Scalar>(nl);
+    for (int a = 0; a < Dim; ++a) detail::set_pattern(ops.G[a], nl);
   if (req.hessian)
     for (int a = 0; a < Dim; ++a)
-      for (int b = a; b < Dim; ++b) ops.H[a][b] = pattern_matrix<Scalar>(nl);
+      for (int b = a; b < Dim; ++b) detail::set_pattern(ops.H[a][b], nl);
 
   Scalar* w = req.kernel ? ops.W.valuePtr() : nullptr;
   std::array<Scalar*, Dim> g{};
@@ -51,11 +77,18 @@ Operators<Dim, Scalar> assemble_operators(const ParticleSet<Dim>& p, const Neigh
       for (int b = a; b < Dim; ++b) hh[a][b] = ops.H[a][b].valuePtr();
 
   const double w0 = kernel.value(0.0, h);
+  std::array<double, Dim> box;
+  for (int a = 0; a < Dim; ++a) box[a] = p.box_hi[a] - p.box_lo[a];
   const double d20 = kernel.d2(0.0, h);
   for (int i = 0; i < p.size(); ++i) {
     for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
       const int j = nl.indices[k];
       const double vj = p.volume[j];
+      if (req.gradient)
+        for (int a = 0; a < Dim; ++a) g[a][k] = Scalar(0);
+      if (req.hessian)
+        for (int a = 0; a < Dim; ++a)
+          for (int b = a; b < Dim; ++b) hh[a][b][k] = Scalar(0);
       if (i == j) {
         if (w) w[k] = Scalar(w0 * vj);
         continue;  // G_ii = 0 and H_ii = 0 by convention
@@ -67,9 +100,12 @@ Operators<Dim, Scalar> assemble_operators(const ParticleSet<Dim>& p, const Neigh
           d[a] = (*positions)(i, a) - (*positions)(j, a);
         else
           d[a] = Scalar(p.x(i, a) - p.x(j, a));
-        if (p.periodic[a]) {
-          double L = p.box_hi[a] - p.box_lo[a];
-          d[a] -= L * std::round(detail::re(d[a]) / L);
+        if (p.periodic[a]) {  // neighbours are closer than L/2, so one shift suffices
+          const double L = box[a], dr = detail::re(d[a]);
+          if (dr > 0.5 * L)
+            d[a] -= L;
+          else if (dr < -0.5 * L)
+            d[a] += L;
         }
       }
       using std::sqrt;
@@ -101,13 +137,15 @@ Operators<Dim, Scalar> assemble_operators(const ParticleSet<Dim>& p, const Neigh
   }
   if (req.hessian)
     for (int a = 0; a < Dim; ++a)
-      for (int b = 0; b < a; ++b) ops.H[a][b] = ops.H[b][a];
-  return ops;
+      for (int b = 0; b < a; ++b) ops.H[a][b] = ops.H[b][a];  // a copy: callers may modify one
 }
 
 template <int Dim>
 SparseMatrix<> kernel_matrix(const ParticleSet<Dim>& p, const NeighbourList& nl, const Kernel<Dim>& k, double h) {
-  return assemble_operators<Dim, double>(p, nl, k, h, {.kernel = true, .gradient = false, .hessian = false}).W;
+  auto ops = assemble_operators<Dim, double>(p, nl, k, h, {.kernel = true, .gradient = false, .hessian = false});
+  SparseMatrix<> w;
+  w.swap(ops.W);
+  return w;
 }
 
 template <int Dim>

@@ -8,17 +8,27 @@
 namespace sphstab {
 namespace detail {
 
+/// a^n for small n >= 0 by repeated multiplication (std::pow(double, int) goes through pow(double, double)).
+template <class Scalar>
+Scalar ipow(const Scalar& a, int n) {
+  Scalar result(1.0), base = a;
+  for (; n > 0; n >>= 1) {
+    if (n & 1) result *= base;
+    base *= base;
+  }
+  return result;
+}
+
 /// (a)^n and its derivatives with respect to s when a = c - s, for a > 0 (caller checks the support).
 template <class Scalar>
 Scalar power_term(const Scalar& a, int n, int order) {
-  using std::pow;
   switch (order) {
     case 0:
-      return pow(a, n);
+      return ipow(a, n);
     case 1:
-      return -double(n) * pow(a, n - 1);
+      return -double(n) * ipow(a, n - 1);
     default:
-      return double(n) * double(n - 1) * pow(a, n - 2);
+      return double(n) * double(n - 1) * ipow(a, n - 2);
   }
 }
 
@@ -123,18 +133,18 @@ Scalar Kernel<Dim>::shape(const Scalar& s_in, int order) const {
       break;
     }
     case KernelType::ModifiedMollifier: {  // Ismail (2.19): exp(-1/(1-s^2)) (1-s^2)^8
+      using detail::ipow;
       using std::exp;
-      using std::pow;
       Scalar t = 1.0 - s * s;  // t > 0 inside the support
       Scalar e = exp(-1.0 / t);
       // f = e t^8; df/ds = -2 s e t^6 (1 + 8 t) (derived: d/ds e = -2s e / t^2, d/ds t^8 = -16 s t^7)
-      if (order == 0) f = e * pow(t, 8);
-      if (order == 1) f = -2.0 * s * e * pow(t, 6) * (1.0 + 8.0 * t);
+      if (order == 0) f = e * ipow(t, 8);
+      if (order == 1) f = -2.0 * s * e * ipow(t, 6) * (1.0 + 8.0 * t);
       if (order == 2) {
         // d/ds [-2 s e t^6 (1+8t)] with de/ds = -2 s e / t^2, dt/ds = -2 s
-        Scalar g = e * pow(t, 6) * (1.0 + 8.0 * t);
-        Scalar dg = e * (-2.0 * s / (t * t)) * pow(t, 6) * (1.0 + 8.0 * t) +
-                    e * (6.0 * pow(t, 5) * (1.0 + 8.0 * t) + pow(t, 6) * 8.0) * (-2.0 * s);
+        Scalar g = e * ipow(t, 6) * (1.0 + 8.0 * t);
+        Scalar dg = e * (-2.0 * s / (t * t)) * ipow(t, 6) * (1.0 + 8.0 * t) +
+                    e * (6.0 * ipow(t, 5) * (1.0 + 8.0 * t) + ipow(t, 6) * 8.0) * (-2.0 * s);
         f = -2.0 * g - 2.0 * s * dg;
       }
       break;

@@ -56,6 +56,13 @@ Operators<Dim, Scalar> assemble_operators(const ParticleSet<Dim>& particles, con
                                           const Kernel<Dim>& kernel, double h, OperatorRequest request = {},
                                           const Positions<Dim, Scalar>* positions = nullptr);
 
+/// As assemble_operators, but reuses the storage of `ops` (no allocation, no page faults) when its matrices
+/// already have the neighbour-list pattern, as in updated-Lagrangian re-assembly at new positions.
+template <int Dim, class Scalar = double>
+void assemble_operators_into(Operators<Dim, Scalar>& ops, const ParticleSet<Dim>& particles,
+                             const NeighbourList& neighbours, const Kernel<Dim>& kernel, double h,
+                             OperatorRequest request = {}, const Positions<Dim, Scalar>* positions = nullptr);
+
 /// W alone (see assemble_operators).
 template <int Dim>
 SparseMatrix<> kernel_matrix(const ParticleSet<Dim>& particles, const NeighbourList& neighbours,

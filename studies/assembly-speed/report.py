@@ -1,0 +1,92 @@
+"""Summarise the assembly benchmark CSVs into results/assembly-speed/{assembly.csv, summary.md, assembly.png}."""
+import csv
+import json
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+out = sys.argv[1]
+
+
+def load(name):
+    with open(os.path.join(out, name)) as f:
+        return json.load(f)["benchmarks"]
+
+
+def fnum(x):
+    return float(x) if x not in ("", None) else float("nan")
+
+
+table = []
+for mode, fname in (("default", "benchmark_default.json"), ("hugepages", "benchmark_hugepages.json")):
+    rows = load(fname)
+    copy = [r for r in rows if r["name"].startswith("BM_MemoryCopy")]
+    bandwidth = fnum(copy[0]["bytes_per_s"]) if copy else float("nan")
+    for r in rows:
+        parts = r["name"].split("/")
+        if parts[0] not in ("BM_AssembleWG", "BM_ReassembleWG", "BM_NeighbourSearch"):
+            continue
+        n, h10 = int(parts[1]), int(parts[2])
+        seconds = fnum(r["real_time"]) * {"ms": 1e-3, "us": 1e-6, "ns": 1e-9, "s": 1.0}[r["time_unit"]]
+        bps = fnum(r.get("bytes_per_s"))
+        table.append(dict(mode=mode, benchmark=parts[0][3:], particles=n, h_over_dx=h10 / 10, seconds=seconds,
+                          pair_entries_per_s=fnum(r["nnz_per_s"]), bytes_per_s=bps,
+                          copy_bandwidth=bandwidth, ratio_to_copy=bps / bandwidth if bps == bps else float("nan")))
+
+with open(os.path.join(out, "assembly.csv"), "w", newline="") as f:
+    w = csv.DictWriter(f, fieldnames=list(table[0].keys()))
+    w.writeheader()
+    for row in table:
+        w.writerow(row)
+
+
+def slope(rows):
+    xs = [math.log(r["particles"]) for r in rows]
+    ys = [math.log(r["seconds"]) for r in rows]
+    mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
+    return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+
+
+fig, ax = plt.subplots(figsize=(7, 4.5))
+lines = ["# Assembly speed: W + G on 2D square lattices", "",
+         "Produced by `studies/assembly-speed/run.sh` (Google Benchmark `benchmarks/assembly_benchmark.cpp`), cubic",
+         "B-spline, periodic square lattice, one core. A *pair entry* is one (i, j) of the neighbour list; each",
+         "writes three stored nonzeros (W, G^x, G^y): 3 x (8 B value + 4 B index) = 36 B for a fresh assembly,",
+         "3 x 8 B = 24 B for re-assembly into existing storage (updated-Lagrangian steady state). `ratio_to_copy`",
+         "is bytes written per second over the memcpy bandwidth (read + write) measured in the same run.",
+         "Target (issue 2): >= 5e7 pair entries/s on one core, linear scaling in N.", "",
+         "| mode | benchmark | h/dx | N range | min..max pair entries/s | time ~ N^p | bytes/s / copy bandwidth |",
+         "|---|---|---|---|---|---|---|"]
+for mode in ("default", "hugepages"):
+    for bench in ("AssembleWG", "ReassembleWG", "NeighbourSearch"):
+        for h in (1.3, 2.0):
+            rows = sorted([r for r in table if r["mode"] == mode and r["benchmark"] == bench and r["h_over_dx"] == h],
+                          key=lambda r: r["particles"])
+            if not rows:
+                continue
+            rates = [r["pair_entries_per_s"] for r in rows]
+            ratios = [r["ratio_to_copy"] for r in rows if r["ratio_to_copy"] == r["ratio_to_copy"]]
+            ratio_txt = f"{min(ratios):.3f}..{max(ratios):.3f}" if ratios else "-"
+            lines.append(f"| {mode} | {bench} | {h} | {rows[0]['particles']:.0e}..{rows[-1]['particles']:.0e} | "
+                         f"{min(rates):.3g}..{max(rates):.3g} | {slope(rows):.3f} | {ratio_txt} |")
+            if bench != "NeighbourSearch":
+                ax.loglog([r["particles"] for r in rows], rates, "o-" if mode == "hugepages" else "s--",
+                          label=f"{bench} h={h}dx ({mode})")
+copy_bw = sorted({(r["mode"], r["copy_bandwidth"]) for r in table})
+lines += ["", "memcpy bandwidth (read + write) measured in each run: " +
+          ", ".join(f"{m}: {b / 1e9:.1f} GB/s" for m, b in copy_bw), ""]
+ax.axhline(5e7, color="k", lw=0.8, ls=":", label="target 5e7/s")
+ax.set_xlabel("particles N")
+ax.set_ylabel("pair entries assembled per second")
+ax.set_title("W + G assembly, 2D square lattice, one core")
+ax.legend(fontsize=7)
+fig.tight_layout()
+fig.savefig(os.path.join(out, "assembly.png"), dpi=130)
+with open(os.path.join(out, "summary.md"), "w") as f:
+    f.write("\n".join(lines) + "\n")
+print("\n".join(lines))

@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Assembly speed of W + G on 2D square lattices (Google Benchmark), with the memory-copy bandwidth of the
+# same run; twice: default malloc, and malloc backed by transparent huge pages (glibc.malloc.hugetlb=1),
+# because on this virtual machine first-touch page faults dominate fresh allocations.
+set -euo pipefail
+bin=$1
+out=$2
+filter=${ASSEMBLY_FILTER:-.}
+"$bin/assembly_benchmark" --benchmark_filter="$filter" --benchmark_format=json >"$out/benchmark_default.json"
+GLIBC_TUNABLES=glibc.malloc.hugetlb=1 "$bin/assembly_benchmark" --benchmark_filter="$filter" \
+  --benchmark_format=json >"$out/benchmark_hugepages.json"
+"${PYTHON:-/usr/bin/python3}" "$(dirname "$0")/report.py" "$out"
