@@ -2,6 +2,7 @@
 // Private helpers shared by the kernel corrections (src/operators/*.cpp): validation and row/column sums of
 // sparse matrices templated on the scalar. Branching uses the real part only (complex-step safety).
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <stdexcept>

@@ -70,7 +70,7 @@ std::array<SparseMatrix<Scalar>, Dim> ncsph_gradient(const ParticleSet<Dim>& p, 
       std::ostringstream msg;
       msg << who << ": moment matrix of particle " << i << " is singular or ill-conditioned (rcond " << rcond << " < "
           << min_rcond << ", " << (end - begin) << " neighbours incl. itself); NCSPH needs neighbours "
-          << "spanning all " << Dim << " directions (increase h)";
+          << "whose separations span every axis (increase h)";
       throw std::invalid_argument(msg.str());
     }
     const Mat minv = m.inverse();

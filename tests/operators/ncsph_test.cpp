@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "correction_fixture.hpp"
 
 namespace sphstab {
@@ -36,6 +38,9 @@ void expect_linear_exactness(LatticeType type, int n, bool periodic) {
   // ... NCSPH reproduces linear fields on the free particles (and, M_i being invertible, on all of them).
   EXPECT_LT(linear_field_error<Dim>(c, g, true), 1e-12);
   EXPECT_LT(linear_field_error<Dim>(c, g, false), 1e-12);
+  std::printf("NCSPH %dD %s%s: linear-field error %.1e (uncorrected G: %.2e)\n", Dim, lattice_name(type).c_str(),
+              periodic ? " periodic" : "", linear_field_error<Dim>(c, g, false),
+              linear_field_error<Dim>(c, c.ops.G, true));
   auto gc = ncsph_gradient<Dim, Complex>(c.set, c.cops.W, c.cops.G);
   for (int a = 0; a < Dim; ++a) {
     EXPECT_LT(test::max_abs(test::row_sums(g[a])), 1e-13);  // (1.13a), round-off of O(1/h) entries
