@@ -110,8 +110,9 @@ void ElasticForm2D::strain_state(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>&
   const Discretisation<2>& d = *m_disc;
   uall = detail::full_displacement<2, Scalar>(d, u, m_fixed_u, "ElasticForm2D");
   Positions<2, Scalar> x = d.particles.x.template cast<Scalar>() + uall;
-  ops = assemble_operators<2, Scalar>(d.particles, d.neighbours, d.kernel, d.h,
-                                      detail::form_request<2>(m_gradient.get(), hessian), &x);
+  Operators<2, Scalar> fresh = assemble_operators<2, Scalar>(d.particles, d.neighbours, d.kernel, d.h,
+                                                             detail::form_request<2>(m_gradient.get(), hessian), &x);
+  detail::take_operators(ops, fresh);
   // (grad u)_i^{ab} = sum_j (u_j^a - u_i^a) G^b_ij, stored at column a * 2 + b
   const NeighbourList& nl = d.neighbours;
   const Scalar* g0 = ops.G[0].valuePtr();

@@ -56,6 +56,17 @@ inline OperatorRequest form_request(const GradientProvider<Dim>* provider, bool 
   return req;
 }
 
+/// Eigen 3.4 sparse matrices have no move operations (assignment deep-copies), so hand the operators over by
+/// O(1) swaps: `ops = assemble_operators(...)` would copy every matrix into freshly faulted pages.
+template <int Dim, class Scalar>
+inline void take_operators(Operators<Dim, Scalar>& dst, Operators<Dim, Scalar>& src) {
+  dst.W.swap(src.W);
+  for (int a = 0; a < Dim; ++a) {
+    dst.G[a].swap(src.G[a]);
+    for (int b = 0; b < Dim; ++b) dst.H[a][b].swap(src.H[a][b]);
+  }
+}
+
 }  // namespace detail
 
 }  // namespace sphstab

@@ -65,8 +65,9 @@ void WaveForm1D::strain_state(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u,
   Positions<1, Scalar> all = detail::full_displacement<1, Scalar>(d, u, m_fixed_u, "WaveForm1D");
   uall = all.col(0);
   Positions<1, Scalar> x = d.particles.x.template cast<Scalar>() + all;
-  ops = assemble_operators<1, Scalar>(d.particles, d.neighbours, d.kernel, d.h,
-                                      detail::form_request<1>(m_gradient.get(), hessian), &x);
+  Operators<1, Scalar> fresh = assemble_operators<1, Scalar>(d.particles, d.neighbours, d.kernel, d.h,
+                                                             detail::form_request<1>(m_gradient.get(), hessian), &x);
+  detail::take_operators(ops, fresh);
   // s_i = sum_j (u_j - u_i) G_ij + T   (all particles)
   const NeighbourList& nl = d.neighbours;
   const Scalar* g = ops.G[0].valuePtr();
