@@ -149,6 +149,15 @@ TEST(WaveForm1D, ConservativeJacobianIsSymmetricPlusIsNot) {
   }
 }
 
+TEST(WaveForm1D, PlusIsSymmetricAtRestOnADisorderedSet) {
+  // u = 0, s = T uniform: A_plus = D^T D - 2 T L with D = G - diag(G 1) (G antisymmetric, equal volumes), while
+  // the uncorrected form keeps the non-symmetric G D.
+  auto d = line(20, KernelType::CubicSpline, 1.3, false, 0.15);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(d->dofs());
+  EXPECT_LE(relative_asymmetry(jacobian(WaveForm1D(d, MomentumForm::Plus, 0.5), zero)), 1e-14);
+  EXPECT_GT(relative_asymmetry(jacobian(WaveForm1D(d, MomentumForm::Uncorrected, 0.5), zero)), 1e-3);
+}
+
 TEST(WaveForm1D, EquilibriumHasZeroForce) {
   for (KernelType type : {KernelType::CubicSpline, KernelType::QuinticSpline, KernelType::WendlandC4})
     for (double h : {1.1, 1.6}) {
