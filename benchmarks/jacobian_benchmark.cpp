@@ -1,9 +1,17 @@
 // Cost of the generic complex-step Jacobian against one force evaluation, 1D and 2D, as N grows.
 // Counters: dofs, colours (= complex force evaluations per Jacobian), ratio_to_real_force (Jacobian time / one
-// real force evaluation), complex_over_real (one complex force evaluation / one real one).
+// real force evaluation), complex_over_real (one complex force evaluation / one real one), setup_over_real (pattern +
+// colouring, done once per ComplexStepJacobian, / one real force evaluation). Ratios use thread CPU time, so that
+// preemption on a shared machine does not distort them.
+// Allocation note: every force evaluation allocates fresh operator matrices (assemble_operators returns new Eigen
+// matrices); with glibc's default heap trimming each call then re-faults its pages, which on this VM costs 4-7x the
+// arithmetic for N >~ 1000 and makes timings erratic. main() therefore raises glibc's mmap/trim thresholds (as
+// MALLOC_MMAP_THRESHOLD_ / MALLOC_TRIM_THRESHOLD_ would) unless SPHSTAB_DEFAULT_MALLOC is set in the environment.
 #include <benchmark/benchmark.h>
+#include <malloc.h>
+#include <time.h>
 
-#include <chrono>
+#include <cstdlib>
 
 #include "sphstab/forms/elasticity_2d.hpp"
 #include "sphstab/forms/wave_1d.hpp"
@@ -13,7 +21,13 @@
 namespace {
 
 using namespace sphstab;
-using Clock = std::chrono::steady_clock;
+
+/// Thread CPU time in seconds.
+double cpu_now() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return t.tv_sec + 1e-9 * t.tv_nsec;
+}
 
 std::unique_ptr<ForceFunction> make_force(int dim, int n, MomentumForm form) {
   const double h = 1.3;
@@ -29,16 +43,16 @@ std::unique_ptr<ForceFunction> make_force(int dim, int n, MomentumForm form) {
   return std::make_unique<ElasticForm2D>(d, ElasticMaterial{}, form, PreStrain::from_area_ratio(1.001));
 }
 
-/// Mean seconds of one call of f, repeated for at least 0.2 s.
+/// Mean CPU seconds of one call of f, repeated for at least 0.2 s.
 template <class F>
 double mean_time(F&& f) {
   int reps = 0;
-  const auto start = Clock::now();
+  const double start = cpu_now();
   double elapsed = 0;
   do {
     f();
     ++reps;
-    elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+    elapsed = cpu_now() - start;
   } while (elapsed < 0.2);
   return elapsed / reps;
 }
@@ -64,9 +78,9 @@ void jacobian_cost(benchmark::State& state, int dim, MomentumForm form) {
   ComplexStepJacobian jac(*f);  // pattern + colouring, outside the timed loop
   double total = 0;
   for (auto _ : state) {
-    const auto start = Clock::now();
+    const double start = cpu_now();
     SparseMatrix<> A = jac.compute(u);
-    total += std::chrono::duration<double>(Clock::now() - start).count();
+    total += cpu_now() - start;
     benchmark::DoNotOptimize(A.valuePtr());
   }
   state.counters["dofs"] = f->dofs();
@@ -112,4 +126,14 @@ BENCHMARK_CAPTURE(jacobian_cost, elastic2d_conservative, 2, MomentumForm::Conser
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  if (!std::getenv("SPHSTAB_DEFAULT_MALLOC")) {
+    mallopt(M_MMAP_THRESHOLD, 1 << 30);
+    mallopt(M_TRIM_THRESHOLD, 1 << 30);
+  }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -16,6 +16,11 @@
 /// Pre-stress from a pre-strain e (the load parameter; every form is affine in e):
 ///   Isotropic (area ratio xi = V/V0, e = sqrt(xi) - 1 per axis): sigma0 = 2 (lambda + mu) e I
 ///   UniaxialX (e along x, plane strain):                          sigma0 = lambda e I + 2 mu e e_x (x) e_x
+/// The Jacobian is therefore A(e) = A0 + e A1 (affine_jacobian); in terms of the area ratio xi = (1 + e)^2,
+/// dA/dxi = A1 / (2 sqrt(xi)). The positions are NOT stretched by the pre-strain (as in Powell §3.3, the pre-stress
+/// is an additive constant); stretch the lattice (LatticeOptions::stretch) separately if wanted.
+/// At a complete lattice equilibrium the initial-stress blocks are sigma0 H_ij (uncorrected), 2 sigma0 H_ij (plus),
+/// 0 (minus) and 2 (sigma0 H_ij + H_ij sigma0) (conservative): the 1D ratios 1 : 2 : 4 hold for isotropic sigma0 only.
 ///
 /// \code{.cpp}
 /// auto set = sphstab::make_lattice<2>(sphstab::LatticeType::Square, 20, {.spacing = 1.0, .periodic = true});
