@@ -1,0 +1,90 @@
+#pragma once
+/// \file complex_step_jacobian.hpp
+/// The generic exact sparse Jacobian A = -da/du of any ForceFunction, by complex-step differentiation with
+/// column colouring: for each colour c, one complex evaluation a(u + i h e_c) with e_c = sum of the unit vectors
+/// of the columns of colour c gives A_rk = -Im a_r / h for the (unique) column k of colour c in row r.
+/// With h = 1e-30 there is no subtractive cancellation: the result is exact to round-off (Squire & Trapp 1998;
+/// Curtis, Powell & Reid 1974 for the colouring).
+///
+/// \code{.cpp}
+/// sphstab::WaveForm1D force(disc, sphstab::MomentumForm::Conservative, 1e-3);
+/// sphstab::ComplexStepJacobian jac(force);            // pattern + colouring, once
+/// Eigen::VectorXd u = Eigen::VectorXd::Zero(force.dofs());
+/// sphstab::SparseMatrix<> A = jac.compute(u);          // A = -da/du, dofs x dofs, row-major
+/// int evaluations = jac.colours();                     // complex force evaluations per Jacobian
+/// auto split = sphstab::affine_jacobian(force, u);     // A(T) = split.A0 + T * split.A1
+/// \endcode
+#include <Eigen/Core>
+#include <vector>
+
+#include "sphstab/forms/force_function.hpp"
+#include "sphstab/jacobian/sparsity.hpp"
+#include "sphstab/operators/operators.hpp"
+
+namespace sphstab {
+
+/// Outcome of the last ComplexStepJacobian::compute().
+enum class JacobianStatus {
+  Successful,
+  NotComputed,
+  NumericalIssue  ///< the force function returned a non-finite value; the affected entries are NaN
+};
+
+enum class ColouringStrategy {
+  Greedy,  ///< greedy distance-2 colouring (colours independent of N)
+  None     ///< one column per evaluation (dense reference; dofs() evaluations)
+};
+
+/// Complex-step Jacobian with a precomputed pattern and colouring (reused across compute() calls and across
+/// force functions with the same pattern, e.g. other loads).
+class ComplexStepJacobian {
+ public:
+  static constexpr double default_step = 1e-30;
+
+  /// Analyses force.dof_pattern() and colours its columns.
+  explicit ComplexStepJacobian(const ForceFunction& force, ColouringStrategy strategy = ColouringStrategy::Greedy,
+                               double step = default_step);
+
+  /// A = -da/du at u (size dofs()), on the pattern (explicit zeros kept). Uses `force` if given (it must have
+  /// the same dofs() and pattern; e.g. with_load()), else the force function given to the constructor, which
+  /// must still be alive.
+  SparseMatrix<> compute(const Eigen::VectorXd& u, const ForceFunction* force = nullptr) const;
+
+  /// Successful, or NumericalIssue when the last compute() met a non-finite force value.
+  JacobianStatus info() const { return m_info; }
+  /// Complex force evaluations per compute() (= number of colours).
+  int colours() const { return m_ncolours; }
+  const std::vector<int>& colouring() const { return m_colour; }
+  const SparsityPattern& pattern() const { return m_pattern; }
+  double step() const { return m_step; }
+
+ private:
+  const ForceFunction* m_force;
+  double m_step;
+  SparsityPattern m_pattern;
+  std::vector<int> m_colour;
+  int m_ncolours = 0;
+  mutable JacobianStatus m_info = JacobianStatus::NotComputed;
+  std::vector<std::vector<int>> m_columns_of_colour;
+  SparsityPattern m_transpose;             ///< rows of each column
+  std::vector<long> m_transpose_position;  ///< for each transposed entry, its position in the row-major values
+};
+
+/// A = -da/du at u (greedy colouring). Throws std::runtime_error if the force is not finite at u.
+SparseMatrix<> jacobian(const ForceFunction& force, const Eigen::VectorXd& u);
+
+/// The affine split in the load: A(load) = A0 + load * A1, with A0 = A(0) and A1 = A(1) - A(0) (exact because
+/// every form is affine in its load; verified in the tests).
+struct AffineJacobian {
+  SparseMatrix<> A0;
+  SparseMatrix<> A1;
+  SparseMatrix<> at(double load) const { return SparseMatrix<>(A0 + load * A1); }
+};
+/// Throws std::runtime_error if the force is not finite at u.
+AffineJacobian affine_jacobian(const ForceFunction& force, const Eigen::VectorXd& u);
+
+/// ||A - A^T||_F / ||A||_F (0 for the zero matrix). Powell Thm 3.8: 0 (up to round-off) iff conservative, for
+/// equal particle masses.
+double relative_asymmetry(const SparseMatrix<>& A);
+
+}  // namespace sphstab

@@ -1,0 +1,37 @@
+#include "sphstab/forms/discretisation.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace sphstab {
+
+template <int Dim>
+std::shared_ptr<const Discretisation<Dim>> make_discretisation(ParticleSet<Dim> particles, const Kernel<Dim>& kernel,
+                                                               double h, double neighbour_radius) {
+  particles.validate("make_discretisation");
+  if (!(h > 0) || !std::isfinite(h))
+    throw std::invalid_argument("make_discretisation: smoothing length h must be finite and > 0 (got " +
+                                std::to_string(h) + ")");
+  const double support = kernel.support_radius(h);
+  if (neighbour_radius <= 0) neighbour_radius = support;
+  if (neighbour_radius < support * (1 - 1e-12))
+    throw std::invalid_argument("make_discretisation: neighbour radius " + std::to_string(neighbour_radius) +
+                                " is smaller than the kernel support " + std::to_string(support));
+  auto d = std::make_shared<Discretisation<Dim>>(Discretisation<Dim>{std::move(particles), kernel, h, {}, {}, {}});
+  d->neighbours = find_neighbours(d->particles, neighbour_radius);
+  d->free = d->particles.indices(Role::Free);
+  if (d->free.empty()) throw std::invalid_argument("make_discretisation: the particle set has no free particles");
+  d->free_slot.assign(d->particles.size(), -1);
+  for (int f = 0; f < static_cast<int>(d->free.size()); ++f) d->free_slot[d->free[f]] = f;
+  return d;
+}
+
+template std::shared_ptr<const Discretisation<1>> make_discretisation<1>(ParticleSet<1>, const Kernel<1>&, double,
+                                                                         double);
+template std::shared_ptr<const Discretisation<2>> make_discretisation<2>(ParticleSet<2>, const Kernel<2>&, double,
+                                                                         double);
+template std::shared_ptr<const Discretisation<3>> make_discretisation<3>(ParticleSet<3>, const Kernel<3>&, double,
+                                                                         double);
+
+}  // namespace sphstab

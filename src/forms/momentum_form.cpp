@@ -1,0 +1,62 @@
+#include "sphstab/forms/momentum_form.hpp"
+
+#include <stdexcept>
+
+namespace sphstab {
+
+MomentumForm parse_momentum_form(const std::string& name) {
+  for (MomentumForm f : all_momentum_forms())
+    if (momentum_form_name(f) == name) return f;
+  throw std::invalid_argument("parse_momentum_form: unknown form '" + name +
+                              "' (valid: uncorrected, plus, minus, conservative)");
+}
+
+std::string momentum_form_name(MomentumForm form) {
+  switch (form) {
+    case MomentumForm::Uncorrected:
+      return "uncorrected";
+    case MomentumForm::Plus:
+      return "plus";
+    case MomentumForm::Minus:
+      return "minus";
+    case MomentumForm::Conservative:
+      return "conservative";
+  }
+  return "unknown";
+}
+
+const std::vector<MomentumForm>& all_momentum_forms() {
+  static const std::vector<MomentumForm> forms{MomentumForm::Uncorrected, MomentumForm::Plus, MomentumForm::Minus,
+                                               MomentumForm::Conservative};
+  return forms;
+}
+
+double momentum_form_alpha(MomentumForm form) {
+  switch (form) {
+    case MomentumForm::Uncorrected:
+      return 0.0;
+    case MomentumForm::Plus:
+      return 1.0;
+    case MomentumForm::Minus:
+      return -1.0;
+    case MomentumForm::Conservative:
+      break;
+  }
+  throw std::invalid_argument("momentum_form_alpha: the conservative form has no alpha");
+}
+
+int initial_stress_multiplier(MomentumForm form) {
+  switch (form) {
+    case MomentumForm::Uncorrected:
+      return 1;
+    case MomentumForm::Plus:
+      return 2;
+    case MomentumForm::Minus:
+      return 0;
+    case MomentumForm::Conservative:
+      return 4;
+  }
+  return 0;
+}
+
+}  // namespace sphstab
