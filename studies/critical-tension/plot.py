@@ -46,8 +46,8 @@ def main(out):
         ax[0, 0].plot(h, col(sweep, "t_second_minor", k), color=STYLE[k]["color"], linestyle=":", linewidth=1)
         ax[0, 1].semilogy(*positive(h, col(sweep, "tcrit", k)), **kw)
         ax[1, 0].semilogy(*positive(h, col(sweep, "ratio_first_minor", k)), **kw)
-        hi, ti = positive(h, [t if t > 1e-12 else float("nan") for t in col(sweep, "tcrit_infinite", k)])
-        ax[0, 1].semilogy(hi, ti, color=STYLE[k]["color"], linestyle="--", linewidth=1)
+        ti = [t if t > 1e-12 else float("nan") for t in col(sweep, "tcrit_infinite", k)]  # NaN breaks the line
+        ax[0, 1].semilogy(h, ti, color=STYLE[k]["color"], linestyle="--", linewidth=1)
         n = sorted({int(r["N"]) for r in vn})
         t = [col(vn, "tcrit", k, h_over_dx=1.2, N=float(x))[0] for x in n]
         ax[1, 1].loglog(*positive(n, t), **kw)
@@ -55,7 +55,7 @@ def main(out):
     ax[1, 1].loglog(ns, [2e-1 / x**2 for x in ns], "k--", linewidth=1, label="N$^{-2}$")
     ax[0, 0].set(xlabel="h/dx", ylabel="T", title="(a) first minor (3.42), solid; second minors (3.49), dotted")
     ax[0, 1].set(xlabel="h/dx", ylabel="T$_{crit}$",
-                 title="(b) matrix T$_{crit}$, N = 30 (dashed: infinite lattice, where > 1e-12)")
+                 title="(b) matrix T$_{crit}$, N = 30; dashed: infinite lattice")
     ax[1, 0].axhline(100, color="k", linewidth=0.8, linestyle="--")
     ax[1, 0].set(xlabel="h/dx", ylabel="(3.42) / T$_{crit}$", title="(c) overestimate of (3.42), N = 30")
     ax[1, 1].set(xlabel="N (free particles)", ylabel="T$_{crit}$", title="(d) T$_{crit}$ versus N at h/dx = 1.2")
