@@ -28,7 +28,7 @@ enum class CholmodVariant { Simplicial, Supernodal };
 enum class CholmodFactorKind { LLT, LDLT };
 
 /// Systems that solve() can apply: A^-1, L^-1, L^-T, P, P^T (CHOLMOD_A, CHOLMOD_L, CHOLMOD_Lt, CHOLMOD_P,
-/// CHOLMOD_Pt). For LDLT, L and Lt include D^(1/2) only in the LLT case: use A for LDLT.
+/// CHOLMOD_Pt). L and Lt are the triangular factor of an LLT factorisation; for LDLT use A.
 enum class CholmodSystem { A, L, Lt, P, Pt };
 
 /// \code{.cpp}

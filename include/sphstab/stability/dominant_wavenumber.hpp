@@ -12,14 +12,16 @@
 ///    O(N), exact for pure modes, only indicative for mixtures.
 /// The sawtooth (-1)^i has k dx / pi = N / (N + 1) -> 1 (fixed ends) or 1 (periodic, N even).
 #include <Eigen/Core>
+#include <limits>
 
 namespace sphstab {
 
 struct WavenumberEstimate {
-  double k_projection = 0;         ///< k dx / pi from the projection (NaN when skipped)
-  double projection_fraction = 0;  ///< share of the squared norm in the dominant basis function (NaN when skipped)
-  double k_sign_changes = 0;       ///< k dx / pi from the sign-change count
-  int sign_changes = 0;            ///< z
+  static constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  double k_projection = nan;         ///< k dx / pi from the projection (NaN when skipped or not computed)
+  double projection_fraction = nan;  ///< share of the squared norm in the dominant basis function (NaN if skipped)
+  double k_sign_changes = nan;       ///< k dx / pi from the sign-change count (NaN if not computed)
+  int sign_changes = 0;              ///< z
 };
 
 /// @param[in] mode      N values (N >= 1), one per free particle
