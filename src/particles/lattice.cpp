@@ -36,8 +36,10 @@ std::string lattice_name(LatticeType type) {
 int fixed_layers_needed(double support_radius, double dx) {
   if (!(dx > 0)) throw std::invalid_argument("fixed_layers_needed: spacing must be > 0");
   if (!(support_radius > 0)) throw std::invalid_argument("fixed_layers_needed: support radius must be > 0");
-  // Largest k with k dx < support_radius (tolerance: a neighbour at exactly the support has W = 0).
-  return std::max(0, static_cast<int>(std::ceil(support_radius / dx - 1e-9)) - 1);
+  // Every k with k dx < support_radius, plus a borderline layer at exactly the support (to rounding): the
+  // neighbour search's strict r < radius may include or exclude it after rounding, and a kernel that does not
+  // vanish continuously at its support (truncated Gaussian) must see the same layer on both sides.
+  return static_cast<int>(std::floor(support_radius / dx * (1 + 1e-9)));
 }
 
 template <int Dim>

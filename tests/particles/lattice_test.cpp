@@ -10,8 +10,9 @@ namespace sphstab {
 namespace {
 
 TEST(Lattice, FixedLayerCountFollowsSupport) {
-  EXPECT_EQ(fixed_layers_needed(2.6, 1.0), 2);  // h = 1.3 dx: neighbours at 1, 2 dx
-  EXPECT_EQ(fixed_layers_needed(4.0, 1.0), 3);  // a neighbour at exactly 2h contributes W = 0
+  EXPECT_EQ(fixed_layers_needed(2.6, 1.0), 2);    // h = 1.3 dx: neighbours at 1, 2 dx
+  EXPECT_EQ(fixed_layers_needed(4.0, 1.0), 4);    // borderline layer at exactly 2h kept (see header)
+  EXPECT_EQ(fixed_layers_needed(0.03, 0.01), 3);  // 3 * 0.01 rounds above 0.03: still kept
   EXPECT_EQ(fixed_layers_needed(1.6, 1.0), 1);
   auto p = make_lattice<1>(LatticeType::Line, 30, {.spacing = 1.0, .support_radius = 2.6});
   EXPECT_EQ(p.size(), 34);

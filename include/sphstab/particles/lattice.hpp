@@ -25,8 +25,9 @@ struct LatticeOptions {
   std::uint64_t seed = 1;     ///< seed of the perturbation
 };
 
-/// Layers k = 1, 2, ... with k dx < support_radius: the fixed layers that complete every free particle's
-/// neighbourhood on a line or square lattice (a neighbour exactly at the support radius has W = 0).
+/// Layers k = 1, 2, ... with k dx <= support_radius (to a relative 1e-9): the fixed layers that complete every
+/// free particle's neighbourhood on a line or square lattice. A layer at exactly the support radius is
+/// included so that rounding in the neighbour search can never leave a free neighbourhood one-sided.
 int fixed_layers_needed(double support_radius, double dx);
 
 /// Regular lattice of n free particles per side (n^Dim free particles), free block first in the ordering,

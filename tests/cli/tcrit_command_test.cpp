@@ -1,0 +1,100 @@
+// `sphstab tcrit` end to end: CSV shape, agreement with the library, bad input handling.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "sphstab/stability/critical_tension.hpp"
+
+namespace sphstab {
+namespace {
+
+struct CliRun {
+  int status = -1;
+  std::string out;
+};
+
+/// Runs the CLI with `args`; stdout and stderr are captured together when `merge`.
+CliRun run(const std::string& args, bool merge = false) {
+  const std::string cmd = std::string(SPHSTAB_CLI) + " " + args + (merge ? " 2>&1" : " 2>/dev/null");
+  CliRun r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
+  const int st = pclose(pipe);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+std::vector<std::string> lines(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string line;
+  while (std::getline(ss, line)) out.push_back(line);
+  return out;
+}
+
+std::vector<std::string> fields(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  std::string f;
+  while (std::getline(ss, f, ',')) out.push_back(f);
+  return out;
+}
+
+TEST(TcritCommand, PrintsCsvAgreeingWithLibrary) {
+  CliRun r = run("tcrit --dim 1 --lattice line --n 30 --kernel cubic --form conservative --h 0.8:3.0:0.05");
+  ASSERT_EQ(r.status, 0);
+  auto ls = lines(r.out);
+  ASSERT_EQ(ls.size(), 1u + 45u);
+  auto header = fields(ls[0]);
+  for (const char* col : {"kernel", "form", "N", "h_over_dx", "tcrit", "t_first_minor", "t_second_minor", "t_nn",
+                          "t_nn_minor", "t_swegle", "tcrit_infinite", "reason"})
+    EXPECT_NE(std::find(header.begin(), header.end(), col), header.end()) << col;
+  auto col = [&](const char* name) { return std::find(header.begin(), header.end(), name) - header.begin(); };
+  // Row h = 1.25 (index 9): compare with the library.
+  auto row = fields(ls[1 + 9]);
+  EXPECT_EQ(row[col("h_over_dx")], "1.25");
+  Kernel<1> cubic(KernelType::CubicSpline);
+  CriticalTension ref =
+      critical_tension_1d(tension_lattice_1d(cubic, 1.25, 30), cubic, 1.25, MomentumForm::Conservative);
+  EXPECT_NEAR(std::stod(row[col("tcrit")]) / ref.tcrit, 1.0, 1e-11);  // printed with 12 significant digits
+  EXPECT_NEAR(std::stod(row[col("t_first_minor")]), 0.104, 1e-12);
+  EXPECT_EQ(row[col("N")], "30");
+}
+
+TEST(TcritCommand, MinusFormAndPeriodic) {
+  CliRun r = run("tcrit --n 20 --kernel wendland-c2 --form minus --h 1.3");
+  ASSERT_EQ(r.status, 0);
+  auto ls = lines(r.out);
+  ASSERT_EQ(ls.size(), 2u);
+  EXPECT_NE(ls[1].find(",inf,"), std::string::npos);
+  CliRun p = run("tcrit --n 40 --kernel cubic --h 1.0 --periodic --method eig");
+  ASSERT_EQ(p.status, 0);
+  auto pl = lines(p.out);
+  ASSERT_EQ(pl.size(), 2u);
+  EXPECT_NE(pl[1].find("sawtooth"), std::string::npos);
+}
+
+TEST(TcritCommand, BadInputIsOneErrorLineAndExitOne) {
+  for (const char* args :
+       {"tcrit --n 0", "tcrit --n abc", "tcrit --kernel nope", "tcrit --form sideways", "tcrit --h 1:0.5:0.1",
+        "tcrit --h -1", "tcrit --dim 2", "tcrit --method fast", "tcrit --correction shepard", "tcrit --lattice square",
+        "tcrit --bogus 3", "tcrit --n 3 --h 3.0 --periodic"}) {
+    CliRun r = run(args, true);
+    EXPECT_EQ(r.status, 1) << args;
+    auto ls = lines(r.out);
+    ASSERT_EQ(ls.size(), 1u) << args << ":\n" << r.out;
+    EXPECT_EQ(ls[0].rfind("sphstab: error: ", 0), 0u) << args << ": " << ls[0];
+  }
+  CliRun dim2 = run("tcrit --dim 2", true);
+  EXPECT_NE(dim2.out.find("not yet supported"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sphstab
