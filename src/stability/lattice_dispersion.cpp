@@ -9,6 +9,9 @@
 //    -(2(P - S^xx) - rho c0^2) A_x (A.V), i.e. the coefficient 2(P - S) also in the face-centred (5.25).
 //  * Artificial stress (R frozen): m sum_b 2R f^n grad W = 2R / ((n+1) W(dp)^n) m sum_b grad(W^{n+1}); its
 //    position perturbation is 2 rho R (f X), i.e. -2 rho^2 R (f V) in the frequency equation (5.13)-(5.16).
+//  * Perturbed R (optional): m sum_b (dR_a + dR_b exp(-i k.r_ab)) f^n grad W = -i rho A^f . dR, so
+//    rho omega^2 V = rho^2 A^f_j (omega dR^{ij}) with omega dR linear in omega dsigma = omega(-c0^2 D + T) and
+//    omega D = -rho (Vhat . A); Vhat -> V after dividing by (1 - beta).
 #include "sphstab/stability/lattice_dispersion.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -37,10 +40,11 @@ void check_state(const char* who, const UniformState& s) {
     if (!std::isfinite(v)) throw std::invalid_argument(std::string(who) + ": the state has a non-finite entry");
 }
 
-DispersionRelation solve(const LatticeSums& sums, const UniformState& state, const Eigen::Vector2d& k) {
+DispersionRelation solve(const LatticeSums& sums, const UniformState& state, const Eigen::Vector2d& k,
+                         bool perturbed_r = false) {
   DispersionRelation d;
   d.sums = sums;
-  d.M = dispersion_matrix(sums, state);
+  d.M = dispersion_matrix(sums, state, perturbed_r);
   Eigen::EigenSolver<Eigen::Matrix2d> es(d.M);
   Eigen::Vector2cd lambda = es.eigenvalues();
   Eigen::Matrix2cd vec = es.eigenvectors();
@@ -67,6 +71,7 @@ UniformState with_artificial_stress(UniformState state, double epsilon) {
       artificial_stress(SymmetricTensor2<double>{state.sigma_xx(), state.sigma_yy(), 0.0}, state.density, epsilon);
   state.rxx = r.xx;
   state.ryy = r.yy;
+  state.epsilon = epsilon;
   return state;
 }
 
@@ -138,6 +143,8 @@ LatticeSums lattice_sums(LatticeType type, const Kernel<2>& kernel, double h, co
       const double f1 = gn * w1;
       const double gnm1 = n >= 1 ? artificial_stress_power(g, n - 1) : std::pow(g, n - 1);  // g > 0 here
       const double f2 = (n > 0 ? n * gnm1 * w1 * w1 / w_dp : 0.0) + gn * w2;
+      s.Af[0] += V * sn * f1 * ex;  // f^n W' e = g^n W' e
+      s.Af[1] += V * sn * f1 * ey;
       double fxx, fyy, fxy;
       hessian(f1, f2, fxx, fyy, fxy);
       s.fxx += V * omc * fxx;
@@ -149,7 +156,7 @@ LatticeSums lattice_sums(LatticeType type, const Kernel<2>& kernel, double h, co
   return s;
 }
 
-Eigen::Matrix2d dispersion_matrix(const LatticeSums& s, const UniformState& st) {
+Eigen::Matrix2d dispersion_matrix(const LatticeSums& s, const UniformState& st, bool perturbed_r) {
   check_state("dispersion_matrix", st);
   const double K0 = st.density * st.sound_speed * st.sound_speed;
   const double Kx = 2 * (st.pressure - st.sxx), Ky = 2 * (st.pressure - st.syy);
@@ -166,13 +173,40 @@ Eigen::Matrix2d dispersion_matrix(const LatticeSums& s, const UniformState& st) 
       -(Ky - K0) * ay * ay + Ky * s.By + (4 * mu / 3) * ay * ay + (mu + zeta) * ax * ax - 2 * rho2 * st.ryy * s.fyy;
   M(1, 0) =
       -(Ky - K0) * ay * ax + Ky * s.C - (2 * mu / 3) * ax * ay + (mu - zeta) * ay * ax - 2 * rho2 * st.ryy * s.fxy;
+  if (perturbed_r) {
+    // omega * (d sigma_xx, d sigma_yy, d sigma_xy, d rho) as rows acting on V (GMS 5.7, continuity 3.8).
+    Eigen::Matrix<double, 4, 2> dq;
+    const Eigen::RowVector2d a_dot(ax, ay);
+    dq.row(3) = -st.density * a_dot;
+    dq.row(0) = K0 * a_dot + (2 * mu / 3) * Eigen::RowVector2d(2 * ax, -ay);
+    dq.row(1) = K0 * a_dot + (2 * mu / 3) * Eigen::RowVector2d(-ax, 2 * ay);
+    dq.row(2) = mu * Eigen::RowVector2d(ay, ax) - zeta * Eigen::RowVector2d(ay, -ax);
+    // dR/d(sxx, syy, sxy, rho) at the uniform state by complex step through artificial_stress().
+    using C = std::complex<double>;
+    const double step = 1e-30;
+    Eigen::Matrix<double, 3, 4> J;
+    for (int c = 0; c < 4; ++c) {
+      SymmetricTensor2<C> sig{st.sigma_xx(), st.sigma_yy(), 0.0};
+      C rho = st.density;
+      C* slot[4] = {&sig.xx, &sig.yy, &sig.xy, &rho};
+      *slot[c] += C(0, step);
+      const auto r = artificial_stress(sig, rho, st.epsilon);
+      J(0, c) = r.xx.imag() / step;
+      J(1, c) = r.yy.imag() / step;
+      J(2, c) = r.xy.imag() / step;
+    }
+    const Eigen::Matrix<double, 3, 2> dR = J * dq;  // omega (dR^xx, dR^yy, dR^xy) acting on V
+    const double fx = s.Af[0], fy = s.Af[1];
+    M.row(0) += rho2 * (fx * dR.row(0) + fy * dR.row(2));
+    M.row(1) += rho2 * (fx * dR.row(2) + fy * dR.row(1));
+  }
   return M;
 }
 
 DispersionRelation lattice_dispersion(LatticeType type, const Kernel<2>& kernel, double h, const Eigen::Vector2d& k,
                                       const UniformState& state, const LatticeSumOptions& options) {
   check_state("lattice_dispersion", state);
-  return solve(lattice_sums(type, kernel, h, k, options), state, k);
+  return solve(lattice_sums(type, kernel, h, k, options), state, k, options.perturbed_artificial_stress);
 }
 
 DispersionRelation continuum_dispersion(const Eigen::Vector2d& k, const UniformState& state) {

@@ -22,9 +22,13 @@
 ///
 /// \note The A_x^2 coefficient of the face-centred longitudinal mode follows (5.8): rho c0^2 + 4mu/3 - 2(P - Sxx).
 ///       GMS (5.25) prints "- P + Sxx" (a factor 2 lost); the linearisation test confirms (5.8).
-/// \note As in GMS (5.13), R is frozen at its uniform value: the perturbation dR of the artificial stress
-///       through the perturbed stress is neglected. It vanishes when sin(k.r_ab) = 0 for every neighbour (square
-///       lattice, k = (pi/dp, 0)), but not in general.
+/// \note By default, as in GMS (5.13), R is frozen at its uniform value: the perturbation dR of the artificial
+///       stress through the perturbed stress and density is neglected. With
+///       LatticeSumOptions::perturbed_artificial_stress it is included: particle b's dR_b enters as
+///       a = -i rho A^f . dR, A^f = V_cell sum sin(k.r_ab) f_ab^n grad_a W_ab, and dR = (dR/dsigma) dsigma +
+///       (dR/drho) drho is the complex-step derivative of artificial_stress() at the uniform state (one-sided where a
+///       principal stress is exactly 0). The term vanishes when sin(k.r_ab) = 0 for every neighbour (square
+///       lattice, k = (pi/dp, 0)), but not in general (face-centred: ~5-10 % of omega^2 at h = dp).
 /// \note Long waves: A -> -k, (B_x, B_y, C) -> (kx^2, ky^2, kx ky), beta -> 0 recover the continuum (4.9)/(4.10)
 ///       (P cancels) up to the lattice's discrete moment errors (Sum V x dW/dx = -1 + O(aliasing)).
 /// \note Units are the caller's; GMS use rho0 = c0 = 1. Sums scale as 1/dp (A) and 1/dp^2 (B, C, f).
@@ -40,12 +44,13 @@ namespace sphstab {
 
 /// Lattice sums of GMS (5.5) and (5.14)-(5.15).
 struct LatticeSums {
-  Eigen::Vector2d A = Eigen::Vector2d::Zero();  ///< (A_x, A_y), 1/length
-  double Bx = 0, By = 0, C = 0;                 ///< 1/length^2
-  double beta = 0;                              ///< XSPH factor: Vhat = (1 - beta) V (GMS 5.3)
-  double fxx = 0, fyy = 0, fxy = 0;             ///< artificial-stress sums, 1/length^2
-  double cell_volume = 0;                       ///< V_cell = m / rho
-  int neighbours = 0;                           ///< lattice points b != a with W_ab > 0 that were summed
+  Eigen::Vector2d A = Eigen::Vector2d::Zero();   ///< (A_x, A_y), 1/length
+  Eigen::Vector2d Af = Eigen::Vector2d::Zero();  ///< A with f^n: V_cell sum sin(k.r_ab) f_ab^n grad_a W_ab
+  double Bx = 0, By = 0, C = 0;                  ///< 1/length^2
+  double beta = 0;                               ///< XSPH factor: Vhat = (1 - beta) V (GMS 5.3)
+  double fxx = 0, fyy = 0, fxy = 0;              ///< artificial-stress sums, 1/length^2
+  double cell_volume = 0;                        ///< V_cell = m / rho
+  int neighbours = 0;                            ///< lattice points b != a with W_ab > 0 that were summed
 };
 
 struct LatticeSumOptions {
@@ -53,6 +58,8 @@ struct LatticeSumOptions {
   double exponent = 4;   ///< n >= 0 of the artificial stress
   /// Sum only over |r_ab| <= max_distance (analysis of nearest-neighbour contributions); default: whole support.
   double max_distance = std::numeric_limits<double>::infinity();
+  /// Dispersion only: include the perturbation of R through the stress (needs UniformState::epsilon).
+  bool perturbed_artificial_stress = false;
 };
 
 /// Uniform prestressed state of GMS §4 (lattice axes = principal axes). sigma^aa = -P + S^aa (tension > 0).
@@ -63,11 +70,13 @@ struct UniformState {
   double pressure = 0;       ///< P
   double sxx = 0, syy = 0;   ///< deviatoric S^xx, S^yy
   double rxx = 0, ryy = 0;   ///< artificial stress R^xx, R^yy (uniform, R^xy = 0)
+  double epsilon = 0;        ///< the GMS coefficient behind (rxx, ryy); used only for the perturbation of R
   double sigma_xx() const { return -pressure + sxx; }
   double sigma_yy() const { return -pressure + syy; }
 };
 
-/// The state with R from the GMS rule (6.4): R^aa = -epsilon sigma^aa / rho^2 where sigma^aa > 0, else 0.
+/// The state with R from the GMS rule (6.4): R^aa = -epsilon sigma^aa / rho^2 where sigma^aa > 0, else 0;
+/// records epsilon.
 UniformState with_artificial_stress(UniformState state, double epsilon);
 
 /// omega^2 and modes of the 2x2 dispersion problem.
@@ -87,7 +96,9 @@ LatticeSums lattice_sums(LatticeType type, const Kernel<2>& kernel, double h, co
                          const LatticeSumOptions& options = {});
 
 /// The matrix M of GMS (5.8)/(5.9) with the artificial stress (5.13) from given sums; see the file comment.
-Eigen::Matrix2d dispersion_matrix(const LatticeSums& sums, const UniformState& state);
+/// `perturbed_artificial_stress` adds the dR term (uses sums.Af and state.epsilon).
+Eigen::Matrix2d dispersion_matrix(const LatticeSums& sums, const UniformState& state,
+                                  bool perturbed_artificial_stress = false);
 
 /// Lattice dispersion relation (GMS 5.8/5.9 + 5.13). Throws as lattice_sums, and for density <= 0, mu < 0.
 DispersionRelation lattice_dispersion(LatticeType type, const Kernel<2>& kernel, double h, const Eigen::Vector2d& k,
