@@ -44,45 +44,59 @@ LinearElasticSph<Dim>::LinearElasticSph(const ParticleSet<Dim>& particles, const
     if (m_p.role[i] != Role::Free)
       throw std::invalid_argument("LinearElasticSph: free particles must come first (lattice ordering)");
   m_nl = find_neighbours(m_p, m_kernel.support_radius(h));
-  auto ops = assemble_operators<Dim, double>(m_p, m_nl, m_kernel, h, {.kernel = false, .gradient = true});
-  // B^a = (G^a - [minus] diag(G^a 1)) restricted to free columns; C^a = (G^a + α diag(G^a 1)) free rows.
-  const double alpha = divergence_alpha(opt.divergence);
-  const bool minus = opt.gradient == StrainGradient::Minus;
+  if (opt.frame == LagrangianFrame::Total) build_tl();
+  m_current = m_p;
+  m_x = m_p.x;
+  m_grad.resize(static_cast<long>(N) * Dim * Dim);
+  m_sig.resize(static_cast<long>(N) * stress_components(Dim));
+  m_uall.setZero(static_cast<long>(N) * Dim);
+}
+
+template <int Dim>
+void LinearElasticSph<Dim>::build_tl() {
+  const int N = m_p.size();
+  auto ops = assemble_operators<Dim, double>(m_p, m_nl, m_kernel, m_h, {.kernel = false, .gradient = true});
+  // B^a = (G^a - [minus] diag(G^a 1)) restricted to free columns; C^a = (G^a + α diag(G^a 1)) on free rows.
+  const double alpha = divergence_alpha(m_opt.divergence);
+  const bool minus = m_opt.gradient == StrainGradient::Minus;
   for (int a = 0; a < Dim; ++a) {
-    const SparseMatrix<>& G = ops.G[a];
+    SparseMatrix<>& G = ops.G[a];
+    Eigen::VectorXd rs = Eigen::VectorXd::Zero(N);
+    for (int i = 0; i < N; ++i)
+      for (SparseMatrix<>::InnerIterator it(G, i); it; ++it) rs[i] += it.value();
+    if (m_nfree == N) {  // all free: modify copies of G's CSR in place (no triplets; keeps memory low at 1e6)
+      m_B[a] = G;
+      m_C[a] = std::move(G);
+      for (int i = 0; i < N; ++i) {
+        m_B[a].coeffRef(i, i) -= minus ? rs[i] : 0.0;  // the diagonal is in the pattern (self neighbour)
+        m_C[a].coeffRef(i, i) += alpha * rs[i];
+      }
+      continue;
+    }
     std::vector<Eigen::Triplet<double>> tb, tc;
     tb.reserve(G.nonZeros());
     tc.reserve(G.nonZeros());
-    for (int i = 0; i < N; ++i) {
-      double rs = 0;
-      for (SparseMatrix<>::InnerIterator it(G, i); it; ++it) rs += it.value();
+    for (int i = 0; i < N; ++i)
       for (SparseMatrix<>::InnerIterator it(G, i); it; ++it) {
         const int j = static_cast<int>(it.col());
         double vb = it.value(), vc = it.value();
         if (j == i) {
-          vb -= minus ? rs : 0.0;
-          vc += alpha * rs;
+          vb -= minus ? rs[i] : 0.0;
+          vc += alpha * rs[i];
         }
         if (j < m_nfree) tb.emplace_back(i, j, vb);
         if (i < m_nfree) tc.emplace_back(i, j, vc);
       }
-    }
     m_B[a].resize(N, m_nfree);
     m_B[a].setFromTriplets(tb.begin(), tb.end());
     m_C[a].resize(m_nfree, N);
     m_C[a].setFromTriplets(tc.begin(), tc.end());
-    // Keep explicit zeros so that all B^a (and all C^a) share one pattern.
     m_B[a].makeCompressed();
     m_C[a].makeCompressed();
   }
   for (int a = 1; a < Dim; ++a)
     if (m_B[a].nonZeros() != m_B[0].nonZeros() || m_C[a].nonZeros() != m_C[0].nonZeros())
       throw std::logic_error("LinearElasticSph: operator patterns differ between axes");
-  m_current = m_p;
-  m_x = m_p.x;
-  m_grad.resize(static_cast<long>(N) * Dim * Dim);
-  m_sig.resize(static_cast<long>(N) * stress_components(Dim));
-  m_uall.setZero(static_cast<long>(N) * Dim);
 }
 
 template <int Dim>
@@ -92,6 +106,7 @@ double LinearElasticSph<Dim>::p_wave_speed() const {
 
 template <int Dim>
 long LinearElasticSph<Dim>::stored_nonzeros() const {
+  if (m_opt.frame != LagrangianFrame::Total) return 0;
   long s = 0;
   for (int a = 0; a < Dim; ++a) s += m_B[a].nonZeros() + m_C[a].nonZeros();
   return s;
@@ -99,6 +114,7 @@ long LinearElasticSph<Dim>::stored_nonzeros() const {
 
 template <int Dim>
 double LinearElasticSph<Dim>::tl_bytes_per_acceleration() const {
+  if (m_opt.frame != LagrangianFrame::Total) return 0;
   const double N = m_p.size(), n = m_nfree, S = stress_components(Dim);
   const double nb = static_cast<double>(m_B[0].nonZeros()), nc = static_cast<double>(m_C[0].nonZeros());
   const double grad = nb * (4 + 8.0 * Dim) + 4 * (N + 1) + 8.0 * Dim * n + 8.0 * Dim * Dim * N;
@@ -188,8 +204,43 @@ void LinearElasticSph<Dim>::update_current(const Eigen::VectorXd& u) const {
       }
     }
   m_nl_current = find_neighbours(m_current, m_kernel.support_radius(m_h) + m_opt.skin);
+  for (int a = 0; a < Dim; ++a) m_Gul[a] = pattern_matrix<double>(m_nl_current);
   m_u_at_build = u;
   ++m_builds;
+}
+
+template <int Dim>
+void LinearElasticSph<Dim>::reassemble_in_place() const {
+  const int N = m_p.size();
+  const double support = m_kernel.support_radius(m_h);
+  std::array<double, Dim> box{};
+  for (int b = 0; b < Dim; ++b) box[b] = m_p.periodic[b] ? m_p.box_hi[b] - m_p.box_lo[b] : 0.0;
+  std::array<double*, Dim> val;
+  for (int a = 0; a < Dim; ++a) {
+    val[a] = m_Gul[a].valuePtr();
+    m_rowsum[a].setZero(N);
+  }
+  // Same entries as assemble_operators (G^a_ij = W'(r) (x_i - x_j)^a / r V_j, minimum image, 0 beyond the support).
+  for (int i = 0; i < N; ++i)
+    for (long k = m_nl_current.offsets[i]; k < m_nl_current.offsets[i + 1]; ++k) {
+      const int j = m_nl_current.indices[k];
+      double d[Dim], r2 = 0;
+      for (int b = 0; b < Dim; ++b) {
+        d[b] = m_x(i, b) - m_x(j, b);
+        if (box[b] > 0) d[b] -= box[b] * std::round(d[b] / box[b]);
+        r2 += d[b] * d[b];
+      }
+      const double r = std::sqrt(r2);
+      if (j == i || r2 == 0 || r >= support) {
+        for (int a = 0; a < Dim; ++a) val[a][k] = 0.0;
+        continue;
+      }
+      const double f = m_kernel.d1(r, m_h) / r * m_p.volume[j];
+      for (int a = 0; a < Dim; ++a) {
+        val[a][k] = f * d[a];
+        m_rowsum[a][i] += f * d[a];
+      }
+    }
 }
 
 template <int Dim>
@@ -212,9 +263,8 @@ void LinearElasticSph<Dim>::acceleration(const Eigen::VectorXd& u, Eigen::Vector
     return;
   }
   update_current(u);
-  auto ops =
-      assemble_operators<Dim, double>(m_p, m_nl_current, m_kernel, m_h, {.kernel = false, .gradient = true}, &m_x);
-  accumulate_from_gradients(ops.G, u, a);
+  reassemble_in_place();
+  accumulate_from_gradients(m_Gul, u, a);
 }
 
 template <int Dim>
@@ -223,12 +273,9 @@ void LinearElasticSph<Dim>::accumulate_from_gradients(const std::array<SparseMat
   const int N = m_p.size();
   m_uall.setZero();
   m_uall.head(u.size()) = u;
-  std::array<Eigen::VectorXd, Dim> rs;
+  const auto& rs = m_rowsum;  // filled by reassemble_in_place
   std::array<const double*, Dim> val, rsp;
   for (int d = 0; d < Dim; ++d) {
-    rs[d].setZero(N);
-    for (int i = 0; i < N; ++i)
-      for (SparseMatrix<>::InnerIterator it(G[d], i); it; ++it) rs[d][i] += it.value();
     val[d] = G[d].valuePtr();
     rsp[d] = rs[d].data();
   }
@@ -317,12 +364,19 @@ template <int Dim>
 double LinearElasticSph<Dim>::strain_energy(const Eigen::VectorXd& u) const {
   constexpr int S = stress_components(Dim);
   const int N = m_p.size();
-  m_uall.setZero();
-  m_uall.head(u.size()) = u;
-  std::array<const double*, Dim> vb;
-  for (int d = 0; d < Dim; ++d) vb[d] = m_B[d].valuePtr();
-  gradient_pass(m_B[0].outerIndexPtr(), m_B[0].innerIndexPtr(), vb, N);
-  stress_from_gradients(N);
+  if (m_opt.frame == LagrangianFrame::Total) {
+    m_uall.setZero();
+    m_uall.head(u.size()) = u;
+    std::array<const double*, Dim> vb;
+    for (int d = 0; d < Dim; ++d) vb[d] = m_B[d].valuePtr();
+    gradient_pass(m_B[0].outerIndexPtr(), m_B[0].innerIndexPtr(), vb, N);
+    stress_from_gradients(N);
+  } else {  // gradient at the current positions (accumulate_from_gradients leaves ∇u and σ in the buffers)
+    Eigen::VectorXd a(u.size());
+    update_current(u);
+    reassemble_in_place();
+    accumulate_from_gradients(m_Gul, u, a);
+  }
   double e = 0;
   for (int i = 0; i < N; ++i) {
     const double* g = m_grad.data() + static_cast<long>(i) * Dim * Dim;

@@ -6,7 +6,8 @@
 ///     positions; one evaluation = Dim gradient SpMVs (each on the Dim displacement components at once), a pointwise
 ///     stress update and Dim divergence SpMVs. Pure SpMV, no kernel evaluations.
 ///   - UL, reassembly (acceleration, frame Updated): G^a reassembled at x = X + u every evaluation on a neighbour list
-///     of radius 2h + skin, rebuilt when a particle moved more than skin/2 since the last build.
+///     of radius 2h + skin, rebuilt when a particle moved more than skin/2 since the last build. The matrices keep
+///     their pattern (and storage) between rebuilds; only the values are recomputed in place.
 ///   - Pair loop (acceleration_pair_loop): no stored operators; two passes over the neighbour pairs evaluating ∇W on
 ///     the fly at the reference (TL) or current (UL) positions.
 ///
@@ -66,7 +67,7 @@ class LinearElasticSph {
   /// acceleration_pair_loop as the force.
   SecondOrderSystem system(bool pair_loop = false) const;
 
-  /// Nonzeros stored in the TL matrices B^a and C^a (sum).
+  /// Nonzeros stored in the TL matrices B^a and C^a (sum; 0 for the UL frame, which stores none).
   long stored_nonzeros() const;
   /// Minimal memory traffic of one TL acceleration in bytes (each byte crosses the memory bus once; perfect cache
   /// reuse of gathered vector entries). B^a share one CSR pattern and are applied in one fused pass, as are C^a:
@@ -74,15 +75,18 @@ class LinearElasticSph {
   ///   stress pass:     8 Dim² N (∇u read) + 8 S N (σ written, S = Dim(Dim+1)/2 components)
   ///   divergence pass: nnz_C (4 + 8 Dim) + 4 (n_free + 1) + 8 S N (σ read) + 8 Dim n_free (a written)
   double tl_bytes_per_acceleration() const;
-  /// Strain energy ½ Σ_i V_i σ_i : ε_i (TL gradient at the reference positions).
+  /// Strain energy ½ Σ_i V_i σ_i : ε_i (gradient at the reference (TL) or current (UL) positions).
   double strain_energy(const Eigen::VectorXd& u) const;
   long neighbour_builds() const { return m_builds; }
 
  private:
+  void build_tl();
   void update_current(const Eigen::VectorXd& u) const;
   /// Row loops shared by UL (G at current positions): full-set strain -> stress -> free-row divergence.
   void accumulate_from_gradients(const std::array<SparseMatrix<>, Dim>& G, const Eigen::VectorXd& u,
                                  Eigen::VectorXd& a) const;
+  /// Recomputes the values of m_Gul (pattern = m_nl_current) at the current positions m_x; fills m_rowsum.
+  void reassemble_in_place() const;
   /// σ (compact, S components per particle: xx, yy, [zz,] xy, [xz, yz]) from m_grad for all N particles.
   void stress_from_gradients(int N) const;
   /// Fused gradient pass over a CSR pattern with Dim value arrays: grad[a](i, b) = Σ_k val_a[k] u_all(col[k], b)
@@ -108,6 +112,8 @@ class LinearElasticSph {
   mutable NeighbourList m_nl_current;
   mutable Positions<Dim> m_x;
   mutable Eigen::VectorXd m_u_at_build;
+  mutable std::array<SparseMatrix<>, Dim> m_Gul;  // UL operators, pattern of m_nl_current
+  mutable std::array<Eigen::VectorXd, Dim> m_rowsum;
   mutable long m_builds = 0;
 };
 
