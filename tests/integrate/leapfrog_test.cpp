@@ -292,5 +292,21 @@ TEST(Leapfrog, HookModesLandOnTEndAndObserverSchedule) {
                std::invalid_argument);
 }
 
+TEST(Leapfrog, ProgressLineReportsOnStderr) {
+  LeapfrogOptions opt;
+  opt.dt = 0.01;
+  opt.max_steps = 50;
+  opt.progress = true;
+  opt.progress_interval = 0.0;  // report every step
+  opt.label = "osc-test";
+  testing::internal::CaptureStderr();
+  auto r = run_leapfrog(oscillator(1.0), Eigen::VectorXd::Ones(1), Eigen::VectorXd::Zero(1), opt);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_TRUE(r.completed());
+  EXPECT_NE(err.find("[osc-test]"), std::string::npos);
+  EXPECT_NE(err.find("step 50/50"), std::string::npos);
+  EXPECT_NE(err.find("done completed 50 steps"), std::string::npos) << err.substr(0, 300);
+}
+
 }  // namespace
 }  // namespace sphstab

@@ -6,10 +6,12 @@
 /// \note CFL constant. The default C = 0.3 is Monaghan's Courant factor for SPH (Monaghan 1992, Annu. Rev.
 ///       Astron. Astrophys. 30:543, §10: dt = 0.3 h / c without viscosity terms), with h the smoothing length
 ///       and c the (bar) wave speed. Powell's MCM input uses a time-step scale factor TSSFAC = 0.8 on its own
-///       critical step (thesis App. B), a different normalisation. For the 1D lattice operators the linear
-///       limit is C_max = 2 c / (h sqrt(lambda_max)); e.g. cubic B-spline, h = 1.3 dx, plain SPH: see
-///       results/speed-vs-error/summary.md. Leap-frog for ü = -A u with real A-eigenvalue mu > 0 is stable iff
-///       dt <= 2 / sqrt(mu) (the amplification factors of the mode then have modulus 1).
+///       critical step (thesis App. B), a different normalisation. The linear limit in the same units is
+///       C_max = 2 c / (h sqrt(lambda_max)); measured for the 1D bar operators (results/speed-vs-error/summary.md):
+///       C_max = 2.000 (cubic B-spline, h = dx), 1.906 (h = 1.3 dx), 1.932 (h = 2 dx) with mirror ghosts, down to
+///       1.245 for the ghost-free corrected gradient, so C = 0.3 is 16-24 % of the limit. Leap-frog for ü = -A u
+///       with real A-eigenvalue mu > 0 is stable iff dt <= 2 / sqrt(mu) (the amplification factors of the mode then
+///       have modulus 1).
 #include <complex>
 #include <string>
 
