@@ -3,9 +3,10 @@
 /// Time-step rules for explicit leap-frog: the CFL rule dt = C h / c and the linear stability limit
 /// dt < 2 / sqrt(lambda_max(A)) of ü = -A u.
 ///
-/// \note CFL constant. The default C = 0.3 is Monaghan's Courant factor for SPH (Monaghan 1992, Annu. Rev.
-///       Astron. Astrophys. 30:543, §10: dt = 0.3 h / c without viscosity terms), with h the smoothing length
-///       and c the (bar) wave speed. Powell's MCM input uses a time-step scale factor TSSFAC = 0.8 on its own
+/// \note CFL constant. The default C = 0.3 is the Courant factor customary in SPH since Monaghan's time-step
+///       criterion dt = 0.3 min h / (c + ...) (Monaghan 1992, Annu. Rev. Astron. Astrophys. 30:543; quoted from
+///       memory, the reference text is not in the seeds), here without its viscous terms, with h the smoothing
+///       length and c the (bar) wave speed. Powell's MCM input uses a time-step scale factor TSSFAC = 0.8 on its own
 ///       critical step (thesis App. B), a different normalisation. The linear limit in the same units is
 ///       C_max = 2 c / (h sqrt(lambda_max)); measured for the 1D bar operators (results/speed-vs-error/summary.md):
 ///       C_max = 2.000 (cubic B-spline, h = dx), 1.906 (h = 1.3 dx), 1.932 (h = 2 dx) with mirror ghosts, down to
