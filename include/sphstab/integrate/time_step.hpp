@@ -1,0 +1,63 @@
+#pragma once
+/// \file time_step.hpp
+/// Time-step rules for explicit leap-frog: the CFL rule dt = C h / c and the linear stability limit
+/// dt < 2 / sqrt(lambda_max(A)) of ü = -A u.
+///
+/// \note CFL constant. The default C = 0.3 is the Courant factor customary in SPH since Monaghan's time-step
+///       criterion dt = 0.3 min h / (c + ...) (Monaghan 1992, Annu. Rev. Astron. Astrophys. 30:543; quoted from
+///       memory, the reference text is not in the seeds), here without its viscous terms, with h the smoothing
+///       length and c the (bar) wave speed. Powell's MCM input uses a time-step scale factor TSSFAC = 0.8 on its own
+///       critical step (thesis App. B), a different normalisation. The linear limit in the same units is
+///       C_max = 2 c / (h sqrt(lambda_max)); measured for the 1D bar operators (results/speed-vs-error/summary.md):
+///       C_max = 2.000 (cubic B-spline, h = dx), 1.906 (h = 1.3 dx), 1.932 (h = 2 dx) with mirror ghosts, down to
+///       1.245 for the ghost-free corrected gradient, so C = 0.3 is 16-24 % of the limit. Leap-frog for ü = -A u
+///       with real A-eigenvalue mu > 0 is stable iff dt <= 2 / sqrt(mu) (the amplification factors of the mode then
+///       have modulus 1).
+#include <complex>
+#include <string>
+
+#include "sphstab/integrate/second_order_system.hpp"
+
+namespace sphstab {
+
+/// Monaghan's Courant factor (see the note above).
+inline constexpr double kDefaultCourant = 0.3;
+
+/// dt = courant * h / wave_speed; throws std::invalid_argument unless all three are finite and > 0.
+double cfl_time_step(double courant, double h, double wave_speed);
+
+struct StabilityOptions {
+  /// A is symmetric in the Euclidean inner product (Spectra SymEigsSolver; eigenvalues real). Use false
+  /// (general Arnoldi) when only similar to a symmetric matrix (unequal masses) or non-symmetric.
+  bool symmetric = false;
+  /// Up to this many DOFs A is built densely (ndof evaluations of a) and all eigenvalues are computed.
+  long dense_limit = 400;
+  int max_iterations = 2000;  ///< Spectra restarts
+  double tolerance = 1e-10;   ///< Spectra relative tolerance
+  /// A v = -(a(s v) - a(0)) / s: exact for a linear a (any s); for a nonlinear force, a finite-difference
+  /// linearisation at u = 0 with step s.
+  double probe_scale = 1.0;
+};
+
+/// The largest-modulus part of the spectrum of A = -da/du and the leap-frog limit it implies.
+struct StabilityEstimate {
+  double lambda_max = 0;            ///< |mu| of the largest-modulus eigenvalue of A
+  std::complex<double> dominant{};  ///< that eigenvalue
+  /// dt limit 2 / sqrt(lambda_max); meaningful when `dominant` is real and positive (the semi-discrete modes
+  /// are oscillatory). A dominant eigenvalue with negative real part or a large imaginary part means the
+  /// semi-discrete system itself is unstable (no dt helps).
+  double dt_limit = 0;
+  bool dominant_real_positive = false;  ///< Re > 0 and |Im| <= 1e-8 |mu|
+  /// Minimum real part over all eigenvalues (dense method only; NaN otherwise): < 0 means an exponentially
+  /// growing mode of ü = -A u for every dt.
+  double min_real = 0;
+  bool converged = false;
+  std::string method;  ///< "dense", "spectra-sym" or "spectra-gen"
+};
+
+/// Estimates the leap-frog stability limit of ü = a(u) linearised at u = 0 (a(0) subtracted). Throws
+/// std::invalid_argument for ndof < 1 or a missing callable.
+StabilityEstimate estimate_stability_limit(const AccelerationFunction& accel, long ndof,
+                                           const StabilityOptions& options = {});
+
+}  // namespace sphstab

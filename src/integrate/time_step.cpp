@@ -1,0 +1,111 @@
+#include "sphstab/integrate/time_step.hpp"
+
+#include <Spectra/GenEigsSolver.h>
+#include <Spectra/SymEigsSolver.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace sphstab {
+
+double cfl_time_step(double courant, double h, double wave_speed) {
+  auto ok = [](double x) { return x > 0 && std::isfinite(x); };
+  if (!ok(courant) || !ok(h) || !ok(wave_speed))
+    throw std::invalid_argument("cfl_time_step: courant, h and wave_speed must be finite and > 0 (got " +
+                                std::to_string(courant) + ", " + std::to_string(h) + ", " + std::to_string(wave_speed) +
+                                ")");
+  return courant * h / wave_speed;
+}
+
+namespace detail {
+
+/// y = A x with A = -(a(s x) - a(0)) / s, in Spectra's matrix-operation concept.
+class LinearisedOperator {
+ public:
+  using Scalar = double;
+  LinearisedOperator(const AccelerationFunction& f, long n, double s) : m_f(f), m_n(n), m_s(s) {
+    m_a0.resize(n);
+    m_x.resize(n);
+    m_y.resize(n);
+    Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+    m_f(zero, m_a0);
+  }
+  Eigen::Index rows() const { return m_n; }
+  Eigen::Index cols() const { return m_n; }
+  void perform_op(const double* x_in, double* y_out) const {
+    m_x = m_s * Eigen::Map<const Eigen::VectorXd>(x_in, m_n);
+    m_f(m_x, m_y);
+    Eigen::Map<Eigen::VectorXd>(y_out, m_n) = -(m_y - m_a0) / m_s;
+  }
+
+ private:
+  const AccelerationFunction& m_f;
+  long m_n;
+  double m_s;
+  Eigen::VectorXd m_a0;
+  mutable Eigen::VectorXd m_x, m_y;
+};
+
+}  // namespace detail
+
+StabilityEstimate estimate_stability_limit(const AccelerationFunction& accel, long n, const StabilityOptions& opt) {
+  if (!accel) throw std::invalid_argument("estimate_stability_limit: missing acceleration callable");
+  if (n < 1) throw std::invalid_argument("estimate_stability_limit: ndof must be >= 1 (got " + std::to_string(n) + ")");
+  if (!(opt.probe_scale > 0)) throw std::invalid_argument("estimate_stability_limit: probe_scale must be > 0");
+  detail::LinearisedOperator op(accel, n, opt.probe_scale);
+  StabilityEstimate est;
+  est.min_real = std::nan("");
+
+  // Small Krylov problems are unreliable in Spectra (nev + 2 < ncv <= n): go dense.
+  if (n <= std::max<long>(opt.dense_limit, 12)) {
+    Eigen::MatrixXd A(n, n);
+    Eigen::VectorXd e = Eigen::VectorXd::Zero(n);
+    for (long k = 0; k < n; ++k) {
+      e[k] = 1.0;
+      op.perform_op(e.data(), A.col(k).data());
+      e[k] = 0.0;
+    }
+    Eigen::VectorXcd mu;
+    if (opt.symmetric) {
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(0.5 * (A + A.transpose()), Eigen::EigenvaluesOnly);
+      mu = es.eigenvalues().cast<std::complex<double>>();
+      est.converged = es.info() == Eigen::Success;
+    } else {
+      Eigen::EigenSolver<Eigen::MatrixXd> es(A, false);
+      mu = es.eigenvalues();
+      est.converged = es.info() == Eigen::Success;
+    }
+    long best = 0;
+    for (long k = 1; k < n; ++k)
+      if (std::abs(mu[k]) > std::abs(mu[best])) best = k;
+    est.dominant = mu[best];
+    est.min_real = mu.real().minCoeff();
+    est.method = "dense";
+  } else if (opt.symmetric) {
+    const int ncv = static_cast<int>(std::min<long>(n, 20));
+    Spectra::SymEigsSolver<detail::LinearisedOperator> solver(op, 1, ncv);
+    solver.init();
+    solver.compute(Spectra::SortRule::LargestMagn, opt.max_iterations, opt.tolerance);
+    est.converged = solver.info() == Spectra::CompInfo::Successful;
+    if (est.converged) est.dominant = solver.eigenvalues()[0];
+    est.method = "spectra-sym";
+  } else {
+    const int ncv = static_cast<int>(std::min<long>(n, 30));
+    Spectra::GenEigsSolver<detail::LinearisedOperator> solver(op, 3, ncv);
+    solver.init();
+    solver.compute(Spectra::SortRule::LargestMagn, opt.max_iterations, opt.tolerance);
+    est.converged = solver.info() == Spectra::CompInfo::Successful;
+    if (est.converged) est.dominant = solver.eigenvalues()[0];
+    est.method = "spectra-gen";
+  }
+  est.lambda_max = std::abs(est.dominant);
+  est.dominant_real_positive = est.dominant.real() > 0 && std::abs(est.dominant.imag()) <= 1e-8 * est.lambda_max;
+  est.dt_limit = est.lambda_max > 0 ? 2.0 / std::sqrt(est.lambda_max) : std::numeric_limits<double>::infinity();
+  return est;
+}
+
+}  // namespace sphstab
