@@ -192,11 +192,7 @@ void run_tcrit(const TcritArgs& a) {
         continue;
       }
       // Corrected kernel: complex-step A(T) = A0 + T A1 of the force function, then the general criteria.
-      const ParticleSet<1> set =
-          make_lattice<1>(LatticeType::Line, nfree,
-                          {.spacing = 1.0,
-                           .support_radius = kCorrectedLayerSupports * kernel.support_radius(h) *
-                                             (1 - 1e-9)});  // layers strictly inside, as tension_lattice_1d
+      const ParticleSet<1> set = tension_lattice_1d(kernel, h, nfree, false, kCorrectedLayerSupports);
       auto disc = make_discretisation(set, kernel, h);
       Eigen::VectorXd x(disc->free_count());
       for (int f = 0; f < disc->free_count(); ++f) x[f] = set.x(disc->free[f], 0);
@@ -205,16 +201,12 @@ void run_tcrit(const TcritArgs& a) {
       aopt.symmetric = opt;
       for (MomentumForm form : forms) {
         WaveForm1D force(disc, form, 0.0, provider, {.corrected = corrected});
-        const Eigen::VectorXd u0 = Eigen::VectorXd::Zero(force.dofs());
-        const AffineJacobian split = affine_jacobian(force, u0);
-        Eigen::VectorXd a1;
-        force.with_load(1.0)->acceleration(u0, a1);  // a(u = 0) = T a1: zero iff u = 0 is an equilibrium
-        const double residual = a1.cwiseAbs().maxCoeff();
-        const double scale = Eigen::MatrixXd(split.A0).cwiseAbs().maxCoeff();
+        const ForceCriticalLoad load = critical_load(force, direction, x, aopt);
         std::string note = "corrected " + force.name().substr(force.name().rfind('/') + 1) + "; fixed layers " +
                            std::to_string(kCorrectedLayerSupports) + " supports";
-        if (residual > 1e-10 * scale) note += "; WARNING u = 0 is not an equilibrium (|a|/T = " + num(residual) + ")";
-        for (const AffineCriticalTension& r : affine_critical_tension(split, direction, x, aopt)) {
+        if (load.residual_relative > 1e-10)
+          note += "; WARNING u = 0 is not an equilibrium (max|a(0)|/max|A0| = " + num(load.residual_relative) + ")";
+        for (const AffineCriticalTension& r : load.results) {
           const bool pd = r.criterion != StabilityCriterion::RealPositiveSpectrum;
           const double sign = a.compression ? -1.0 : 1.0;
           const std::string backend =

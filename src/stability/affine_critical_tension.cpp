@@ -262,4 +262,20 @@ std::vector<AffineCriticalTension> affine_critical_tension(const AffineJacobian&
           affine_critical_load(j, StabilityCriterion::SymmetricPartPositiveDefinite, direction, x, o)};
 }
 
+ForceCriticalLoad critical_load(const ForceFunction& force, LoadDirection direction, const Eigen::VectorXd& x,
+                                const AffineCriticalOptions& options) {
+  ForceCriticalLoad out;
+  const Eigen::VectorXd u0 = Eigen::VectorXd::Zero(force.dofs());
+  out.jacobian = affine_jacobian(force, u0);
+  Eigen::VectorXd a;
+  for (double load : {0.0, 1.0}) {
+    force.with_load(load)->acceleration(u0, a);
+    out.equilibrium_residual = std::max(out.equilibrium_residual, a.cwiseAbs().maxCoeff());
+  }
+  const double scale = Eigen::MatrixXd(out.jacobian.A0).cwiseAbs().maxCoeff();
+  out.residual_relative = scale > 0 ? out.equilibrium_residual / scale : out.equilibrium_residual;
+  out.results = affine_critical_tension(out.jacobian, direction, x, options);
+  return out;
+}
+
 }  // namespace sphstab

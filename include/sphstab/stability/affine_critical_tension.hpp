@@ -104,4 +104,20 @@ std::vector<AffineCriticalTension> affine_critical_tension(const AffineJacobian&
                                                            const Eigen::VectorXd& x,
                                                            const AffineCriticalOptions& options = {});
 
+/// Critical loads of a force function at u = 0: its affine Jacobian split (complex step), the equilibrium residual and
+/// affine_critical_tension() of the split.
+struct ForceCriticalLoad {
+  AffineJacobian jacobian;          ///< A0, A1 at u = 0
+  double equilibrium_residual = 0;  ///< max_i |a_i(u = 0)| over the loads 0 and 1 (0 iff u = 0 is an equilibrium)
+  double residual_relative = 0;     ///< equilibrium_residual / max |A0_ij|
+  std::vector<AffineCriticalTension> results;  ///< one per applicable criterion
+};
+
+/// @param[in] force      any force function affine in its load (1D: T); evaluated at u = 0 with loads 0 and 1
+/// @param[in] x          dofs() positions (wavenumbers of critical modes)
+/// \note A non-zero residual means u = 0 is not an equilibrium: A(T) is then the Jacobian at a non-equilibrium point
+///       and the criteria lose their meaning; callers should report it (sphstab tcrit does, in `reason`).
+ForceCriticalLoad critical_load(const ForceFunction& force, LoadDirection direction, const Eigen::VectorXd& x,
+                                const AffineCriticalOptions& options = {});
+
 }  // namespace sphstab
