@@ -196,6 +196,7 @@ AffineCriticalTension pd_route(const AffineJacobian& j, double sign, const Eigen
   r.hi = r.pd.bisection_hi;
   r.status = r.pd.status;
   r.mode_wavenumber = r.pd.mode_wavenumber;
+  if (sign < 0) append(r.reason, "compression searched as A0 + |T| (-A1) (T in the messages below is |T|)");
   append(r.reason, r.pd.reason == "ok" ? "" : r.pd.reason);
   return r;
 }
