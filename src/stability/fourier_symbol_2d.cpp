@@ -252,18 +252,25 @@ SymbolCriticalStrain critical_strain_infinite_2d(const ElasticSymbol2d& sym, Loa
     out.kx_over_pi = f[0];
     out.ky_over_pi = f[1];
   };
-  // 1. The zone-boundary zeros, exactly.
+  // 1. The zone-boundary zeros, exactly (all of them listed in the reason; the first is reported as the k).
+  std::string unstable_zeros;
   for (const Eigen::Vector2d& u : {Eigen::Vector2d(0.5, 0), Eigen::Vector2d(0, 0.5), Eigen::Vector2d(0.5, 0.5)}) {
     const Eigen::Vector2d k = b * u;
     const PointResult p = evaluate(sym, k, sign, true);
     if (p.r.mechanism == InstabilityMechanism::ZeroSymbol) {
-      out.e = 0;
-      out.mechanism = InstabilityMechanism::ZeroSymbol;
-      report_k(k);
-      out.reason = "zone-boundary zero: A0^ = 0 and the initial-stress symbol destabilises";
-      return out;
+      if (unstable_zeros.empty()) {
+        out.e = 0;
+        out.mechanism = InstabilityMechanism::ZeroSymbol;
+        report_k(k);
+      }
+      const Eigen::Vector2d f = lat.fold(k) * lat.dx / M_PI;
+      unstable_zeros += " (" + fmt(f[0]) + " " + fmt(f[1]) + ")";
     }
     if (p.r.mechanism == InstabilityMechanism::Neutral) ++out.neutral_points;
+  }
+  if (!unstable_zeros.empty()) {
+    out.reason = "zone-boundary zero: A0^ = 0 and the initial-stress symbol destabilises at k dx/pi =" + unstable_zeros;
+    return out;
   }
   // 2. Grid over the reciprocal cell (zone-boundary zeros and k = 0 excluded), then patch refinement.
   auto value = [&](const Eigen::Vector2d& u, InstabilityMechanism* mech) {
