@@ -73,9 +73,10 @@ struct Bracket {
   std::string note;
 };
 
-/// Bracket by doubling/halving from tau_start, then geometric bisection to hi/lo - 1 <= rtol. `stable(tau)`.
-Bracket bisect(const std::function<bool(double)>& stable, double tau_start, double tau_max, double tau_min,
-               double rtol) {
+/// Bracket by steps of a factor `step` from tau_start: lo stable, hi = step lo unstable (status Successful, tau NaN),
+/// or tau = inf when stable up to tau_max, or NumericalIssue when unstable down to tau_min.
+Bracket bracket(const std::function<bool(double)>& stable, double tau_start, double tau_max, double tau_min,
+                double step = 8.0) {
   Bracket r;
   auto test = [&](double t) {
     ++r.tests;
@@ -85,8 +86,19 @@ Bracket bisect(const std::function<bool(double)>& stable, double tau_start, doub
   if (test(tau)) {
     r.lo = tau;
     while (true) {
-      tau *= 2;
+      tau *= step;
       if (tau > tau_max) {
+        if (r.lo < tau_max && test(tau_max)) {
+          r.tau = kInf;
+          r.status = Status::Successful;
+          r.note = "bisection: stable up to |e| = " + fmt(tau_max);
+          return r;
+        }
+        if (r.lo < tau_max) {
+          r.hi = tau_max;
+          r.status = Status::Successful;
+          return r;
+        }
         r.tau = kInf;
         r.status = Status::Successful;
         r.note = "bisection: stable up to |e| = " + fmt(tau_max);
@@ -99,7 +111,7 @@ Bracket bisect(const std::function<bool(double)>& stable, double tau_start, doub
   } else {
     r.hi = tau;
     while (true) {
-      tau *= 0.5;
+      tau /= step;
       if (tau < tau_min) {
         r.status = Status::NumericalIssue;
         r.note = "bisection: unstable down to |e| = " + fmt(tau_min);
@@ -110,14 +122,20 @@ Bracket bisect(const std::function<bool(double)>& stable, double tau_start, doub
     }
     r.lo = tau;
   }
+  r.status = Status::Successful;
+  return r;
+}
+
+/// Geometric bisection of a finite bracket to hi/lo - 1 <= rtol; sets tau.
+void refine(Bracket& r, const std::function<bool(double)>& stable, double rtol) {
+  if (r.status != Status::Successful || std::isinf(r.tau)) return;
   while (r.hi / r.lo - 1 > rtol) {
     const double mid = std::sqrt(r.lo * r.hi);
     if (mid <= r.lo || mid >= r.hi) break;
-    (test(mid) ? r.lo : r.hi) = mid;
+    ++r.tests;
+    (stable(mid) ? r.lo : r.hi) = mid;
   }
   r.tau = std::sqrt(r.lo * r.hi);
-  r.status = Status::Successful;
-  return r;
 }
 
 void validate(const CriticalStrainOptions& o) {
@@ -163,6 +181,12 @@ void finish_mode(const ElasticJacobian2d& jac, CriticalStrain& out) {
 }
 
 /// Definiteness / symmetric-part criterion: A(tau) = K - tau L.
+///
+/// The bisection's bracket (lo positive definite, hi = 2 lo not) is found first and shared: the bisection refines it,
+/// and the Spectra eigen route uses lo as a spectral shift (Cholesky mode with B = K - lo L, positive definite):
+/// L x = nu (K - lo L) x has nu = lambda / (1 - lo lambda), so tau = lo + 1/nu_max. Without the shift the wanted end
+/// lambda_max = 1/tau_t of L x = lambda K x sits next to a much longer opposite end (-1/|e_compression|) and Lanczos
+/// converges slowly; with it nu_max >= 1/(hi - lo) >= 1/lo while nu >= -1/lo on the other side.
 void definiteness_routes(const ColSparseMatrix& k, const ColSparseMatrix& l, const CriticalStrainOptions& opt,
                          CriticalStrain& out) {
   const int m = static_cast<int>(k.rows());
@@ -172,33 +196,33 @@ void definiteness_routes(const ColSparseMatrix& k, const ColSparseMatrix& l, con
       opt.backend == EigenBackend::Dense || m < 3 || (opt.backend == EigenBackend::Auto && m <= opt.dense_max);
 
   // A(0) = K must be positive definite for both routes.
-  std::unique_ptr<CholmodCholeskyOp> bop;
   {
-    const CholmodFactor* factor = nullptr;
     CholmodFactor kf(opt.variant);
-    bool ok = false;
-    if (eig && !dense) {
-      bop = std::make_unique<CholmodCholeskyOp>(k, opt.variant);
-      ok = bop->info() == Status::Successful;
-      factor = &bop->factor();
-    } else {
-      ok = kf.compute(k);
-      factor = &kf;
-    }
-    if (!ok) {
+    if (!kf.compute(k)) {
       out.status = Status::NumericalIssue;
       append(out.reason,
              "A0 is not positive definite (Cholesky failed): A(0) singular or indefinite (periodic set? use the "
              "symbol route)");
       return;
     }
-    out.a0_rcond = factor->rcond_estimate();
+    out.a0_rcond = kf.rcond_estimate();
     if (out.a0_rcond < 1e-14) append(out.reason, "A0 near-singular (rcond estimate " + fmt(out.a0_rcond) + ")");
+  }
+
+  // Shared bracket (bisection, and the shift of the sparse eigen route).
+  SymmetricPencil pencil(k, l);
+  CholmodDefiniteness check(opt.variant);
+  Bracket br;
+  const bool need_bracket = bis || (eig && !dense);
+  auto pd = [&](double tau) { return check.is_positive_definite(pencil.evaluate(tau)); };
+  if (need_bracket) {
+    check.analyze_pattern(pencil.pattern());
+    br = bracket(pd, opt.e_start, opt.e_max, opt.e_min);
   }
 
   Eigen::VectorXd vec;
   if (eig) {
-    double lambda_max = CriticalStrain::nan;
+    double tau_eig = CriticalStrain::nan;
     Status st = Status::NotComputed;
     if (dense) {
       out.eigen_backend = "dense";
@@ -207,54 +231,62 @@ void definiteness_routes(const ColSparseMatrix& k, const ColSparseMatrix& l, con
       DenseSymmetricEigen e = generalized_symmetric_eigen(ld, kd, opt.want_mode);
       st = e.status;
       if (st == Status::Successful) {
-        lambda_max = e.values[m - 1];
+        const double lambda_max = e.values[m - 1];
+        tau_eig = lambda_max > 0 ? 1.0 / lambda_max : kInf;
         if (opt.want_mode) vec = e.vectors.col(m - 1);
       } else {
         append(out.reason, "dsygv failed (info " + std::to_string(e.lapack_info) + ")");
       }
     } else {
       out.eigen_backend = "spectra";
-      Spectra::SparseSymMatProd<double, Eigen::Lower, Eigen::ColMajor> op(l);
-      int ncv = opt.spectra_ncv > 0 ? opt.spectra_ncv : 40;
-      st = Status::NotConverging;
-      for (int attempt = 0; attempt < 3; ++attempt) {
-        ncv = std::min(m, std::max(ncv, 3));
-        Spectra::SymGEigsSolver<decltype(op), CholmodCholeskyOp, Spectra::GEigsMode::Cholesky> eigs(op, *bop, 1, ncv);
-        eigs.init();
-        eigs.compute(Spectra::SortRule::LargestAlge, opt.spectra_maxit, opt.spectra_tol,
-                     Spectra::SortRule::LargestAlge);
-        if (eigs.info() == Spectra::CompInfo::Successful) {
-          st = Status::Successful;
-          lambda_max = eigs.eigenvalues()[0];
-          if (opt.want_mode) vec = eigs.eigenvectors().col(0);
-          if (attempt > 0) append(out.reason, "spectra converged with ncv = " + std::to_string(ncv));
-          break;
+      const bool shifted = br.status == Status::Successful && std::isnan(br.tau) && br.lo > 0;
+      const double shift = shifted ? br.lo : 0.0;
+      CholmodCholeskyOp bop(shifted ? ColSparseMatrix(pencil.evaluate(shift)) : k, opt.variant);
+      if (bop.info() != Status::Successful) {
+        st = Status::NumericalIssue;
+        append(out.reason, "Cholesky of the shifted B = A(lo) failed");
+      } else {
+        Spectra::SparseSymMatProd<double, Eigen::Lower, Eigen::ColMajor> op(l);
+        int ncv = opt.spectra_ncv > 0 ? opt.spectra_ncv : 40;
+        st = Status::NotConverging;
+        for (int attempt = 0; attempt < 3; ++attempt) {
+          ncv = std::min(m, std::max(ncv, 3));
+          Spectra::SymGEigsSolver<decltype(op), CholmodCholeskyOp, Spectra::GEigsMode::Cholesky> eigs(op, bop, 1, ncv);
+          eigs.init();
+          eigs.compute(Spectra::SortRule::LargestAlge, opt.spectra_maxit, opt.spectra_tol,
+                       Spectra::SortRule::LargestAlge);
+          if (eigs.info() == Spectra::CompInfo::Successful) {
+            st = Status::Successful;
+            const double nu = eigs.eigenvalues()[0];
+            tau_eig = nu > 0 ? shift + 1.0 / nu : kInf;
+            if (opt.want_mode) vec = eigs.eigenvectors().col(0);
+            if (attempt > 0) append(out.reason, "spectra converged with ncv = " + std::to_string(ncv));
+            break;
+          }
+          ncv *= 2;
         }
-        ncv *= 2;
+        if (st != Status::Successful) append(out.reason, "spectra did not converge");
+        if (shifted && st == Status::Successful && !(tau_eig > shift && tau_eig <= br.hi * (1 + 1e-10)))
+          append(out.reason, "shifted eigen route outside the bracket [" + fmt(br.lo) + " " + fmt(br.hi) + "]");
       }
-      if (st != Status::Successful) append(out.reason, "spectra did not converge");
     }
     if (st == Status::Successful) {
-      out.e_eigen = lambda_max > 0 ? sgn / lambda_max : sgn * kInf;
-      if (!(lambda_max > 0)) append(out.reason, "lambda_max <= 0: A(e) positive definite for every e of this sign");
+      out.e_eigen = sgn * tau_eig;
+      if (std::isinf(tau_eig)) append(out.reason, "lambda_max <= 0: A(e) positive definite for every e of this sign");
     } else {
       out.status = st;
     }
   }
   if (bis) {
-    SymmetricPencil pencil(k, l);
-    CholmodDefiniteness check(opt.variant);
-    check.analyze_pattern(pencil.pattern());
-    const Bracket b = bisect([&](double tau) { return check.is_positive_definite(pencil.evaluate(tau)); }, opt.e_start,
-                             opt.e_max, opt.e_min, opt.rtol);
-    out.factorizations = b.tests;
-    if (!b.note.empty()) append(out.reason, b.note);
-    if (b.status == Status::Successful) {
-      out.e_bisection = sgn * b.tau;
-      out.bisection_lo = sgn * b.lo;
-      out.bisection_hi = std::isinf(b.tau) ? sgn * kInf : sgn * b.hi;
+    refine(br, pd, opt.rtol);
+    out.factorizations = br.tests;
+    if (!br.note.empty()) append(out.reason, br.note);
+    if (br.status == Status::Successful) {
+      out.e_bisection = sgn * br.tau;
+      out.bisection_lo = sgn * br.lo;
+      out.bisection_hi = std::isinf(br.tau) ? sgn * kInf : sgn * br.hi;
     } else {
-      out.status = b.status;
+      out.status = br.status;
     }
   }
   out.mechanism = InstabilityMechanism::RealCrossing;
@@ -353,7 +385,7 @@ void spectrum_routes(const ElasticJacobian2d& jac, const CriticalStrainOptions& 
       }
     }
   } else {
-    const Bracket b = bisect(stable, opt.e_start, opt.e_max, opt.e_min, 1.0);  // bracket only (rtol 1: no bisection)
+    const Bracket b = bracket(stable, opt.e_start, opt.e_max, opt.e_min);
     lo = b.lo;
     hi = std::isinf(b.tau) ? kInf : b.hi;
     if (b.status != Status::Successful) lo = 0;

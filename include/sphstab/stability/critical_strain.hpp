@@ -6,20 +6,23 @@
 ///
 /// Criterion "definiteness" (A(e) symmetric: conservative always; plus, uncorrected for isotropic pre-strain; minus):
 ///   A(e) = K - tau L with K = A0, L = -sgn A1. Two independent routes must agree (relative 1e-8):
-///   1. bisection with CHOLMOD LL^T (A positive definite iff the factorisation succeeds): bracket from e_start by
-///      doubling (inf beyond e_max) or halving, then geometric bisection to hi/lo - 1 <= rtol, one symbolic analysis;
+///   1. bisection with CHOLMOD LL^T (A positive definite iff the factorisation succeeds): bracket from e_start in
+///      steps of a factor 8 (inf beyond e_max), then geometric bisection to hi/lo - 1 <= rtol, one symbolic analysis;
 ///   2. the generalised symmetric eigenproblem L x = lambda K x (K = A0 positive definite): tau_crit = 1/lambda_max
 ///      (inf when lambda_max <= 0); dense LAPACK dsygv up to dense_max unknowns, else Spectra's SymGEigsSolver in
-///      Cholesky mode over a CHOLMOD factor of K. The eigenvector is the critical mode.
+///      Cholesky mode over a CHOLMOD factor of the SHIFTED B = K - lo L (lo: the positive definite end of the bracket
+///      of route 1, a spectral transformation only: nu = lambda / (1 - lo lambda), tau = lo + 1/nu_max; it makes the
+///      wanted end of the spectrum dominant, 3-5 Lanczos restarts instead of tens). The eigenvector is the mode.
 /// Criterion "spectrum" (any A, the stability criterion for u'' = -A u, Powell Theorem 3.1: every eigenvalue real and
 ///   positive), dense, for non-symmetric A (uniaxial plus/uncorrected):
 ///   1. eigen route: real crossings det A(e) = 0 from the eigenvalues nu of M = A0^{-1} (sgn A1) (dgeev):
 ///      A0 + tau sgn A1 singular iff nu = -1/tau, so tau_real = -1/nu for the most negative real nu;
-///   2. bisection on "all eigenvalues of A(e) (dgeev) have |Im| <= imag_tol ||A||_F and Re > 0", bracketed like 1.
-///      (the bracket is searched by doubling from e_start, so an unstable window narrower than a factor 2 below the
-///      first detected instability can be missed). When the first instability is a real crossing the routes agree; when
-///      a complex pair (flutter) comes first the bisection value is the result, mechanism = complex-pair, and the
-///      eigen route only bounds it from above.
+///   2. bisection on "all eigenvalues of A(e) (dgeev) have |Im| <= imag_tol ||A||_F and Re > 0": the criterion is
+///      tested at tau_real x {1/16, 1/8, 1/4, 1/2, 3/4, 0.9, 1 - d} and tau_real (1 + d), d = spectrum_rtol / 4; the
+///      first failure is bisected to spectrum_rtol (without tau_real: bracket from e_start in factors of 8). An
+///      unstable window that opens and closes between two tested points is missed (sampling, not a proof). When the
+///      first instability is a real crossing the routes agree; when a complex pair (flutter) comes first the bisection
+///      value is the result, mechanism = complex-pair, and the eigen route only bounds it from above.
 /// Criterion "symmetric-part": definiteness of (A + A^T)/2, with both routes as above. For non-symmetric A this is
 ///   NOT the stability criterion (sufficient for a decaying energy-like norm only); offered because it is sparse and
 ///   cheap, and always labelled in the result.
