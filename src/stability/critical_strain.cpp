@@ -239,8 +239,11 @@ void definiteness_routes(const ColSparseMatrix& k, const ColSparseMatrix& l, con
       }
     } else {
       out.eigen_backend = "spectra";
-      const bool shifted = br.status == Status::Successful && std::isnan(br.tau) && br.lo > 0;
-      const double shift = shifted ? br.lo : 0.0;
+      // Shift: the positive definite end of the bracket, or e_max when A is positive definite up to e_max (then
+      // nu_max <= 0 means stable for every e; without a shift Lanczos crawls towards lambda_max ~ 0-).
+      const bool stable_to_max = br.status == Status::Successful && std::isinf(br.tau);
+      const bool shifted = br.status == Status::Successful && (stable_to_max || (std::isnan(br.tau) && br.lo > 0));
+      const double shift = !shifted ? 0.0 : stable_to_max ? opt.e_max : br.lo;
       CholmodCholeskyOp bop(shifted ? ColSparseMatrix(pencil.evaluate(shift)) : k, opt.variant);
       if (bop.info() != Status::Successful) {
         st = Status::NumericalIssue;
@@ -259,6 +262,10 @@ void definiteness_routes(const ColSparseMatrix& k, const ColSparseMatrix& l, con
             st = Status::Successful;
             const double nu = eigs.eigenvalues()[0];
             tau_eig = nu > 0 ? shift + 1.0 / nu : kInf;
+            if (stable_to_max && std::isfinite(tau_eig)) {
+              append(out.reason, "eigen route: first crossing beyond e_max at |e| = " + fmt(tau_eig));
+              tau_eig = kInf;
+            }
             if (opt.want_mode) vec = eigs.eigenvectors().col(0);
             if (attempt > 0) append(out.reason, "spectra converged with ncv = " + std::to_string(ncv));
             break;
@@ -266,7 +273,8 @@ void definiteness_routes(const ColSparseMatrix& k, const ColSparseMatrix& l, con
           ncv *= 2;
         }
         if (st != Status::Successful) append(out.reason, "spectra did not converge");
-        if (shifted && st == Status::Successful && !(tau_eig > shift && tau_eig <= br.hi * (1 + 1e-10)))
+        if (shifted && !stable_to_max && st == Status::Successful &&
+            !(tau_eig > shift && tau_eig <= br.hi * (1 + 1e-10)))
           append(out.reason, "shifted eigen route outside the bracket [" + fmt(br.lo) + " " + fmt(br.hi) + "]");
       }
     }
