@@ -564,8 +564,8 @@ int main(int argc, char** argv) {
      << " finite cases lose stability by a complex pair (flutter: two real eigenvalues merge) BEFORE any eigenvalue "
         "crosses zero; there e_crit(flutter)/e(real crossing) = "
      << sig(ns_ratio_min, 3) << "-" << sig(ns_ratio_max, 3)
-     << ". The symmetric-part criterion of sweep.csv is not a substitute for it. At h/dx = 1.3 (n = 12 and, for the "
-        "cubic, 20):\n\n"
+     << ". The symmetric-part criterion of sweep.csv is not a substitute for it. At h/dx = 1.3 (n = 12; the "
+        "symmetric-part column is from sweep.csv, n = 16, where computed):\n\n"
      << "| lattice | kernel | direction | n | e_crit (spectrum) | mechanism | real crossing | symmetric part "
         "|\n|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : nonsym)
