@@ -11,12 +11,12 @@ namespace {
 inline double re(double x) { return x; }
 inline double re(const std::complex<double>& x) { return x.real(); }
 
-bool switch_on(SwitchRule rule, double sum) {
+bool switch_on(SwitchRule rule, double sum, double tolerance) {
   switch (rule) {
     case SwitchRule::Tension:
-      return sum > 0;
+      return sum > tolerance;
     case SwitchRule::AsPrinted:
-      return !(sum > 0);
+      return !(sum > tolerance);
     case SwitchRule::Always:
       return true;
     case SwitchRule::Never:
@@ -52,6 +52,9 @@ StabilisedSphTerm::StabilisedSphTerm(std::shared_ptr<const Discretisation<2>> di
                                      const StabilisedSphOptions& options)
     : m_disc(std::move(discretisation)), m_options(options) {
   if (!m_disc) throw std::invalid_argument("StabilisedSphTerm: discretisation is null");
+  if (!(options.switch_tolerance >= 0))
+    throw std::invalid_argument("StabilisedSphTerm: switch_tolerance must be >= 0 (got " +
+                                std::to_string(options.switch_tolerance) + ")");
   if (options.excluded_depth < -1)
     throw std::invalid_argument("StabilisedSphTerm: excluded_depth must be >= -1 (got " +
                                 std::to_string(options.excluded_depth) + ")");
@@ -79,7 +82,7 @@ std::string StabilisedSphTerm::name() const {
   return s + ")";
 }
 
-SwitchState StabilisedSphTerm::switch_state(const Eigen::MatrixX3d& stress) const {
+SwitchState StabilisedSphTerm::switch_state(const Eigen::MatrixX3d& stress, double tol) const {
   const Discretisation<2>& d = *m_disc;
   if (stress.rows() != d.size())
     throw std::invalid_argument("StabilisedSphTerm::switch_state: stress has " + std::to_string(stress.rows()) +
@@ -94,7 +97,7 @@ SwitchState StabilisedSphTerm::switch_state(const Eigen::MatrixX3d& stress) cons
       sxx += stress(nl.indices[k], 0);
       syy += stress(nl.indices[k], 1);
     }
-    on[i] = {!excluded && switch_on(m_options.rule, sxx), !excluded && switch_on(m_options.rule, syy)};
+    on[i] = {!excluded && switch_on(m_options.rule, sxx, tol), !excluded && switch_on(m_options.rule, syy, tol)};
   }
   return on;
 }
@@ -159,7 +162,8 @@ void StabilisedSphTerm::add_impl(const ElasticTermContext<Scalar>& c, ParticleAc
   const std::array<LocalMeans<Scalar>, 2> means = local_means_of<Scalar>(ops);
   // Switch state from the real parts of the stresses (frozen for complex steps).
   const Eigen::MatrixX3d real_stress = c.stress.unaryExpr([](const Scalar& s) { return re(s); });
-  const SwitchState on = switch_state(real_stress);
+  const SwitchState on =
+      switch_state(real_stress, m_options.switch_tolerance * (c.material.lambda + 2 * c.material.mu));
   const double inv_rho = 1.0 / c.material.rho;
   const Scalar* g0 = ops.G[0].valuePtr();
   const Scalar* g1 = ops.G[1].valuePtr();
@@ -219,7 +223,8 @@ const StabilisedSphTerm* find_stabilised_sph_term(const ElasticForm2D& force) {
 std::shared_ptr<ElasticForm2D> freeze_switch(const ElasticForm2D& force, const Eigen::VectorXd& u) {
   const StabilisedSphTerm* term = find_stabilised_sph_term(force);
   if (!term) throw std::invalid_argument("freeze_switch: the force function has no S-SPH term");
-  auto frozen_term = term->frozen(term->switch_state(force.stress(u)));
+  const double tol = term->options().switch_tolerance * (force.material().lambda + 2 * force.material().mu);
+  auto frozen_term = term->frozen(term->switch_state(force.stress(u), tol));
   std::vector<std::shared_ptr<const ElasticTerm2D>> terms;
   for (const auto& t : force.terms()) terms.push_back(t.get() == term ? frozen_term : t);
   auto copy = std::make_shared<ElasticForm2D>(force);

@@ -31,20 +31,25 @@ void newton(const ForceFunction& force, const EquilibriumOptions& o, double refe
     return;
   }
   ComplexStepJacobian jac(force);
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  bool have_lu = false, fresh = false, refresh = true;
   for (int it = 1; it <= o.max_iterations; ++it) {
-    const SparseMatrix<> Ar = jac.compute(out.u);
-    if (jac.info() != JacobianStatus::Successful) {
-      out.status = Status::NumericalIssue;
-      out.message = "non-finite Jacobian";
-      return;
-    }
-    const Eigen::SparseMatrix<double> A(Ar);  // column-major for SparseLU
-    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-    lu.compute(A);
-    if (lu.info() != Eigen::Success) {
-      out.status = Status::NumericalIssue;
-      out.message = "singular Jacobian";
-      return;
+    if (refresh || !have_lu) {
+      const SparseMatrix<> Ar = jac.compute(out.u);
+      if (jac.info() != JacobianStatus::Successful) {
+        out.status = Status::NumericalIssue;
+        out.message = "non-finite Jacobian";
+        return;
+      }
+      const Eigen::SparseMatrix<double> A(Ar);  // column-major for SparseLU
+      lu.compute(A);
+      if (lu.info() != Eigen::Success) {
+        out.status = Status::NumericalIssue;
+        out.message = "singular Jacobian";
+        return;
+      }
+      have_lu = fresh = true;
+      ++out.jacobians;
     }
     const Eigen::VectorXd du = lu.solve(a);
     // Backtracking: halve the step until the residual decreases (at most 12 halvings).
@@ -56,11 +61,19 @@ void newton(const ForceFunction& force, const EquilibriumOptions& o, double refe
       if (r < out.residual) break;
     }
     ++out.iterations;
-    if (!(r < out.residual)) {  // no decrease: stagnation (round-off) or failure
+    if (!(r < out.residual)) {
+      if (!fresh) {  // a stale Jacobian: retry with a fresh one
+        refresh = true;
+        continue;
+      }
       out.status = out.residual <= o.stagnation * reference ? Status::Successful : Status::NotConverging;
       out.message = out.status == Status::Successful ? "converged to round-off" : "Newton step does not decrease |a|";
       return;
     }
+    // Keep the factorisation while it still reduces the residual at least fourfold (chord iterations are cheap:
+    // one force evaluation and one solve instead of a complex-step Jacobian and a factorisation).
+    refresh = r > 0.25 * out.residual;
+    fresh = false;
     out.u = trial;
     a = at;
     out.residual = r;

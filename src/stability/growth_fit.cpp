@@ -48,19 +48,51 @@ ExponentialGrowthFit fit_exponential_growth(const std::vector<double>& t, const 
   if (!(reference > 0) || !std::isfinite(reference))
     throw std::invalid_argument(std::string(who) + ": reference must be finite and > 0 (got " +
                                 std::to_string(reference) + ")");
-  if (!(o.onset_factor > 1) || !(o.min_span > 1) || o.min_points < 2)
-    throw std::invalid_argument(std::string(who) + ": need onset_factor > 1, min_span > 1, min_points >= 2");
+  if (!(o.onset_factor > 1) || !(o.min_span > 1) || o.min_points < 2 || !(o.envelope_time >= 0))
+    throw std::invalid_argument(std::string(who) +
+                                ": need onset_factor > 1, min_span > 1, min_points >= 2, envelope_time >= 0");
   ExponentialGrowthFit out;
   double ymax = 0;
   for (double v : y)
     if (std::isfinite(v)) ymax = std::max(ymax, v);
   out.max_ratio = ymax / reference;
+  // Envelope env_k = max y over [t_k - envelope_time, t_k] (only with envelope_time > 0).
+  std::vector<double> env;
+  if (o.envelope_time > 0) {
+    env.resize(t.size());
+    std::size_t lo = 0;
+    for (std::size_t k = 0; k < t.size(); ++k) {
+      while (t[lo] < t[k] - o.envelope_time) ++lo;
+      double e = 0;
+      for (std::size_t j = lo; j <= k; ++j)
+        if (std::isfinite(y[j])) e = std::max(e, y[j]);
+      env[k] = e;
+    }
+  }
   std::size_t start = t.size();
-  for (std::size_t k = 0; k < t.size(); ++k)
-    if (t[k] <= t_linear_end && y[k] > o.onset_factor * reference && std::isfinite(y[k])) {
+  double ref = reference;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    if (!env.empty() && env[k] > 0) ref = std::min(ref, env[k]);
+    if (t[k] <= t_linear_end && y[k] > o.onset_factor * ref && std::isfinite(y[k])) {
       start = k;
       break;
     }
+  }
+  if (!env.empty()) {  // late-time trend after the envelope minimum
+    std::size_t kmin = 0, last = 0;
+    for (std::size_t k = 0; k < t.size() && t[k] <= t_linear_end; ++k) {
+      last = k;
+      if (env[k] > 0 && (env[kmin] <= 0 || env[k] < env[kmin])) kmin = k;
+    }
+    if (last > kmin + 1 && t[last] - t[kmin] >= 0.25 * (t.back() - t.front()) && env[kmin] > 0) {
+      out.late = fit_log_linear(t, y, t[kmin], t[last]);
+      out.gamma_late = 0.5 * out.late.slope;
+      double m = 0;
+      for (std::size_t k = kmin; k <= last; ++k)
+        if (std::isfinite(y[k])) m = std::max(m, y[k]);
+      out.late_ratio = m / env[kmin];
+    }
+  }
   std::size_t last = start;
   for (std::size_t k = start; k < t.size() && t[k] <= t_linear_end; ++k) last = k;
   const int points = start < t.size() ? static_cast<int>(last - start + 1) : 0;

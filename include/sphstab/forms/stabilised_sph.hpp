@@ -73,6 +73,10 @@ struct StabilisedSphOptions {
   SwitchRule rule = SwitchRule::Tension;
   /// true: symmetrised pair interactions (algorithm 4.2); false: a_i + g_i per particle as in (4.14)-(4.17).
   bool symmetrise = true;
+  /// Stress sums with |sum| <= switch_tolerance * (lambda + 2 mu) count as zero (switch "off" for Tension). Exactly
+  /// zero stress (xi = 1 at the lattice) then stays on the off branch in complex-step evaluations, whose real parts
+  /// carry O(h^2) ~ 1e-60 contamination. >= 0.
+  double switch_tolerance = 1e-14;
 };
 
 /// Switch state: on[i][alpha] = the correction of component alpha of particle i is applied (N entries).
@@ -100,8 +104,9 @@ class StabilisedSphTerm final : public ElasticTermT<StabilisedSphTerm> {
   template <class Scalar>
   std::array<LocalMeans<Scalar>, 2> local_means_of(const Operators<2, Scalar>& operators) const;
 
-  /// The switch state for the stresses `stress` (N x 3, real parts), excluded particles off (or the frozen state).
-  SwitchState switch_state(const Eigen::MatrixX3d& stress) const;
+  /// The switch state for the stresses `stress` (N x 3, real parts), excluded particles off (or the frozen state);
+  /// sums with |sum| <= zero_tolerance (stress units) count as zero.
+  SwitchState switch_state(const Eigen::MatrixX3d& stress, double zero_tolerance = 0) const;
   /// A copy whose switch is fixed to `state` (N entries) regardless of the stresses.
   std::shared_ptr<StabilisedSphTerm> frozen(SwitchState state) const;
   bool is_frozen() const { return !m_frozen.empty(); }

@@ -14,7 +14,7 @@
 namespace sphstab {
 
 struct EquilibriumOptions {
-  int max_iterations = 30;   ///< Newton steps per load step (>= 1)
+  int max_iterations = 40;   ///< Newton steps (full or chord) per load step (>= 1)
   double tolerance = 1e-14;  ///< stop when ||a(u)||_inf <= tolerance * max(||a(u0)||_inf, accel_scale)
   /// Accept a stagnating iteration (no further decrease, round-off reached) when ||a|| <= stagnation * reference.
   double stagnation = 1e-10;
@@ -28,12 +28,14 @@ struct Equilibrium {
   Eigen::VectorXd u;                    ///< the last iterate (u* when converged)
   double initial_residual = 0;          ///< ||a(u0)||_inf
   double residual = 0;                  ///< ||a(u)||_inf at the returned u
-  int iterations = 0;                   ///< Newton steps taken
+  int iterations = 0;                   ///< Newton steps taken (full and chord)
+  int jacobians = 0;                    ///< Jacobians computed and factorised
   Status status = Status::NotComputed;  ///< Successful, NotConverging, or NumericalIssue (singular/non-finite)
   std::string message;
 };
 
-/// Damped Newton iteration (backtracking on ||a||_inf) from u0 (size dofs()), with optional load continuation.
+/// Damped Newton iteration (backtracking on ||a||_inf) from u0 (size dofs()), with optional load continuation. The
+/// factorised Jacobian is reused (chord steps) while each step still reduces ||a|| fourfold, and refreshed otherwise.
 /// Returns at once (0 iterations) if a(u0) already meets the tolerance.
 /// Throws std::invalid_argument for a size mismatch or invalid options.
 Equilibrium find_equilibrium(const ForceFunction& force, const Eigen::VectorXd& u0,

@@ -5,9 +5,10 @@
 ///
 /// Window (fit_exponential_growth): from the first time y exceeds onset_factor * reference (the growing mode then
 /// dominates whatever bounded motion carries the reference energy: with onset_factor = 100 the bounded part is at
-/// most 1 % of y) up to t_linear_end (the caller's end of the linear regime, e.g. when the largest displacement
-/// reaches a small fraction of the spacing). The run counts as growing when the window holds at least min_points
-/// samples spanning a ratio of at least min_span in y.
+/// most 1 % of y; with envelope_time > 0 the reference follows the envelope of a decaying y down) up to t_linear_end
+/// (the caller's end of the linear regime, e.g. when the largest displacement reaches a small fraction of the spacing).
+/// The run counts as growing when the window holds at least min_points samples spanning a ratio of at least min_span in
+/// y.
 #include <limits>
 #include <vector>
 
@@ -31,6 +32,10 @@ struct GrowthWindowOptions {
   double onset_factor = 100;  ///< window starts when y > onset_factor * reference (> 1)
   double min_span = 10;       ///< y(end)/y(start) of the window needed to call it growth (> 1)
   int min_points = 8;         ///< samples needed in the window (>= 2)
+  /// > 0: adaptive reference for damped runs (e.g. with XSPH): at sample k the reference is
+  /// min(reference, min_{j <= k} env_j) with the envelope env_j = max y over [t_j - envelope_time, t_j], so that a
+  /// mode growing from the bottom of a decaying signal is found. 0: the fixed reference.
+  double envelope_time = 0;
 };
 
 struct ExponentialGrowthFit {
@@ -42,6 +47,11 @@ struct ExponentialGrowthFit {
   /// Upper bound of gamma when no growth was detected: log(max(max_ratio, onset_factor)) / (2 (t_last - t_first)),
   /// the rate that would have reached the onset within the series; NaN when grew.
   double gamma_bound = nan;
+  /// With envelope_time > 0: fit of log y from the minimum of the envelope to t_linear_end (the late-time trend
+  /// of a damped run), computed when that span is at least a quarter of the series; NaN fields otherwise.
+  LogLinearFit late;
+  double gamma_late = nan;  ///< late.slope / 2
+  double late_ratio = nan;  ///< max y after the envelope minimum / the envelope minimum
 };
 
 /// Exponential growth of y (e.g. kinetic energy) relative to `reference` (> 0, e.g. its initial value), with the
