@@ -1,4 +1,6 @@
-// `sphstab tcrit`: critical tension of a 1D lattice (Powell ch. 3) with the closed-form estimates, as CSV.
+// `sphstab tcrit`: critical tension of a 1D lattice (Powell ch. 3) with the closed-form estimates, as CSV; with
+// --correction, of the 1D forms with a corrected kernel gradient (Powell ch. 3 §4.1.1, ch. 4 §2) by the general
+// affine route (affine_critical_tension.hpp).
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -8,9 +10,12 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "sphstab/forms/correction_gradient.hpp"
 #include "sphstab/forms/momentum_form.hpp"
+#include "sphstab/forms/wave_1d.hpp"
 #include "sphstab/kernel/kernel.hpp"
 #include "sphstab/particles/lattice.hpp"
+#include "sphstab/stability/affine_critical_tension.hpp"
 #include "sphstab/stability/critical_tension.hpp"
 #include "sphstab/stability/fourier_symbol.hpp"
 #include "sphstab/stability/tension_estimates.hpp"
@@ -21,9 +26,14 @@ namespace {
 
 struct TcritArgs {
   std::string dim = "1", lattice = "line", n = "30", kernel = "cubic", form = "conservative", h = "1.2",
-              method = "both", backend = "auto", correction = "none";
-  bool periodic = false;
+              method = "both", backend = "auto", correction = "none", corrected = "auto";
+  bool periodic = false, compression = false;
 };
+
+/// Fixed layers of the lattice used with a kernel correction, in kernel supports (2h): every particle that the free
+/// particles' corrected rows read then has a complete neighbourhood, so u = 0 is an equilibrium of every form and
+/// correction (Powell's regular grid, ch. 3 footnote h); checked by the residual in `reason`.
+constexpr int kCorrectedLayerSupports = 3;
 
 std::vector<std::string> split(const std::string& s, char sep) {
   std::vector<std::string> out;
@@ -109,9 +119,15 @@ void run_tcrit(const TcritArgs& a) {
   if (dim != 1) throw std::invalid_argument("tcrit: --dim must be 1 (got '" + a.dim + "')");
   if (parse_lattice_type(a.lattice) != LatticeType::Line)
     throw std::invalid_argument("tcrit: --lattice '" + a.lattice + "' does not exist in 1D (use line)");
-  if (a.correction != "none")
-    throw std::invalid_argument("tcrit: --correction '" + a.correction +
-                                "' is not available yet (valid: none)");  // hook for kernel corrections
+  const Correction correction = parse_correction(a.correction);
+  const CorrectedOperator corrected = parse_corrected_operator(a.corrected);
+  if (correction == Correction::None && corrected != CorrectedOperator::Auto)
+    throw std::invalid_argument("tcrit: --corrected-operator applies only with a --correction other than none");
+  if (correction != Correction::None && a.periodic)
+    throw std::invalid_argument(
+        "tcrit: --periodic is only available with --correction none (the general route does "
+        "not deflate the translation null mode of a periodic lattice)");
+  const LoadDirection direction = a.compression ? LoadDirection::Compression : LoadDirection::Tension;
   const int nfree = parse_positive_int(a.n, "--n");
   std::vector<KernelType> kernels;
   for (const auto& k : split(a.kernel, ',')) kernels.push_back(parse_kernel_type(k));
@@ -127,42 +143,97 @@ void run_tcrit(const TcritArgs& a) {
   // Rows are collected first so that an error on any row leaves stdout empty (one error line, exit 1).
   std::string out =
       "kernel,form,N,periodic,h_over_dx,method,backend,tcrit,tcrit_eig,tcrit_bisect,rel_diff,t_first_minor,"
-      "t_second_minor,t_nn,t_nn_minor,t_swegle,tcrit_infinite,tcrit_symbol,mode_k_over_pi,status,reason\n";
+      "t_second_minor,t_nn,t_nn_minor,t_swegle,tcrit_infinite,tcrit_symbol,mode_k_over_pi,status,reason,criterion\n";
+  auto add_row = [&out](const std::vector<std::string>& row) {
+    for (size_t c = 0; c < row.size(); ++c) out += (c ? "," : "") + row[c];
+    out += "\n";
+  };
+  const double nan = CriticalTension::nan;
   for (KernelType type : kernels) {
     Kernel<1> kernel(type);
     for (double h : hs) {
-      const ParticleSet<1> set = tension_lattice_1d(kernel, h, nfree, a.periodic);
-      const TensionJacobian1d jac = analytic_jacobian_1d(set, kernel, h);
+      if (correction == Correction::None) {
+        // Plain kernel: the analytic Jacobian K - n T L (Powell 3.40) and the closed-form estimates.
+        const ParticleSet<1> set = tension_lattice_1d(kernel, h, nfree, a.periodic);
+        TensionJacobian1d jac = analytic_jacobian_1d(set, kernel, h);
+        if (a.compression) jac.L = SparseMatrix<>(-jac.L);  // A(T) = K + |T| n L for T < 0
+        const double sign = a.compression ? -1.0 : 1.0;
+        for (MomentumForm form : forms) {
+          const int n = initial_stress_multiplier(form);
+          const CriticalTension r = critical_tension(jac, n, opt);
+          const TensionEstimates1d e = tension_estimates_1d(kernel, h, 1.0, n);
+          const SymbolCriticalTension inf = critical_tension_infinite_1d(kernel, h, 1.0, n);
+          const double symbol =
+              a.periodic && !a.compression ? critical_tension_periodic_symbol_1d(kernel, h, 1.0, nfree, n).tcrit : nan;
+          const bool t = !a.compression;  // the estimates are tension formulas
+          add_row({kernel_name(type),
+                   momentum_form_name(form),
+                   std::to_string(nfree),
+                   a.periodic ? "1" : "0",
+                   num(h),
+                   a.method,
+                   r.eigen_backend.empty() ? "none" : r.eigen_backend,
+                   num(sign * r.tcrit),
+                   num(sign * r.tcrit_eigen),
+                   num(sign * r.tcrit_bisection),
+                   num(r.relative_difference),
+                   num(t ? e.first_minor : nan),
+                   num(t ? e.second_minor : nan),
+                   num(t ? e.nearest_neighbour : nan),
+                   num(t ? e.nearest_neighbour_minor : nan),
+                   num(t ? e.swegle : nan),
+                   num(t ? inf.tcrit : nan),
+                   num(symbol),
+                   num(r.mode_wavenumber.k_projection),
+                   status_name(r.status),
+                   csv_field(a.compression ? "compression: T < 0 searched as K + |T| n L; " + r.reason : r.reason),
+                   criterion_name(StabilityCriterion::PositiveDefinite)});
+        }
+        continue;
+      }
+      // Corrected kernel: complex-step A(T) = A0 + T A1 of the force function, then the general criteria.
+      const ParticleSet<1> set = tension_lattice_1d(kernel, h, nfree, false, kCorrectedLayerSupports);
+      auto disc = make_discretisation(set, kernel, h);
+      Eigen::VectorXd x(disc->free_count());
+      for (int f = 0; f < disc->free_count(); ++f) x[f] = set.x(disc->free[f], 0);
+      const auto provider = make_gradient_provider<1>(correction);
+      AffineCriticalOptions aopt;
+      aopt.symmetric = opt;
       for (MomentumForm form : forms) {
-        const int n = initial_stress_multiplier(form);
-        const CriticalTension r = critical_tension(jac, n, opt);
-        const TensionEstimates1d e = tension_estimates_1d(kernel, h, 1.0, n);
-        const SymbolCriticalTension inf = critical_tension_infinite_1d(kernel, h, 1.0, n);
-        const double symbol =
-            a.periodic ? critical_tension_periodic_symbol_1d(kernel, h, 1.0, nfree, n).tcrit : CriticalTension::nan;
-        const std::vector<std::string> row{kernel_name(type),
-                                           momentum_form_name(form),
-                                           std::to_string(nfree),
-                                           a.periodic ? "1" : "0",
-                                           num(h),
-                                           a.method,
-                                           r.eigen_backend.empty() ? "none" : r.eigen_backend,
-                                           num(r.tcrit),
-                                           num(r.tcrit_eigen),
-                                           num(r.tcrit_bisection),
-                                           num(r.relative_difference),
-                                           num(e.first_minor),
-                                           num(e.second_minor),
-                                           num(e.nearest_neighbour),
-                                           num(e.nearest_neighbour_minor),
-                                           num(e.swegle),
-                                           num(inf.tcrit),
-                                           num(symbol),
-                                           num(r.mode_wavenumber.k_projection),
-                                           status_name(r.status),
-                                           csv_field(r.reason)};
-        for (size_t c = 0; c < row.size(); ++c) out += (c ? "," : "") + row[c];
-        out += "\n";
+        WaveForm1D force(disc, form, 0.0, provider, {.corrected = corrected});
+        const ForceCriticalLoad load = critical_load(force, direction, x, aopt);
+        std::string note = "corrected " + force.name().substr(force.name().rfind('/') + 1) + "; fixed layers " +
+                           std::to_string(kCorrectedLayerSupports) + " supports";
+        if (load.residual_relative > 1e-10)
+          note += "; WARNING u = 0 is not an equilibrium (max|a(0)|/max|A0| = " + num(load.residual_relative) + ")";
+        for (const AffineCriticalTension& r : load.results) {
+          const bool pd = r.criterion != StabilityCriterion::RealPositiveSpectrum;
+          const double sign = a.compression ? -1.0 : 1.0;
+          const std::string backend =
+              pd ? (r.pd.eigen_backend.empty() ? "none" : r.pd.eigen_backend) : std::string("dgeev");
+          add_row({kernel_name(type),
+                   momentum_form_name(form),
+                   std::to_string(nfree),
+                   "0",
+                   num(h),
+                   a.method,
+                   backend,
+                   num(r.tcrit),
+                   num(pd ? sign * r.pd.tcrit_eigen : nan),
+                   num(pd ? sign * r.pd.tcrit_bisection : r.tcrit),
+                   num(pd ? r.pd.relative_difference : nan),
+                   num(nan),
+                   num(nan),
+                   num(nan),
+                   num(nan),
+                   num(nan),
+                   num(nan),
+                   num(nan),
+                   num(r.mode_wavenumber.k_projection),
+                   status_name(r.status),
+                   csv_field(note + "; " + r.reason),
+                   criterion_name(r.criterion)});
+        }
       }
     }
   }
@@ -175,7 +246,9 @@ void register_tcrit_command(CLI::App& app) {
   auto args = std::make_shared<TcritArgs>();
   auto* cmd = app.add_subcommand("tcrit",
                                  "Critical tension T_crit of a 1D lattice (smallest T > 0 with A(T) = K - n T L not "
-                                 "positive definite, Powell 3.40) with the estimates 3.42/3.49/3.43/3.51/Swegle; CSV");
+                                 "positive definite, Powell 3.40) with the estimates 3.42/3.49/3.43/3.51/Swegle; with "
+                                 "--correction, of the corrected forms (criterion pd, or real-positive-spectrum and "
+                                 "symmetric-part-pd when A is not symmetric); CSV");
   cmd->add_option("--dim", args->dim, "Dimension (1; 2 is not yet supported)");
   cmd->add_option("--lattice", args->lattice, "Lattice (line)");
   cmd->add_option("--n", args->n, "Number of FREE particles (fixed layers are added to complete neighbourhoods)");
@@ -184,7 +257,13 @@ void register_tcrit_command(CLI::App& app) {
   cmd->add_option("--h", args->h, "h/dx: value, comma list or a:b:step (support radius 2h)");
   cmd->add_option("--method", args->method, "eig|bisect|both (default both)");
   cmd->add_option("--backend", args->backend, "Eigen route: auto|dense|spectra (auto: dense up to 200 DOF)");
-  cmd->add_option("--correction", args->correction, "Kernel correction (none; others not yet available)");
+  cmd->add_option("--correction", args->correction,
+                  "Kernel correction: none|minus|shepard|column-shepard|ncsph|local-polish|mean-polish|"
+                  "shepard-column-polish (not none: A(T) = A0 + T A1 by complex step, fixed layers 3 supports thick)");
+  cmd->add_option("--corrected-operator", args->corrected,
+                  "With a correction: auto|divergence|strain|both (auto: divergence, strain for conservative)");
+  cmd->add_flag("--compression", args->compression,
+                "Critical compression: the largest T < 0 at which the criterion fails (reported negative)");
   cmd->add_flag("--periodic", args->periodic, "Periodic lattice (translation, and the sawtooth for even N, deflated)");
   cmd->callback([args] { run_tcrit(*args); });
 }

@@ -31,17 +31,23 @@ inline Positions<Dim, Scalar> full_displacement(const Discretisation<Dim>& d,
 }
 
 /// Applies a non-plain provider to a copy of G; returns false (and leaves g untouched) for a plain provider.
+/// Unless `any_pattern` (callers that iterate the result's own pattern), the result must keep the neighbour-list
+/// pattern: callers that index it with the neighbour list reject non-local (dense) providers here.
 template <int Dim, class Scalar>
 inline bool corrected_gradient(const GradientProvider<Dim>* provider, const Discretisation<Dim>& d,
                                const Positions<Dim, Scalar>& x, const Operators<Dim, Scalar>& ops,
-                               std::array<SparseMatrix<Scalar>, Dim>& g) {
+                               std::array<SparseMatrix<Scalar>, Dim>& g, bool any_pattern = false) {
   if (!provider || provider->is_plain()) return false;
   g = ops.G;
   GradientContext<Dim, Scalar> context{d, x, ops};
   provider->correct(context, g);
-  for (int a = 0; a < Dim; ++a)
-    if (g[a].nonZeros() != d.neighbours.nonzeros() || g[a].rows() != d.size())
-      throw std::logic_error("gradient provider '" + provider->name() + "' changed the neighbour-list pattern");
+  for (int a = 0; a < Dim; ++a) {
+    if (g[a].rows() != d.size() || g[a].cols() != d.size())
+      throw std::logic_error("gradient provider '" + provider->name() + "' returned a matrix of the wrong size");
+    if (!any_pattern && g[a].nonZeros() != d.neighbours.nonzeros())
+      throw std::logic_error("gradient provider '" + provider->name() + "' changed the neighbour-list pattern" +
+                             (provider->keeps_pattern() ? "" : " (it is non-local; this form needs a local one)"));
+  }
   return true;
 }
 

@@ -21,5 +21,9 @@ SparseMatrix<Scalar> column_shepard_gradient(const SparseMatrix<Scalar>& W, cons
 template SparseMatrix<double> column_shepard_gradient<double>(const SparseMatrix<double>&, const SparseMatrix<double>&);
 template SparseMatrix<std::complex<double>> column_shepard_gradient<std::complex<double>>(
     const SparseMatrix<std::complex<double>>&, const SparseMatrix<std::complex<double>>&);
+template SparseMatrix<Dual<double>> column_shepard_gradient<Dual<double>>(const SparseMatrix<Dual<double>>&,
+                                                                          const SparseMatrix<Dual<double>>&);
+template SparseMatrix<Dual<std::complex<double>>> column_shepard_gradient<Dual<std::complex<double>>>(
+    const SparseMatrix<Dual<std::complex<double>>>&, const SparseMatrix<Dual<std::complex<double>>>&);
 
 }  // namespace sphstab

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "sphstab/numerics/dual.hpp"
 #include "sphstab/operators/column_shepard.hpp"
 #include "sphstab/operators/mean_polish.hpp"
 #include "sphstab/operators/minus_gradient.hpp"
@@ -125,6 +126,12 @@ SPHSTAB_INSTANTIATE(3, double)
 SPHSTAB_INSTANTIATE(1, std::complex<double>)
 SPHSTAB_INSTANTIATE(2, std::complex<double>)
 SPHSTAB_INSTANTIATE(3, std::complex<double>)
+SPHSTAB_INSTANTIATE(1, Dual<double>)  // nested derivatives (numerics/dual.hpp)
+SPHSTAB_INSTANTIATE(2, Dual<double>)
+SPHSTAB_INSTANTIATE(3, Dual<double>)
+SPHSTAB_INSTANTIATE(1, Dual<std::complex<double>>)
+SPHSTAB_INSTANTIATE(2, Dual<std::complex<double>>)
+SPHSTAB_INSTANTIATE(3, Dual<std::complex<double>>)
 #undef SPHSTAB_INSTANTIATE
 
 }  // namespace sphstab

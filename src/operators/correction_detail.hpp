@@ -9,12 +9,17 @@
 #include <string>
 
 #include "sphstab/kernel/kernel.hpp"
+#include "sphstab/numerics/dual.hpp"
 #include "sphstab/operators/operators.hpp"
 
 namespace sphstab::detail {
 
 inline bool finite(double x) { return std::isfinite(x); }
 inline bool finite(const std::complex<double>& x) { return std::isfinite(x.real()) && std::isfinite(x.imag()); }
+template <class S>
+bool finite(const Dual<S>& x) {
+  return finite(x.v) && finite(x.d);
+}
 
 template <class Scalar>
 using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;

@@ -93,6 +93,8 @@ template Eigen::VectorXd neighbour_counts<3>(const ParticleSet<3>&, const Neighb
   template SparseMatrix<S> local_polish<S>(const SparseMatrix<S>&, const Eigen::VectorXd&);
 SPHSTAB_INSTANTIATE(double)
 SPHSTAB_INSTANTIATE(std::complex<double>)
+SPHSTAB_INSTANTIATE(Dual<double>)  // nested derivatives (numerics/dual.hpp)
+SPHSTAB_INSTANTIATE(Dual<std::complex<double>>)
 #undef SPHSTAB_INSTANTIATE
 
 }  // namespace sphstab

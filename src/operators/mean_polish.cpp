@@ -133,6 +133,8 @@ SparseMatrix<Scalar> dense_to_sparse_all_entries(const DenseMatrix<Scalar>& A) {
   template SparseMatrix<S> dense_to_sparse_all_entries<S>(const DenseMatrix<S>&);
 SPHSTAB_INSTANTIATE(double)
 SPHSTAB_INSTANTIATE(std::complex<double>)
+SPHSTAB_INSTANTIATE(Dual<double>)  // nested derivatives (numerics/dual.hpp)
+SPHSTAB_INSTANTIATE(Dual<std::complex<double>>)
 #undef SPHSTAB_INSTANTIATE
 
 }  // namespace sphstab

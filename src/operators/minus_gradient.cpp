@@ -14,5 +14,8 @@ SparseMatrix<Scalar> minus_gradient(const SparseMatrix<Scalar>& G) {
 template SparseMatrix<double> minus_gradient<double>(const SparseMatrix<double>&);
 template SparseMatrix<std::complex<double>> minus_gradient<std::complex<double>>(
     const SparseMatrix<std::complex<double>>&);
+template SparseMatrix<Dual<double>> minus_gradient<Dual<double>>(const SparseMatrix<Dual<double>>&);
+template SparseMatrix<Dual<std::complex<double>>> minus_gradient<Dual<std::complex<double>>>(
+    const SparseMatrix<Dual<std::complex<double>>>&);
 
 }  // namespace sphstab

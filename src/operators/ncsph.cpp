@@ -94,6 +94,12 @@ SPHSTAB_INSTANTIATE(3, double)
 SPHSTAB_INSTANTIATE(1, std::complex<double>)
 SPHSTAB_INSTANTIATE(2, std::complex<double>)
 SPHSTAB_INSTANTIATE(3, std::complex<double>)
+SPHSTAB_INSTANTIATE(1, Dual<double>)  // nested derivatives (numerics/dual.hpp)
+SPHSTAB_INSTANTIATE(2, Dual<double>)
+SPHSTAB_INSTANTIATE(3, Dual<double>)
+SPHSTAB_INSTANTIATE(1, Dual<std::complex<double>>)
+SPHSTAB_INSTANTIATE(2, Dual<std::complex<double>>)
+SPHSTAB_INSTANTIATE(3, Dual<std::complex<double>>)
 #undef SPHSTAB_INSTANTIATE
 
 }  // namespace sphstab

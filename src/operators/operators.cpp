@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "sphstab/numerics/dual.hpp"
+
 namespace sphstab {
 
 namespace detail {
@@ -173,6 +175,18 @@ template SparseMatrix<std::complex<double>> pattern_matrix<std::complex<double>>
 SPHSTAB_INSTANTIATE(1)
 SPHSTAB_INSTANTIATE(2)
 SPHSTAB_INSTANTIATE(3)
+#undef SPHSTAB_INSTANTIATE
+
+// Dual numbers (numerics/dual.hpp): nested exact derivatives for the corrected conservative forms.
+#define SPHSTAB_INSTANTIATE(D, S)                                                                                  \
+  template Operators<D, S> assemble_operators<D, S>(const ParticleSet<D>&, const NeighbourList&, const Kernel<D>&, \
+                                                    double, OperatorRequest, const Positions<D, S>*);              \
+  template void assemble_operators_into<D, S>(Operators<D, S>&, const ParticleSet<D>&, const NeighbourList&,       \
+                                              const Kernel<D>&, double, OperatorRequest, const Positions<D, S>*);
+SPHSTAB_INSTANTIATE(1, Dual<double>)
+SPHSTAB_INSTANTIATE(2, Dual<double>)
+SPHSTAB_INSTANTIATE(1, Dual<std::complex<double>>)
+SPHSTAB_INSTANTIATE(2, Dual<std::complex<double>>)
 #undef SPHSTAB_INSTANTIATE
 
 }  // namespace sphstab

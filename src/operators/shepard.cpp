@@ -69,6 +69,8 @@ SparseMatrix<Scalar> reference_shepard_gradient(const SparseMatrix<Scalar>& W, c
                                                          const ShepardReference&);
 SPHSTAB_INSTANTIATE(double)
 SPHSTAB_INSTANTIATE(std::complex<double>)
+SPHSTAB_INSTANTIATE(Dual<double>)  // nested derivatives (numerics/dual.hpp)
+SPHSTAB_INSTANTIATE(Dual<std::complex<double>>)
 #undef SPHSTAB_INSTANTIATE
 
 }  // namespace sphstab

@@ -316,14 +316,18 @@ CriticalTension critical_tension(const TensionJacobian1d& jac, int n, const Crit
   return out;
 }
 
-ParticleSet<1> tension_lattice_1d(const Kernel<1>& kernel, double h, int free, bool periodic) {
+ParticleSet<1> tension_lattice_1d(const Kernel<1>& kernel, double h, int free, bool periodic, int layer_supports) {
+  if (layer_supports < 1)
+    throw std::invalid_argument("tension_lattice_1d: layer_supports must be >= 1 (got " +
+                                std::to_string(layer_supports) + ")");
   if (free < 1)
     throw std::invalid_argument("tension_lattice_1d: need at least one free particle (got " + std::to_string(free) +
                                 ")");
   if (!(h > 0) || !std::isfinite(h))
     throw std::invalid_argument("tension_lattice_1d: h must be finite and > 0 (got " + fmt(h) + ")");
-  return make_lattice<1>(LatticeType::Line, free,
-                         {.spacing = 1.0, .support_radius = kernel.support_radius(h), .periodic = periodic});
+  return make_lattice<1>(
+      LatticeType::Line, free,
+      {.spacing = 1.0, .support_radius = layer_supports * kernel.support_radius(h), .periodic = periodic});
 }
 
 CriticalTension critical_tension_1d(const ParticleSet<1>& particles, const Kernel<1>& kernel, double h,

@@ -81,11 +81,56 @@ TEST(TcritCommand, MinusFormAndPeriodic) {
   EXPECT_NE(pl[1].find("sawtooth"), std::string::npos);
 }
 
+TEST(TcritCommand, CorrectionAddsCriterionColumn) {
+  // Plain rows are unchanged apart from criterion = pd.
+  CliRun plain = run("tcrit --n 30 --kernel cubic --form conservative --h 1.25");
+  ASSERT_EQ(plain.status, 0);
+  auto pl = lines(plain.out);
+  ASSERT_EQ(pl.size(), 2u);
+  auto header = fields(pl[0]);
+  ASSERT_EQ(header.back(), "criterion");
+  auto col = [&](const char* name) { return std::find(header.begin(), header.end(), name) - header.begin(); };
+  EXPECT_EQ(fields(pl[1])[col("criterion")], "pd");
+  Kernel<1> cubic(KernelType::CubicSpline);
+  const CriticalTension ref =
+      critical_tension_1d(tension_lattice_1d(cubic, 1.25, 30), cubic, 1.25, MomentumForm::Conservative);
+  EXPECT_NEAR(std::stod(fields(pl[1])[col("tcrit")]) / ref.tcrit, 1.0, 1e-11);
+
+  // Mean polish (Powell 3.64): no T dependence for any form, T_crit = inf; Shepard conservative (3.59): finite,
+  // well inside (0, 0.01).
+  CliRun polish =
+      run("tcrit --n 30 --kernel cubic --form uncorrected,plus,minus,conservative --h 1.3 "
+          "--correction mean-polish");
+  ASSERT_EQ(polish.status, 0);
+  auto ml = lines(polish.out);
+  ASSERT_EQ(ml.size(), 5u);
+  for (size_t i = 1; i < ml.size(); ++i) {
+    auto row = fields(ml[i]);
+    EXPECT_EQ(row[col("tcrit")], "inf") << ml[i];
+    EXPECT_EQ(row[col("criterion")], "pd") << ml[i];
+    EXPECT_EQ(row[col("status")], "successful") << ml[i];
+  }
+  CliRun shep = run("tcrit --n 30 --kernel cubic --form conservative --h 1.3 --correction shepard");
+  ASSERT_EQ(shep.status, 0);
+  auto sl = lines(shep.out);
+  ASSERT_EQ(sl.size(), 2u);
+  const double t = std::stod(fields(sl[1])[col("tcrit")]);
+  EXPECT_GT(t, 0.0);
+  EXPECT_LT(t, 0.01);
+  EXPECT_NE(sl[1].find("shepard@strain"), std::string::npos);
+  // Compression with the plain kernel: reported as a negative number or -inf.
+  CliRun comp = run("tcrit --n 30 --kernel cubic --form conservative --h 1.3 --compression");
+  ASSERT_EQ(comp.status, 0);
+  EXPECT_EQ(fields(lines(comp.out)[1])[col("tcrit")], "-inf");
+}
+
 TEST(TcritCommand, BadInputIsOneErrorLineAndExitOne) {
   for (const char* args :
        {"tcrit --n 0", "tcrit --n abc", "tcrit --kernel nope", "tcrit --form sideways", "tcrit --h 1:0.5:0.1",
-        "tcrit --h -1", "tcrit --dim 2", "tcrit --method fast", "tcrit --correction shepard", "tcrit --lattice square",
-        "tcrit --bogus 3", "tcrit --n 3 --h 3.0 --periodic"}) {
+        "tcrit --h -1", "tcrit --dim 2", "tcrit --method fast", "tcrit --correction bogus", "tcrit --lattice square",
+        "tcrit --correction shepard --periodic", "tcrit --corrected-operator strain",
+        "tcrit --correction shepard --corrected-operator sideways", "tcrit --bogus 3",
+        "tcrit --n 3 --h 3.0 --periodic"}) {
     CliRun r = run(args, true);
     EXPECT_EQ(r.status, 1) << args;
     auto ls = lines(r.out);

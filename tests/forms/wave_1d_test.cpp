@@ -211,7 +211,20 @@ TEST(WaveForm1D, MinusGradientProviderEqualsMinusForm) {
   EXPECT_LE((a1 - a2).cwiseAbs().maxCoeff(), 1e-13 * a2.cwiseAbs().maxCoeff());
   Eigen::MatrixXd A1 = jacobian(via_provider, u), A2 = jacobian(minus, u);
   EXPECT_LE(max_abs(A1 - A2), 1e-12 * max_abs(A2));
-  EXPECT_THROW(WaveForm1D(d, MomentumForm::Conservative, 0.3, minus_gradient), std::invalid_argument);
+  // The conservative form can only take the correction into its strain, where the minus correction changes nothing
+  // (sum_j (u_j - u_i) (G - diag(G 1))_ij = sum_j (u_j - u_i) G_ij): the dual-number energy gradient must then
+  // reproduce the closed form (3.27).
+  EXPECT_THROW(
+      WaveForm1D(d, MomentumForm::Conservative, 0.3, minus_gradient, {.corrected = CorrectedOperator::Divergence}),
+      std::invalid_argument);
+  WaveForm1D cons_minus(d, MomentumForm::Conservative, 0.3, minus_gradient);
+  WaveForm1D cons(d, MomentumForm::Conservative, 0.3);
+  EXPECT_TRUE(cons_minus.strain_corrected());
+  cons_minus.acceleration(u, a1);
+  cons.acceleration(u, a2);
+  EXPECT_LE((a1 - a2).cwiseAbs().maxCoeff(), 1e-13 * a2.cwiseAbs().maxCoeff());
+  EXPECT_LE(max_abs(Eigen::MatrixXd(jacobian(cons_minus, u)) - Eigen::MatrixXd(jacobian(cons, u))),
+            1e-12 * max_abs(jacobian(cons, u)));
 }
 
 TEST(WaveForm1D, ComplexPathEqualsRealPath) {

@@ -1,18 +1,24 @@
 #pragma once
 /// \file gradient_provider.hpp
 /// Pluggable "kernel-gradient provider" for the momentum equation: given the operators at the CURRENT positions,
-/// it supplies the gradient matrix Ghat^a used in f_i = sum_j (s_j + alpha s_i) Ghat^a_ij. The strain is always
-/// computed with the plain G (Powell 3.26, 4.12); only the divergence of the stress uses Ghat.
+/// it supplies a corrected gradient matrix Ghat^a (Powell's H_ij of (3.28) or W~'_ij of (3.55)). Which SPH operator
+/// uses Ghat (the divergence of the stress, the strain, or both) is chosen by the force function (wave_1d.hpp); by
+/// default the strain uses the plain G (Powell 3.26, 4.12) and only the divergence of the stress uses Ghat.
 ///
 /// Provided here: PlainGradient (Ghat = G) and MinusGradient (Ghat = G - diag(G 1), zeroth-order consistent,
-/// Powell 1.15). The local-polish kernel C_ij (Powell 4.9-4.11) plugs in the same way: derive from
-/// GradientProviderT and implement `template <class Scalar> void correct(const GradientContext<Dim, Scalar>&,
-/// std::array<SparseMatrix<Scalar>, Dim>& g) const`.
+/// Powell 1.15); every named kernel correction of operators/correction.hpp is a CorrectionGradient
+/// (forms/correction_gradient.hpp). New providers derive from GradientProviderT and implement one
+/// `template <class Scalar> void correct_impl(const GradientContext<Dim, Scalar>&, std::array<SparseMatrix<Scalar>,
+/// Dim>& g) const`; the scalar is double, std::complex<double> (complex step) or a Dual of either (numerics/dual.hpp,
+/// nested derivatives of the conservative corrected forms).
 #include <array>
 #include <complex>
+#include <limits>
+#include <stdexcept>
 #include <string>
 
 #include "sphstab/forms/discretisation.hpp"
+#include "sphstab/numerics/dual.hpp"
 #include "sphstab/operators/operators.hpp"
 
 namespace sphstab {
@@ -25,11 +31,23 @@ struct GradientContext {
   const Operators<Dim, Scalar>& operators;    ///< current W (if requested), G, H (if requested)
 };
 
-/// Base class of gradient providers. Implementations transform g in place; on entry g = operators.G, on exit
-/// g must keep the neighbour-list pattern (values change, structure not).
+/// How a corrected gradient K forms the strain <u_x>_i (Powell 3.55, alpha there):
+///   Difference: sum_j (u_j - u_i) K_ij  (alpha = 1; exact for a translation, so momentum-conserving energies)
+///   Direct:     sum_j u_j K_ij          (alpha = 0; what Powell ch. 3 §4.1.1 item 2 needs for the column Shepard
+///                                        kernel (3.62), whose COLUMNS sum to zero)
+/// For a kernel whose rows sum to zero (Shepard, NCSPH, the polishes, C_ij) both coincide.
+enum class StrainSum { Difference, Direct };
+
+/// Graph distance used for "reaches every particle" (dense, non-local corrections such as the mean polish).
+inline constexpr int kFullReach = std::numeric_limits<int>::max() / 4;
+
+/// Base class of gradient providers. Implementations transform g in place; on entry g = operators.G. On exit g
+/// keeps the neighbour-list pattern (values change, structure not), unless keeps_pattern() is false: then g may
+/// have any N x N pattern (the dense polishes store all N^2 entries).
 ///
-/// \note dependence_radius(): how many neighbour-graph hops from particle i row i of Ghat may read positions
-///       (plain and minus: 1; C_ij of Powell 4.9: 2). The Jacobian sparsity pattern is built from it.
+/// \note dependence_radius(): how many neighbour-graph hops from particle i the VALUES of row i of Ghat may read
+///       positions (plain, minus, Shepard, NCSPH: 1; column Shepard and C_ij of Powell 4.9: 2; global polishes:
+///       kFullReach). The Jacobian sparsity pattern is built from it and from keeps_pattern().
 template <int Dim>
 class GradientProvider {
  public:
@@ -38,14 +56,26 @@ class GradientProvider {
   /// Operators the provider needs besides G (e.g. W for a Shepard correction).
   virtual OperatorRequest requirements() const { return {.kernel = false, .gradient = true, .hessian = false}; }
   virtual int dependence_radius() const { return 1; }
-  /// True if Ghat == G (no correction); the conservative form accepts only this.
+  /// False for providers whose Ghat has entries outside the neighbour list (dense, non-local polishes).
+  virtual bool keeps_pattern() const { return true; }
+  /// The strain sum this correction is meant for (Powell 3.55); the force function may override it.
+  virtual StrainSum preferred_strain_sum() const { return StrainSum::Difference; }
+  /// True if Ghat == G (no correction).
   virtual bool is_plain() const { return false; }
   virtual void correct(const GradientContext<Dim, double>& context, std::array<SparseMatrix<double>, Dim>& g) const = 0;
   virtual void correct(const GradientContext<Dim, std::complex<double>>& context,
                        std::array<SparseMatrix<std::complex<double>>, Dim>& g) const = 0;
+  /// Dual-number overloads (nested derivatives); GradientProviderT implements them, others may not.
+  virtual void correct(const GradientContext<Dim, Dual<double>>&, std::array<SparseMatrix<Dual<double>>, Dim>&) const {
+    throw std::logic_error("gradient provider '" + name() + "' does not support dual numbers");
+  }
+  virtual void correct(const GradientContext<Dim, Dual<std::complex<double>>>&,
+                       std::array<SparseMatrix<Dual<std::complex<double>>>, Dim>&) const {
+    throw std::logic_error("gradient provider '" + name() + "' does not support dual numbers");
+  }
 };
 
-/// CRTP helper: Derived implements one template `correct_impl<Scalar>(context, g)`; both overloads forward to it.
+/// CRTP helper: Derived implements one template `correct_impl<Scalar>(context, g)`; every overload forwards to it.
 template <int Dim, class Derived>
 class GradientProviderT : public GradientProvider<Dim> {
  public:
@@ -54,6 +84,14 @@ class GradientProviderT : public GradientProvider<Dim> {
   }
   void correct(const GradientContext<Dim, std::complex<double>>& c,
                std::array<SparseMatrix<std::complex<double>>, Dim>& g) const override {
+    static_cast<const Derived&>(*this).correct_impl(c, g);
+  }
+  void correct(const GradientContext<Dim, Dual<double>>& c,
+               std::array<SparseMatrix<Dual<double>>, Dim>& g) const override {
+    static_cast<const Derived&>(*this).correct_impl(c, g);
+  }
+  void correct(const GradientContext<Dim, Dual<std::complex<double>>>& c,
+               std::array<SparseMatrix<Dual<std::complex<double>>>, Dim>& g) const override {
     static_cast<const Derived&>(*this).correct_impl(c, g);
   }
 };

@@ -83,9 +83,13 @@ CriticalTension critical_tension(const TensionJacobian1d& jacobian, int n, const
 /// The line lattice used for critical-tension studies: `free` free particles at spacing dx = 1 (T is dimensionless
 /// and independent of dx), either periodic or with fixed layers at every m dx < 2h, strictly, so that the layers
 /// match find_neighbours (a kernel truncated with W' != 0 at its support, like the Gaussian, then keeps complete
-/// neighbourhoods even when 2h is a multiple of dx up to rounding). Throws std::invalid_argument for free < 1 or
-/// h <= 0.
-ParticleSet<1> tension_lattice_1d(const Kernel<1>& kernel, double h, int free, bool periodic = false);
+/// neighbourhoods even when 2h is a multiple of dx up to rounding). With layer_supports = m > 1 the fixed layers
+/// reach m supports (m 2h) instead: then every particle within m - 1 supports of the free block also has a complete
+/// neighbourhood, which the corrected kernels need (their rows read neighbours of neighbours; m = 3 makes u = 0 an
+/// equilibrium of every corrected 1D form, Powell's regular grid, ch. 3 footnote h). Throws std::invalid_argument for
+/// free < 1, h <= 0 or layer_supports < 1.
+ParticleSet<1> tension_lattice_1d(const Kernel<1>& kernel, double h, int free, bool periodic = false,
+                                  int layer_supports = 1);
 
 /// Convenience: jacobian of the lattice and the form, then critical_tension().
 CriticalTension critical_tension_1d(const ParticleSet<1>& particles, const Kernel<1>& kernel, double h,
