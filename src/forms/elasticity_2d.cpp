@@ -71,6 +71,7 @@ std::string ElasticForm2D::name() const {
   s << "elastic2d/" << momentum_form_name(m_form) << "/"
     << (m_prestrain.kind == PreStrainKind::Isotropic ? "iso" : "uniaxial-x") << "/e=" << m_prestrain.strain;
   if (m_gradient && !m_gradient->is_plain()) s << "/" << m_gradient->name();
+  for (const auto& t : m_terms) s << "+" << t->name();
   return s.str();
 }
 
@@ -84,8 +85,20 @@ std::unique_ptr<ForceFunction> ElasticForm2D::with_load(double load) const {
 }
 
 SparsityPattern ElasticForm2D::dof_pattern() const {
-  const int radius = std::max(2, m_gradient ? m_gradient->dependence_radius() : 1);
+  int radius = std::max(2, m_gradient ? m_gradient->dependence_radius() : 1);
+  for (const auto& t : m_terms) radius = std::max(radius, t->dependence_radius());
   return coupling_pattern(m_disc->neighbours, m_disc->free_slot, 2, radius);
+}
+
+void ElasticForm2D::add_term(std::shared_ptr<const ElasticTerm2D> term) {
+  if (!term) throw std::invalid_argument("ElasticForm2D::add_term: term is null");
+  m_terms.push_back(std::move(term));
+}
+
+void ElasticForm2D::set_terms(std::vector<std::shared_ptr<const ElasticTerm2D>> terms) {
+  for (const auto& t : terms)
+    if (!t) throw std::invalid_argument("ElasticForm2D::set_terms: term is null");
+  m_terms = std::move(terms);
 }
 
 Eigen::VectorXd ElasticForm2D::dof_mass() const {
@@ -110,8 +123,13 @@ void ElasticForm2D::strain_state(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>&
   const Discretisation<2>& d = *m_disc;
   uall = detail::full_displacement<2, Scalar>(d, u, m_fixed_u, "ElasticForm2D");
   Positions<2, Scalar> x = d.particles.x.template cast<Scalar>() + uall;
-  Operators<2, Scalar> fresh = assemble_operators<2, Scalar>(d.particles, d.neighbours, d.kernel, d.h,
-                                                             detail::form_request<2>(m_gradient.get(), hessian), &x);
+  OperatorRequest request = detail::form_request<2>(m_gradient.get(), hessian);
+  for (const auto& t : m_terms) {
+    const OperatorRequest r = t->requirements();
+    request.kernel = request.kernel || r.kernel;
+    request.hessian = request.hessian || r.hessian;
+  }
+  Operators<2, Scalar> fresh = assemble_operators<2, Scalar>(d.particles, d.neighbours, d.kernel, d.h, request, &x);
   detail::take_operators(ops, fresh);
   // (grad u)_i^{ab} = sum_j (u_j^a - u_i^a) G^b_ij, stored at column a * 2 + b
   const NeighbourList& nl = d.neighbours;
@@ -189,6 +207,7 @@ void ElasticForm2D::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u,
       a[2 * f] = inv_rho * ax;
       a[2 * f + 1] = inv_rho * ay;
     }
+    add_terms<Scalar>(d, uall, sig, ops, a);
     return;
   }
   // a_i^a = (1/rho) sum_j (sigma_j^{ab} + alpha sigma_i^{ab}) Ghat^b_ij
@@ -211,6 +230,22 @@ void ElasticForm2D::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u,
     }
     a[2 * f] = inv_rho * ax;
     a[2 * f + 1] = inv_rho * ay;
+  }
+  add_terms<Scalar>(d, uall, sig, ops, a);
+}
+
+template <class Scalar>
+void ElasticForm2D::add_terms(const Discretisation<2>& d, const Positions<2, Scalar>& uall,
+                              const Eigen::Matrix<Scalar, Eigen::Dynamic, 3>& sig, const Operators<2, Scalar>& ops,
+                              Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& a) const {
+  if (m_terms.empty()) return;
+  const Positions<2, Scalar> x = d.particles.x.template cast<Scalar>() + uall;
+  const ElasticTermContext<Scalar> context{d, m_material, x, uall, sig, ops};
+  ParticleAccelerations<Scalar> acc = ParticleAccelerations<Scalar>::Zero(d.size(), 2);
+  for (const auto& t : m_terms) t->add(context, acc);
+  for (int f = 0; f < d.free_count(); ++f) {
+    a[2 * f] += acc(d.free[f], 0);
+    a[2 * f + 1] += acc(d.free[f], 1);
   }
 }
 

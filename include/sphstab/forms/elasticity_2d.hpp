@@ -19,6 +19,9 @@
 /// The Jacobian is therefore A(e) = A0 + e A1 (affine_jacobian); in terms of the area ratio xi = (1 + e)^2,
 /// dA/dxi = A1 / (2 sqrt(xi)). The positions are NOT stretched by the pre-strain (as in Powell §3.3, the pre-stress
 /// is an additive constant); stretch the lattice (LatticeOptions::stretch) separately if wanted.
+/// Additional momentum terms (elastic_term.hpp: GMS artificial stress, the S-SPH correction of Powell ch. 4) can be
+/// added with add_term(); they see the same state (positions, displacements, stresses, operators) and their free
+/// rows are added to the acceleration.
 /// At a complete lattice equilibrium the initial-stress blocks are sigma0 H_ij (uncorrected), 2 sigma0 H_ij (plus),
 /// 0 (minus) and 2 (sigma0 H_ij + H_ij sigma0) (conservative): the 1D ratios 1 : 2 : 4 hold for isotropic sigma0 only.
 ///
@@ -31,8 +34,10 @@
 /// \endcode
 #include <Eigen/Core>
 #include <memory>
+#include <vector>
 
 #include "sphstab/forms/discretisation.hpp"
+#include "sphstab/forms/elastic_term.hpp"
 #include "sphstab/forms/force_function.hpp"
 #include "sphstab/forms/gradient_provider.hpp"
 #include "sphstab/forms/momentum_form.hpp"
@@ -80,10 +85,19 @@ class ElasticForm2D final : public ForceFunction {
   double load() const override { return m_prestrain.strain; }
   std::unique_ptr<ForceFunction> with_load(double load) const override;
   SparsityPattern dof_pattern() const override;
-  bool conservative() const override { return m_form == MomentumForm::Conservative; }
+  /// True for the conservative form without additional terms.
+  bool conservative() const override { return m_form == MomentumForm::Conservative && m_terms.empty(); }
   double strain_energy(const Eigen::VectorXd& u) const override { return energy(u); }
   std::complex<double> strain_energy(const Eigen::VectorXcd& u) const override { return energy(u); }
   Eigen::VectorXd dof_mass() const override;
+
+  /// Adds a momentum term (artificial stress, S-SPH correction, ...; elastic_term.hpp) evaluated after the base form
+  /// at the same state; its free rows are added to the acceleration. Terms are shared by copies (with_load).
+  /// Throws std::invalid_argument for a null term.
+  void add_term(std::shared_ptr<const ElasticTerm2D> term);
+  /// Replaces all terms (e.g. by a frozen copy of one of them); throws std::invalid_argument for a null term.
+  void set_terms(std::vector<std::shared_ptr<const ElasticTerm2D>> terms);
+  const std::vector<std::shared_ptr<const ElasticTerm2D>>& terms() const { return m_terms; }
 
   /// Stress of every particle, N x 3 rows (sxx, syy, sxy), for diagnostics.
   Eigen::MatrixX3d stress(const Eigen::VectorXd& u) const;
@@ -106,6 +120,10 @@ class ElasticForm2D final : public ForceFunction {
   template <class Scalar>
   Scalar energy(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u) const;
   template <class Scalar>
+  void add_terms(const Discretisation<2>& d, const Positions<2, Scalar>& uall,
+                 const Eigen::Matrix<Scalar, Eigen::Dynamic, 3>& sig, const Operators<2, Scalar>& ops,
+                 Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& a) const;
+  template <class Scalar>
   void strain_state(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u, Positions<2, Scalar>& uall,
                     Eigen::Matrix<Scalar, Eigen::Dynamic, 4>& grad, Operators<2, Scalar>& ops, bool hessian) const;
 
@@ -115,6 +133,7 @@ class ElasticForm2D final : public ForceFunction {
   PreStrain m_prestrain;
   std::shared_ptr<const GradientProvider<2>> m_gradient;
   Eigen::VectorXd m_fixed_u;
+  std::vector<std::shared_ptr<const ElasticTerm2D>> m_terms;
 };
 
 }  // namespace sphstab

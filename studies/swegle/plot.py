@@ -1,0 +1,190 @@
+#!/usr/bin/env python3
+"""Plots of the Swegle study: one log-KE-versus-time panel per formulation with a curve per volume strain xi (like
+Powell Fig. 4.2), measured versus predicted growth rates, the 1D version and the energy error of the conservative
+form. Usage: plot.py RESULTS_DIR (reads ke.csv, runs.csv, onedim_ke.csv, onedim_runs.csv, energy_series.csv)."""
+import csv
+import math
+import os
+import sys
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def read(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def num(x):
+    try:
+        return float(x)
+    except ValueError:
+        return math.nan
+
+
+def xi_colour(xi, xis):
+    if abs(xi - 1) < 1e-12:
+        return "k"
+    cmap = plt.get_cmap("coolwarm")
+    lo, hi = min(xis), max(xis)
+    return cmap(0.5 + 0.5 * (xi - 1) / max(hi - 1, 1 - lo, 1e-12))
+
+
+def main(out):
+    ke = read(os.path.join(out, "ke.csv"))
+    runs = read(os.path.join(out, "runs.csv"))
+    series = defaultdict(lambda: ([], []))
+    for r in ke:
+        key = (r["formulation"], num(r["xi"]))
+        series[key][0].append(num(r["t"]))
+        series[key][1].append(num(r["kinetic"]))
+    forms = []
+    for r in runs:
+        if r["formulation"] not in forms:
+            forms.append(r["formulation"])
+    xis = sorted({num(r["xi"]) for r in runs})
+    info = {(r["formulation"], num(r["xi"])): r for r in runs}
+
+    # One panel per formulation (Powell Fig. 4.2 style).
+    ncol = 3
+    nrow = math.ceil(len(forms) / ncol)
+    fig, axes = plt.subplots(nrow, ncol, figsize=(5.0 * ncol, 3.6 * nrow), sharex=True, sharey=True, squeeze=False)
+    for k, form in enumerate(forms):
+        ax = axes[k // ncol][k % ncol]
+        for xi in xis:
+            t, e = series.get((form, xi), ([], []))
+            if not t:
+                continue
+            r = info[(form, xi)]
+            label = f"xi = {xi:g}"
+            if r["status"] != "completed":
+                label += f" (stop {num(r['t_stop']):.3g})"
+            ax.semilogy(t, e, color=xi_colour(xi, xis), lw=1.2, label=label)
+            if r["status"] != "completed":
+                ax.plot(t[-1], e[-1], "x", color=xi_colour(xi, xis), ms=6)
+        ax.set_title(form)
+        ax.grid(True, which="major", alpha=0.3)
+        ax.legend(fontsize=7, loc="upper left")
+    for k in range(len(forms), nrow * ncol):
+        axes[k // ncol][k % ncol].axis("off")
+    for ax in axes[-1]:
+        ax.set_xlabel("t (us)")
+    for row in axes:
+        row[0].set_ylabel("kinetic energy (g cm^2/us^2 per cm)")
+    fig.suptitle("Swegle test, 21 x 21 free particles, v0 = 1e-10 cm/us at the centre (x: run stopped, max |u| > 0.1 dx)")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "ke_all.png"), dpi=110)
+    plt.close(fig)
+    # And one file per formulation.
+    for form in forms:
+        fig, ax = plt.subplots(figsize=(6.4, 4.2))
+        for xi in xis:
+            t, e = series.get((form, xi), ([], []))
+            if t:
+                ax.semilogy(t, e, color=xi_colour(xi, xis), lw=1.2, label=f"xi = {xi:g}")
+        ax.set_xlabel("t (us)")
+        ax.set_ylabel("kinetic energy")
+        ax.set_title(f"Swegle test: {form}")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(os.path.join(out, f"ke_{form}.png"), dpi=100)
+        plt.close(fig)
+
+    # Measured versus predicted growth rates.
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 4.6))
+    markers = "osD^v<>ph*X"
+    def measured(r):
+        if r["run_verdict"] == "late growth":
+            return num(r["gamma_late"]), True
+        return num(r["gamma_measured"]), False
+
+    def positive(x):
+        return x if x > 1e-3 else math.nan
+
+    for k, form in enumerate(forms):
+        xs = [xi for xi in xis if (form, xi) in info]
+        rows = [info[(form, xi)] for xi in xs]
+        pred = [positive(num(r["gamma_predicted"])) for r in rows]
+        meas = [measured(r) for r in rows]
+        m = markers[k % len(markers)]
+        full = [(p, g) for p, (g, late) in zip(pred, meas) if not late]
+        late = [(p, g) for p, (g, late) in zip(pred, meas) if late]
+        ax1.plot([p for p, _ in full], [g for _, g in full], m, color=f"C{k}", label=form, alpha=0.8)
+        if late:
+            ax1.plot([p for p, _ in late], [g for _, g in late], m, color=f"C{k}", mfc="none", alpha=0.8)
+        ax2.plot(xs, pred, "-", color=f"C{k}", alpha=0.6)
+        ax2.plot(xs, [positive(g) for g, _ in meas], m, color=f"C{k}", label=form)
+    lim = [1e-2, 30]
+    ax1.plot(lim, lim, "k--", lw=0.8, label="measured = predicted")
+    ax1.set_xscale("log")
+    ax1.set_yscale("log")
+    ax1.set_xlim(lim)
+    ax1.set_ylim(lim)
+    ax1.set_xlabel("linear theory gamma (1/us): excited mirror class; with XSPH the leap-frog map")
+    ax1.set_ylabel("measured gamma (1/us), fit of log KE (hollow: late-time slope)")
+    ax1.grid(True, which="both", alpha=0.3)
+    ax1.legend(fontsize=7)
+    ax2.set_yscale("log")
+    ax2.set_xlabel("xi = V/V0")
+    ax2.set_ylabel("gamma (1/us): lines linear theory, markers measured")
+    ax2.grid(True, which="both", alpha=0.3)
+    ax2.legend(fontsize=7, ncol=2)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "growth_rates.png"), dpi=110)
+    plt.close(fig)
+
+    # 1D version.
+    ke1 = read(os.path.join(out, "onedim_ke.csv"))
+    s1 = defaultdict(lambda: ([], []))
+    for r in ke1:
+        key = (r["form"], num(r["T"]))
+        s1[key][0].append(num(r["t"]))
+        s1[key][1].append(num(r["kinetic"]))
+    forms1 = []
+    for r in ke1:
+        if r["form"] not in forms1:
+            forms1.append(r["form"])
+    Ts = sorted({k[1] for k in s1})
+    fig, axes = plt.subplots(1, len(forms1), figsize=(4.2 * len(forms1), 3.6), sharey=True, squeeze=False)
+    for k, form in enumerate(forms1):
+        ax = axes[0][k]
+        for T in Ts:
+            t, e = s1.get((form, T), ([], []))
+            if t:
+                ax.semilogy(t, e, color=xi_colour(1 + T, [1 + x for x in Ts]), lw=1.1, label=f"T = {T:+.2f}")
+        ax.set_title(f"1D {form}")
+        ax.set_xlabel("t (dx/c)")
+        ax.grid(True, alpha=0.3)
+    axes[0][0].set_ylabel("kinetic energy")
+    axes[0][0].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "ke_1d.png"), dpi=110)
+    plt.close(fig)
+
+    # Energy error of the conservative form.
+    es = read(os.path.join(out, "energy_series.csv"))
+    by_dt = defaultdict(lambda: ([], []))
+    for r in es:
+        by_dt[num(r["dt"])][0].append(num(r["t"]))
+        by_dt[num(r["dt"])][1].append(num(r["relative_energy_error"]))
+    fig, ax = plt.subplots(figsize=(7, 4))
+    for dt in sorted(by_dt, reverse=True):
+        t, e = by_dt[dt]
+        ax.plot(t, e, lw=0.8, label=f"dt = {dt:.4g} us")
+    ax.set_xlabel("t (us)")
+    ax.set_ylabel("(E - E0) / E0")
+    ax.set_title("Conservative form, xi = 1, v0 = 0.01 cm/us: energy error of leap-frog")
+    ax.grid(True, alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "energy.png"), dpi=110)
+    plt.close(fig)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1] if len(sys.argv) > 1 else "results/swegle")
