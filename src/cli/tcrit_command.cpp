@@ -1,6 +1,7 @@
 // `sphstab tcrit`: critical tension of a 1D lattice (Powell ch. 3) with the closed-form estimates, as CSV; with
 // --correction, of the 1D forms with a corrected kernel gradient (Powell ch. 3 §4.1.1, ch. 4 §2) by the general
-// affine route (affine_critical_tension.hpp).
+// affine route (affine_critical_tension.hpp); or (--dim 2) the critical pre-strain of a 2D lattice (elastic forms,
+// analytic Jacobian A0 + e A1).
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -13,11 +14,14 @@
 #include "sphstab/forms/correction_gradient.hpp"
 #include "sphstab/forms/momentum_form.hpp"
 #include "sphstab/forms/wave_1d.hpp"
+#include "sphstab/jacobian/analytic_jacobian_2d.hpp"
 #include "sphstab/kernel/kernel.hpp"
 #include "sphstab/particles/lattice.hpp"
 #include "sphstab/stability/affine_critical_tension.hpp"
+#include "sphstab/stability/critical_strain.hpp"
 #include "sphstab/stability/critical_tension.hpp"
 #include "sphstab/stability/fourier_symbol.hpp"
+#include "sphstab/stability/fourier_symbol_2d.hpp"
 #include "sphstab/stability/tension_estimates.hpp"
 
 namespace sphstab::cli {
@@ -26,8 +30,12 @@ namespace {
 
 struct TcritArgs {
   std::string dim = "1", lattice = "line", n = "30", kernel = "cubic", form = "conservative", h = "1.2",
-              method = "both", backend = "auto", correction = "none", corrected = "auto";
+              method = "both", backend = "auto", correction = "none", corrected = "auto", prestrain = "isotropic",
+              criterion = "auto";
+  // Plane strain, nu = 0.3 with E = 2.1 (Powell's Swegle test): the critical strain depends on nu only.
+  std::string lambda = "1.2115384615384615", mu = "0.80769230769230769";
   bool periodic = false, compression = false;
+  bool lattice_given = false, prestrain_given = false, lame_given = false, criterion_given = false;
 };
 
 /// Fixed layers of the lattice used with a kernel correction, in kernel supports (2h): every particle that the free
@@ -111,12 +119,128 @@ std::string csv_field(const std::string& s) {
   return q + "\"";
 }
 
+std::string row_string(const std::vector<std::string>& row) {
+  std::string out;
+  for (size_t c = 0; c < row.size(); ++c) out += (c ? "," : "") + row[c];
+  return out + "\n";
+}
+
+/// --dim 2: critical pre-strain e_crit of an n x n lattice (fixed layers: analytic Jacobian, bisection + eigen;
+/// periodic: exact Fourier symbols) with the infinite-lattice limit.
+void run_tcrit_2d(const TcritArgs& a) {
+  const LatticeType type = parse_lattice_type(a.lattice_given ? a.lattice : std::string("square"));
+  if (type != LatticeType::Square && type != LatticeType::Hexagonal && type != LatticeType::FaceCentred)
+    throw std::invalid_argument("tcrit: --lattice '" + a.lattice +
+                                "' does not exist in 2D (use square, hex or face-centred)");
+  if (a.correction != "none")
+    throw std::invalid_argument("tcrit: --correction '" + a.correction + "' is not available yet (valid: none)");
+  const int n = parse_positive_int(a.n, "--n");
+  if (a.periodic && n < 2) throw std::invalid_argument("tcrit: --periodic needs --n >= 2");
+  if (a.periodic && type != LatticeType::Square && n % 2 != 0)
+    throw std::invalid_argument("tcrit: periodic hex/face-centred lattices need an even --n (got " + a.n + ")");
+  PreStrainKind kind;
+  if (a.prestrain == "isotropic" || a.prestrain == "iso")
+    kind = PreStrainKind::Isotropic;
+  else if (a.prestrain == "uniaxial" || a.prestrain == "uniaxial-x")
+    kind = PreStrainKind::UniaxialX;
+  else
+    throw std::invalid_argument("tcrit: --prestrain must be isotropic or uniaxial (got '" + a.prestrain + "')");
+  const ElasticMaterial material{
+      .lambda = parse_double(a.lambda, "--lambda"), .mu = parse_double(a.mu, "--mu"), .rho = 1.0};
+  material.validate("tcrit");
+  std::vector<KernelType> kernels;
+  for (const auto& k : split(a.kernel, ',')) kernels.push_back(parse_kernel_type(k));
+  std::vector<MomentumForm> forms;
+  for (const auto& f : split(a.form, ',')) forms.push_back(parse_momentum_form(f));
+  if (kernels.empty() || forms.empty()) throw std::invalid_argument("tcrit: --kernel and --form must not be empty");
+  const std::vector<double> hs = parse_h(a.h);
+  CriticalStrainOptions opt;
+  opt.method = parse_tcrit_method(a.method);
+  opt.backend = parse_eigen_backend(a.backend);
+  opt.criterion = parse_strain_criterion(a.criterion);
+  opt.want_mode = true;
+  const LoadSign sign = a.compression ? LoadSign::Compression : LoadSign::Tension;
+  for (double h : hs) {
+    const double support = Kernel<2>(kernels[0]).support_radius(h);
+    if (a.periodic && n * (type == LatticeType::Hexagonal ? std::sqrt(3.0) / 2 : 1.0) < 2 * support)
+      throw std::invalid_argument("tcrit: periodic box of --n " + a.n +
+                                  " is shorter than twice the support 2h = " + num(support) + " (increase --n)");
+  }
+
+  std::string out =
+      "kernel,form,lattice,N,periodic,prestrain,direction,h_over_dx,quantity,method,backend,criterion,tcrit,tcrit_eig,"
+      "tcrit_bisect,rel_diff,mechanism,tcrit_infinite,tcrit_symbol,mode_kx_over_pi,mode_ky_over_pi,"
+      "mode_peak_fraction,infinite_kx_over_pi,infinite_ky_over_pi,status,reason\n";
+  const std::string prestrain_name = kind == PreStrainKind::Isotropic ? "isotropic" : "uniaxial";
+  for (KernelType kt : kernels) {
+    Kernel<2> kernel(kt);
+    for (double h : hs) {
+      std::shared_ptr<const Discretisation<2>> disc;
+      if (!a.periodic) disc = make_discretisation(strain_lattice_2d(type, kernel, h, n), kernel, h);
+      for (MomentumForm form : forms) {
+        const ElasticSymbol2d symbol(type, kernel, h, 1.0, material, form, kind);
+        const SymbolCriticalStrain inf = critical_strain_infinite_2d(symbol, sign);
+        CriticalStrain r;
+        std::string method = a.method, backend, criterion;
+        double tsym = CriticalStrain::nan;
+        if (a.periodic) {
+          const SymbolCriticalStrain p = critical_strain_periodic_symbol_2d(symbol, n, sign);
+          r.e = tsym = p.e;
+          r.mechanism = p.mechanism;
+          r.mode_k.kx_over_pi = p.kx_over_pi;
+          r.mode_k.ky_over_pi = p.ky_over_pi;
+          r.status = Status::Successful;
+          r.reason = p.reason;
+          method = "symbol";
+          backend = "none";
+          criterion = "spectrum";
+        } else {
+          const ElasticJacobian2d jac = analytic_jacobian_2d(*disc, material, form, kind);
+          r = critical_strain(jac, sign, opt);
+          backend = r.eigen_backend.empty() ? "none" : r.eigen_backend;
+          criterion = strain_criterion_name(r.criterion);
+        }
+        const std::vector<std::string> row{kernel_name(kt),
+                                           momentum_form_name(form),
+                                           lattice_name(type),
+                                           std::to_string(n),
+                                           a.periodic ? "1" : "0",
+                                           prestrain_name,
+                                           load_sign_name(sign),
+                                           num(h),
+                                           "critical-prestrain",
+                                           method,
+                                           backend,
+                                           criterion,
+                                           num(r.e),
+                                           num(r.e_eigen),
+                                           num(r.e_bisection),
+                                           num(r.relative_difference),
+                                           mechanism_name(r.mechanism),
+                                           num(inf.e),
+                                           num(tsym),
+                                           num(r.mode_k.kx_over_pi),
+                                           num(r.mode_k.ky_over_pi),
+                                           num(r.mode_k.peak_fraction),
+                                           num(inf.kx_over_pi),
+                                           num(inf.ky_over_pi),
+                                           status_name(r.status),
+                                           csv_field(r.reason)};
+        out += row_string(row);
+      }
+    }
+  }
+  std::fputs(out.c_str(), stdout);
+}
+
 void run_tcrit(const TcritArgs& a) {
   // Validate everything before printing anything.
   const int dim = parse_positive_int(a.dim, "--dim");
-  if (dim == 2 || dim == 3)
-    throw std::invalid_argument("tcrit: --dim " + a.dim + " is not yet supported (only --dim 1)");
-  if (dim != 1) throw std::invalid_argument("tcrit: --dim must be 1 (got '" + a.dim + "')");
+  if (dim == 3) throw std::invalid_argument("tcrit: --dim 3 is not yet supported (only --dim 1 or 2)");
+  if (dim == 2) return run_tcrit_2d(a);
+  if (dim != 1) throw std::invalid_argument("tcrit: --dim must be 1 or 2 (got '" + a.dim + "')");
+  if (a.prestrain_given || a.lame_given || a.criterion_given)
+    throw std::invalid_argument("tcrit: --prestrain, --lambda, --mu and --criterion need --dim 2");
   if (parse_lattice_type(a.lattice) != LatticeType::Line)
     throw std::invalid_argument("tcrit: --lattice '" + a.lattice + "' does not exist in 1D (use line)");
   const Correction correction = parse_correction(a.correction);
@@ -244,27 +368,42 @@ void run_tcrit(const TcritArgs& a) {
 
 void register_tcrit_command(CLI::App& app) {
   auto args = std::make_shared<TcritArgs>();
-  auto* cmd = app.add_subcommand("tcrit",
-                                 "Critical tension T_crit of a 1D lattice (smallest T > 0 with A(T) = K - n T L not "
-                                 "positive definite, Powell 3.40) with the estimates 3.42/3.49/3.43/3.51/Swegle; with "
-                                 "--correction, of the corrected forms (criterion pd, or real-positive-spectrum and "
-                                 "symmetric-part-pd when A is not symmetric); CSV");
-  cmd->add_option("--dim", args->dim, "Dimension (1; 2 is not yet supported)");
-  cmd->add_option("--lattice", args->lattice, "Lattice (line)");
-  cmd->add_option("--n", args->n, "Number of FREE particles (fixed layers are added to complete neighbourhoods)");
+  auto* cmd = app.add_subcommand(
+      "tcrit",
+      "Critical tension T_crit of a 1D lattice (smallest T > 0 with A(T) = K - n T L not "
+      "positive definite, Powell 3.40) with the estimates 3.42/3.49/3.43/3.51/Swegle; with "
+      "--correction, of the corrected forms (criterion pd, or real-positive-spectrum and "
+      "symmetric-part-pd when A is not symmetric); with --dim 2 the critical PRE-STRAIN e_crit of a 2D lattice (column "
+      "tcrit; signed: < 0 with --compression) from the analytic Jacobian A(e) = A0 + e A1; CSV");
+  cmd->add_option("--dim", args->dim, "Dimension (1 or 2)");
+  cmd->add_option("--lattice", args->lattice, "Lattice: line (1D); square, hex, face-centred (2D; default square)")
+      ->each([args](const std::string&) { args->lattice_given = true; });
+  cmd->add_option("--n", args->n,
+                  "Number of FREE particles (2D: per side); fixed layers are added to complete neighbourhoods");
   cmd->add_option("--kernel", args->kernel, "Kernel name or comma list (see `sphstab kernels`)");
   cmd->add_option("--form", args->form, "uncorrected|plus|minus|conservative, or a comma list");
   cmd->add_option("--h", args->h, "h/dx: value, comma list or a:b:step (support radius 2h)");
   cmd->add_option("--method", args->method, "eig|bisect|both (default both)");
   cmd->add_option("--backend", args->backend, "Eigen route: auto|dense|spectra (auto: dense up to 200 DOF)");
   cmd->add_option("--correction", args->correction,
-                  "Kernel correction: none|minus|shepard|column-shepard|ncsph|local-polish|mean-polish|"
+                  "1D kernel correction: none|minus|shepard|column-shepard|ncsph|local-polish|mean-polish|"
                   "shepard-column-polish (not none: A(T) = A0 + T A1 by complex step, fixed layers 3 supports thick)");
   cmd->add_option("--corrected-operator", args->corrected,
                   "With a correction: auto|divergence|strain|both (auto: divergence, strain for conservative)");
   cmd->add_flag("--compression", args->compression,
-                "Critical compression: the largest T < 0 at which the criterion fails (reported negative)");
-  cmd->add_flag("--periodic", args->periodic, "Periodic lattice (translation, and the sawtooth for even N, deflated)");
+                "Critical compression: the largest T < 0 (2D: e < 0) at which the criterion fails (reported negative)");
+  cmd->add_flag("--periodic", args->periodic,
+                "Periodic lattice (1D: translation, and the sawtooth for even N, deflated; 2D: exact Fourier symbols)");
+  cmd->add_option("--prestrain", args->prestrain, "2D: isotropic|uniaxial (uniaxial along x, plane strain)")
+      ->each([args](const std::string&) { args->prestrain_given = true; });
+  cmd->add_option("--lambda", args->lambda, "2D: Lame lambda (default 1.2115: E = 2.1, nu = 0.3)")
+      ->each([args](const std::string&) { args->lame_given = true; });
+  cmd->add_option("--mu", args->mu, "2D: shear modulus mu (default 0.8077: E = 2.1, nu = 0.3)")
+      ->each([args](const std::string&) { args->lame_given = true; });
+  cmd->add_option("--criterion", args->criterion,
+                  "2D: auto|definiteness|spectrum|symmetric-part (auto: definiteness for symmetric A, the dense "
+                  "eigenvalue criterion for non-symmetric A up to 1200 DOF, else symmetric-part)")
+      ->each([args](const std::string&) { args->criterion_given = true; });
   cmd->callback([args] { run_tcrit(*args); });
 }
 

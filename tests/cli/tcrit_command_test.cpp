@@ -1,12 +1,16 @@
 // `sphstab tcrit` end to end: CSV shape, agreement with the library, bad input handling.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "sphstab/jacobian/analytic_jacobian_2d.hpp"
+#include "sphstab/stability/critical_strain.hpp"
 #include "sphstab/stability/critical_tension.hpp"
 
 namespace sphstab {
@@ -127,18 +131,79 @@ TEST(TcritCommand, CorrectionAddsCriterionColumn) {
 TEST(TcritCommand, BadInputIsOneErrorLineAndExitOne) {
   for (const char* args :
        {"tcrit --n 0", "tcrit --n abc", "tcrit --kernel nope", "tcrit --form sideways", "tcrit --h 1:0.5:0.1",
-        "tcrit --h -1", "tcrit --dim 2", "tcrit --method fast", "tcrit --correction bogus", "tcrit --lattice square",
+        "tcrit --h -1", "tcrit --dim 3", "tcrit --method fast", "tcrit --correction bogus", "tcrit --lattice square",
         "tcrit --correction shepard --periodic", "tcrit --corrected-operator strain",
-        "tcrit --correction shepard --corrected-operator sideways", "tcrit --bogus 3",
-        "tcrit --n 3 --h 3.0 --periodic"}) {
+        "tcrit --correction shepard --corrected-operator sideways", "tcrit --bogus 3", "tcrit --n 3 --h 3.0 --periodic",
+        "tcrit --prestrain uniaxial"}) {
     CliRun r = run(args, true);
     EXPECT_EQ(r.status, 1) << args;
     auto ls = lines(r.out);
     ASSERT_EQ(ls.size(), 1u) << args << ":\n" << r.out;
     EXPECT_EQ(ls[0].rfind("sphstab: error: ", 0), 0u) << args << ": " << ls[0];
   }
-  CliRun dim2 = run("tcrit --dim 2", true);
-  EXPECT_NE(dim2.out.find("not yet supported"), std::string::npos);
+  CliRun dim3 = run("tcrit --dim 3", true);
+  EXPECT_NE(dim3.out.find("not yet supported"), std::string::npos);
+}
+
+TEST(TcritCommand, TwoDimensionalCriticalPreStrain) {
+  CliRun r =
+      run("tcrit --dim 2 --lattice hex --n 10 --kernel cubic,wendland-c4 --form conservative,plus --h 1.2:1.4:0.2 "
+          "--prestrain uniaxial --compression");
+  ASSERT_EQ(r.status, 0) << r.out;
+  auto ls = lines(r.out);
+  ASSERT_EQ(ls.size(), 1u + 2 * 2 * 2);
+  auto header = fields(ls[0]);
+  for (const char* c : {"kernel", "form", "N", "h_over_dx", "tcrit", "quantity", "tcrit_infinite", "mode_kx_over_pi",
+                        "mode_ky_over_pi", "criterion", "mechanism", "reason"})
+    EXPECT_NE(std::find(header.begin(), header.end(), c), header.end()) << c;
+  auto col = [&](const char* name) { return std::find(header.begin(), header.end(), name) - header.begin(); };
+  // Row: wendland-c4, h = 1.4, conservative (index 2 * 2 + 1 * 2 + 0 = 6).
+  auto row = fields(ls[1 + 6]);
+  ASSERT_EQ(row.size(), header.size());
+  EXPECT_EQ(row[col("kernel")], "wendland-c4");
+  EXPECT_EQ(row[col("form")], "conservative");
+  EXPECT_EQ(row[col("h_over_dx")], "1.4");
+  EXPECT_EQ(row[col("N")], "10");
+  EXPECT_EQ(row[col("quantity")], "critical-prestrain");
+  EXPECT_EQ(row[col("criterion")], "definiteness");
+  Kernel<2> k(KernelType::WendlandC4);
+  const ElasticMaterial nu03{.lambda = 1.2115384615384615, .mu = 0.80769230769230769, .rho = 1.0};
+  auto d = make_discretisation(strain_lattice_2d(LatticeType::Hexagonal, k, 1.4, 10), k, 1.4);
+  const CriticalStrain ref = critical_strain(
+      analytic_jacobian_2d(*d, nu03, MomentumForm::Conservative, PreStrainKind::UniaxialX), LoadSign::Compression);
+  ASSERT_TRUE(std::isfinite(ref.e));
+  EXPECT_NEAR(std::stod(row[col("tcrit")]) / ref.e, 1.0, 1e-11);  // 12 significant digits
+  EXPECT_LT(std::stod(row[col("tcrit")]), 0.0);                   // compression: signed
+  // The non-symmetric uniaxial plus form uses the dense eigenvalue criterion.
+  auto plus = fields(ls[1 + 7]);
+  EXPECT_EQ(plus[col("form")], "plus");
+  EXPECT_EQ(plus[col("criterion")], "spectrum");
+  // Periodic: exact symbol route; tcrit equals tcrit_symbol.
+  CliRun p = run("tcrit --dim 2 --lattice square --n 9 --kernel cubic --h 1.3 --periodic");
+  ASSERT_EQ(p.status, 0) << p.out;
+  auto pl = lines(p.out);
+  ASSERT_EQ(pl.size(), 2u);
+  auto prow = fields(pl[1]);
+  EXPECT_EQ(prow[col("method")], "symbol");
+  EXPECT_EQ(prow[col("tcrit")], prow[col("tcrit_symbol")]);
+  EXPECT_GT(std::stod(prow[col("tcrit")]), 0.0);
+  // Minus form: inf.
+  CliRun m = run("tcrit --dim 2 --n 6 --form minus --h 1.2");
+  ASSERT_EQ(m.status, 0);
+  EXPECT_EQ(fields(lines(m.out)[1])[col("tcrit")], "inf");
+}
+
+TEST(TcritCommand, TwoDimensionalBadInput) {
+  for (const char* args :
+       {"tcrit --dim 2 --lattice line", "tcrit --dim 2 --prestrain shear", "tcrit --dim 2 --mu -1",
+        "tcrit --dim 2 --lambda x", "tcrit --prestrain uniaxial", "tcrit --dim 2 --lattice hex --n 5 --periodic",
+        "tcrit --dim 2 --n 3 --periodic --h 1.3", "tcrit --dim 2 --criterion nope", "tcrit --dim 2 --lattice cubic"}) {
+    CliRun r = run(args, true);
+    EXPECT_EQ(r.status, 1) << args;
+    auto ls = lines(r.out);
+    ASSERT_EQ(ls.size(), 1u) << args << ":\n" << r.out;
+    EXPECT_EQ(ls[0].rfind("sphstab: error: ", 0), 0u) << args << ": " << ls[0];
+  }
 }
 
 }  // namespace

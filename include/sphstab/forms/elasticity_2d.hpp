@@ -117,6 +117,8 @@ class ElasticForm2D final : public ForceFunction {
   const ElasticMaterial& material() const { return m_material; }
   const PreStrain& prestrain() const { return m_prestrain; }
   const Discretisation<2>& discretisation() const { return *m_disc; }
+  /// The momentum gradient provider (nullptr = plain kernel gradient).
+  const GradientProvider<2>* gradient_provider() const { return m_gradient.get(); }
 
  private:
   template <class Scalar>

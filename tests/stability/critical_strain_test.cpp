@@ -1,0 +1,225 @@
+// Critical pre-strain of finite 2D lattices: bisection (CHOLMOD) against the generalised eigenproblem (dense and
+// Spectra), the dense spectrum criterion against definiteness where both apply, exact form ratios, brackets checked
+// with independent dense eigenvalues, and the dominant wavevector on synthetic modes.
+#include "sphstab/stability/critical_strain.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+
+#include "sphstab/linalg/dense_general_eigen.hpp"
+
+namespace sphstab {
+namespace {
+
+const ElasticMaterial kMaterial{.lambda = 1.2115384615384615, .mu = 0.8076923076923077, .rho = 7.8};
+
+ElasticJacobian2d jacobian(LatticeType type, int n, KernelType kernel, double h, MomentumForm form, PreStrainKind kind,
+                           bool periodic = false) {
+  Kernel<2> k(kernel);
+  auto d = make_discretisation(strain_lattice_2d(type, k, h, n, periodic), k, h);
+  return analytic_jacobian_2d(*d, kMaterial, form, kind);
+}
+
+double smallest_symmetric_eigenvalue(const SparseMatrix<>& a) {
+  const Eigen::MatrixXd d(a);
+  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(0.5 * (d + d.transpose()), Eigen::EigenvaluesOnly)
+      .eigenvalues()[0];
+}
+
+TEST(CriticalStrain, BisectionAgreesWithEigenOnSquareAndHex) {
+  struct Case {
+    LatticeType type;
+    KernelType kernel;
+    double h;
+  };
+  for (const Case& c :
+       {Case{LatticeType::Square, KernelType::CubicSpline, 1.3}, Case{LatticeType::Square, KernelType::WendlandC4, 1.8},
+        Case{LatticeType::Hexagonal, KernelType::QuinticSpline, 1.2},
+        Case{LatticeType::Hexagonal, KernelType::WendlandC2, 1.5}})
+    for (PreStrainKind kind : {PreStrainKind::Isotropic, PreStrainKind::UniaxialX})
+      for (LoadSign sign : {LoadSign::Tension, LoadSign::Compression}) {
+        const ElasticJacobian2d jac = jacobian(c.type, 8, c.kernel, c.h, MomentumForm::Conservative, kind);
+        const CriticalStrain r = critical_strain(jac, sign);
+        const std::string what = lattice_name(c.type) + " " + kernel_name(c.kernel) + " " + load_sign_name(sign);
+        ASSERT_EQ(r.status, Status::Successful) << what << ": " << r.reason;
+        EXPECT_EQ(r.criterion, StrainCriterion::Definiteness);
+        EXPECT_EQ(r.eigen_backend, "dense");
+        if (std::isinf(r.e)) {
+          EXPECT_TRUE(std::isinf(r.e_bisection)) << what;
+          continue;
+        }
+        EXPECT_EQ(r.e > 0, sign == LoadSign::Tension) << what;
+        EXPECT_LE(r.relative_difference, 1e-8) << what;  // the brief's agreement requirement
+        // Independent check of the bracket by dense eigenvalues.
+        EXPECT_GT(smallest_symmetric_eigenvalue(jac.at(r.e * (1 - 1e-7))), 0.0) << what;
+        EXPECT_LT(smallest_symmetric_eigenvalue(jac.at(r.e * (1 + 1e-7))), 0.0) << what;
+        // Spectra (Cholesky mode over CHOLMOD) gives the same eigenvalue as dense dsygv.
+        CriticalStrainOptions sp;
+        sp.backend = EigenBackend::Spectra;
+        sp.method = TcritMethod::Eigen;
+        const CriticalStrain s = critical_strain(jac, sign, sp);
+        EXPECT_EQ(s.eigen_backend, "spectra");
+        EXPECT_NEAR(s.e, r.e, 1e-10 * std::abs(r.e)) << what;
+      }
+}
+
+TEST(CriticalStrain, FormRatiosAreExact) {
+  // Complete lattice: one A0 for every form; A1 isotropic cons = 2 plus = 4 uncorrected -> e ratios 1 : 2 : 4.
+  for (LoadSign sign : {LoadSign::Tension, LoadSign::Compression}) {
+    const auto cons = critical_strain(jacobian(LatticeType::Square, 7, KernelType::CubicSpline, 1.3,
+                                               MomentumForm::Conservative, PreStrainKind::Isotropic),
+                                      sign);
+    const auto plus = critical_strain(
+        jacobian(LatticeType::Square, 7, KernelType::CubicSpline, 1.3, MomentumForm::Plus, PreStrainKind::Isotropic),
+        sign);
+    const auto unc = critical_strain(jacobian(LatticeType::Square, 7, KernelType::CubicSpline, 1.3,
+                                              MomentumForm::Uncorrected, PreStrainKind::Isotropic),
+                                     sign);
+    ASSERT_TRUE(std::isfinite(cons.e));
+    EXPECT_NEAR(plus.e / cons.e, 2.0, 1e-12);
+    EXPECT_NEAR(unc.e / cons.e, 4.0, 1e-12);
+    const auto minus = critical_strain(
+        jacobian(LatticeType::Square, 7, KernelType::CubicSpline, 1.3, MomentumForm::Minus, PreStrainKind::UniaxialX),
+        sign);
+    EXPECT_TRUE(std::isinf(minus.e));
+    EXPECT_EQ(minus.status, Status::Successful);
+  }
+}
+
+TEST(CriticalStrain, SpectrumCriterionEqualsDefinitenessForSymmetricA) {
+  // For symmetric A, "all eigenvalues real and > 0" is positive definiteness: the dense dgeev route must reproduce
+  // the CHOLMOD / dsygv value.
+  const ElasticJacobian2d jac = jacobian(LatticeType::Hexagonal, 6, KernelType::CubicSpline, 1.3,
+                                         MomentumForm::Conservative, PreStrainKind::UniaxialX);
+  for (LoadSign sign : {LoadSign::Tension, LoadSign::Compression}) {
+    const CriticalStrain def = critical_strain(jac, sign);
+    CriticalStrainOptions o;
+    o.criterion = StrainCriterion::Spectrum;
+    const CriticalStrain spec = critical_strain(jac, sign, o);
+    ASSERT_EQ(spec.status, Status::Successful) << spec.reason;
+    EXPECT_EQ(spec.criterion, StrainCriterion::Spectrum);
+    EXPECT_EQ(spec.mechanism, InstabilityMechanism::RealCrossing);
+    EXPECT_NEAR(spec.e_eigen, def.e, 1e-9 * std::abs(def.e));
+    EXPECT_NEAR(spec.e_bisection, def.e, 1e-9 * std::abs(def.e));  // spectrum_rtol 1e-10 bracket
+  }
+}
+
+TEST(CriticalStrain, NonSymmetricUniaxialPlusUsesTheSpectrum) {
+  const ElasticJacobian2d plus =
+      jacobian(LatticeType::Square, 6, KernelType::CubicSpline, 1.3, MomentumForm::Plus, PreStrainKind::UniaxialX);
+  const ElasticJacobian2d unc = jacobian(LatticeType::Square, 6, KernelType::CubicSpline, 1.3,
+                                         MomentumForm::Uncorrected, PreStrainKind::UniaxialX);
+  ASSERT_FALSE(plus.symmetric);
+  for (LoadSign sign : {LoadSign::Tension, LoadSign::Compression}) {
+    const CriticalStrain r = critical_strain(plus, sign);
+    ASSERT_EQ(r.status, Status::Successful) << r.reason;
+    EXPECT_EQ(r.criterion, StrainCriterion::Spectrum);
+    ASSERT_TRUE(std::isfinite(r.e));
+    // The bracket, by an independent criterion evaluation: all eigenvalues real positive below, not above.
+    auto stable = [&](double e) {
+      const Eigen::MatrixXd a(plus.at(e));
+      const DenseGeneralEigen ev = general_eigen(a);
+      for (Eigen::Index t = 0; t < ev.values.size(); ++t)
+        if (std::abs(ev.values[t].imag()) > 1e-9 * a.norm() || !(ev.values[t].real() > 0)) return false;
+      return true;
+    };
+    EXPECT_TRUE(stable(r.e * (1 - 1e-6)));
+    EXPECT_FALSE(stable(r.e * (1 + 1e-6)));
+    // uncorrected A1 = plus A1 / 2: exactly twice the critical strain, whatever the mechanism
+    const CriticalStrain u = critical_strain(unc, sign);
+    EXPECT_NEAR(u.e / r.e, 2.0, 1e-8);  // spectrum bisection to rtol 1e-10 on both
+    EXPECT_EQ(u.mechanism, r.mechanism);
+    // The symmetric-part criterion is labelled as such.
+    CriticalStrainOptions o;
+    o.criterion = StrainCriterion::SymmetricPart;
+    const CriticalStrain sp = critical_strain(plus, sign, o);
+    EXPECT_EQ(sp.criterion, StrainCriterion::SymmetricPart);
+    EXPECT_NE(sp.reason.find("symmetric-part"), std::string::npos);
+    EXPECT_LE(sp.relative_difference, 1e-8);
+  }
+  CriticalStrainOptions bad;
+  bad.criterion = StrainCriterion::Definiteness;
+  EXPECT_THROW(critical_strain(plus, LoadSign::Tension, bad), std::invalid_argument);
+}
+
+TEST(CriticalStrain, PeriodicSetIsReportedNotCrashed) {
+  const ElasticJacobian2d jac = jacobian(LatticeType::Square, 8, KernelType::CubicSpline, 1.3,
+                                         MomentumForm::Conservative, PreStrainKind::Isotropic, true);
+  const CriticalStrain r = critical_strain(jac, LoadSign::Tension);
+  EXPECT_EQ(r.status, Status::NumericalIssue);
+  EXPECT_NE(r.reason.find("symbol"), std::string::npos);
+  CriticalStrainOptions bad;
+  bad.rtol = 0;
+  EXPECT_THROW(critical_strain(jac, LoadSign::Tension, bad), std::invalid_argument);
+}
+
+TEST(CriticalStrain, CriticalModeWavevectorApproachesTheZoneBoundaryZero) {
+  // Square lattice, cubic h = 1.3, isotropic tension: the infinite lattice is unstable at the zone-boundary zero
+  // k = (pi, 0) (l^xx(pi, 0) > 0, A0^ = 0). At n = 48 the critical mode is that sawtooth in x with the lowest
+  // envelope in y (ky dx / pi ~ 2/(n + 1)); e_crit ~ n^-2.
+  const ElasticJacobian2d jac = jacobian(LatticeType::Square, 40, KernelType::CubicSpline, 1.3,
+                                         MomentumForm::Conservative, PreStrainKind::Isotropic);
+  CriticalStrainOptions o;
+  o.method = TcritMethod::Eigen;
+  const CriticalStrain r = critical_strain(jac, LoadSign::Tension, o);
+  ASSERT_EQ(r.status, Status::Successful) << r.reason;
+  const double kmax = std::max(r.mode_k.kx_over_pi, r.mode_k.ky_over_pi),
+               kmin = std::min(r.mode_k.kx_over_pi, r.mode_k.ky_over_pi);
+  EXPECT_NEAR(kmax, 1.0, 0.03);  // peak resolution ~ 1/n
+  EXPECT_LE(kmin, 3.0 / 41);     // lowest envelope(s)
+}
+
+TEST(DominantWavevector, RecoversSyntheticModes) {
+  // Plane wave on a periodic hex lattice at an admissible k; standing wave on a square block; perturbed positions.
+  {
+    const auto set = make_lattice<2>(LatticeType::Hexagonal, 12, {.spacing = 1.0, .periodic = true});
+    const BravaisLattice2d lat = bravais_lattice_2d(LatticeType::Hexagonal);
+    const Eigen::Vector2d k = periodic_wavevectors(lat, 12)[3 + 12 * 5];
+    Eigen::VectorXd mode(2 * set.size());
+    for (int i = 0; i < set.size(); ++i) {
+      const double ph = k.dot(set.x.row(i).transpose());
+      mode[2 * i] = std::cos(ph);
+      mode[2 * i + 1] = 0.3 * std::cos(ph);
+    }
+    const WavevectorEstimate w = dominant_wavevector(mode, set.x, lat);
+    const Eigen::Vector2d expect = lat.fold(k) / M_PI;
+    EXPECT_NEAR(w.kx_over_pi, expect[0], 1e-6);
+    EXPECT_NEAR(w.ky_over_pi, expect[1], 1e-6);
+    EXPECT_NEAR(w.peak_fraction, 0.5, 1e-9);  // cos = two plane waves of equal power, exact on a periodic box
+  }
+  {
+    const int n = 17;
+    const auto set = make_lattice<2>(LatticeType::Square, n, {.spacing = 1.0, .fixed_layers = 0});
+    const double kx = 0.8 * M_PI, ky = 0.25 * M_PI;
+    Eigen::VectorXd mode(2 * set.size());
+    for (int i = 0; i < set.size(); ++i) {
+      mode[2 * i] = std::sin(kx * set.x(i, 0)) * std::sin(ky * set.x(i, 1));
+      mode[2 * i + 1] = 0;
+    }
+    const WavevectorEstimate w = dominant_wavevector(mode, set.x, bravais_lattice_2d(LatticeType::Square));
+    // finite box: leakage between +-k shifts the peak by O(1/n^2) of the zone
+    EXPECT_NEAR(w.kx_over_pi, 0.8, 0.02);
+    EXPECT_NEAR(w.ky_over_pi, 0.25, 0.02);
+  }
+  {
+    const auto set =
+        make_lattice<2>(LatticeType::Square, 16, {.spacing = 1.0, .fixed_layers = 0, .perturbation = 0.05, .seed = 4});
+    const Eigen::Vector2d k(0.5 * M_PI, 0.9 * M_PI);
+    Eigen::VectorXcd mode(2 * set.size());
+    for (int i = 0; i < set.size(); ++i) {
+      mode[2 * i] = std::polar(1.0, k.dot(set.x.row(i).transpose()));
+      mode[2 * i + 1] = 0;
+    }
+    const WavevectorEstimate w = dominant_wavevector(mode, set.x, bravais_lattice_2d(LatticeType::Square));
+    EXPECT_NEAR(w.kx_over_pi, 0.5, 1e-6);  // a complex plane wave is exactly maximal at k, positions irrelevant
+    EXPECT_NEAR(w.ky_over_pi, 0.9, 1e-6);
+    EXPECT_NEAR(w.peak_fraction, 1.0, 1e-9);
+  }
+  EXPECT_THROW(dominant_wavevector(Eigen::VectorXd(3), Eigen::MatrixX2d(2, 2), bravais_lattice_2d(LatticeType::Square)),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace sphstab
