@@ -70,7 +70,7 @@ std::string ElasticForm2D::name() const {
   std::ostringstream s;
   s << "elastic2d/" << momentum_form_name(m_form) << "/"
     << (m_prestrain.kind == PreStrainKind::Isotropic ? "iso" : "uniaxial-x") << "/e=" << m_prestrain.strain;
-  if (m_gradient && !m_gradient->is_plain()) s << "/" << m_gradient->name();
+  if (m_gradient && !m_gradient->is_plain()) s << "/" << m_gradient->name() << (m_corrected_strain ? "(both)" : "");
   for (const auto& t : m_terms) s << "+" << t->name();
   return s.str();
 }
@@ -85,9 +85,20 @@ std::unique_ptr<ForceFunction> ElasticForm2D::with_load(double load) const {
 }
 
 SparsityPattern ElasticForm2D::dof_pattern() const {
-  int radius = std::max(2, m_gradient ? m_gradient->dependence_radius() : 1);
+  const int reach = m_gradient ? m_gradient->dependence_radius() : 1;
+  // divergence: Ghat_ij (reach) and sigma_j, j in N(i); a corrected strain makes sigma_j reach 1 + reach hops
+  int radius = std::max(2, m_corrected_strain ? 1 + reach : reach);
   for (const auto& t : m_terms) radius = std::max(radius, t->dependence_radius());
   return coupling_pattern(m_disc->neighbours, m_disc->free_slot, 2, radius);
+}
+
+void ElasticForm2D::set_corrected_strain(bool on) {
+  if (on && (!m_gradient || m_gradient->is_plain()))
+    throw std::invalid_argument("ElasticForm2D::set_corrected_strain: needs a non-plain gradient provider");
+  if (on && m_form == MomentumForm::Conservative)
+    throw std::invalid_argument(
+        "ElasticForm2D::set_corrected_strain: the conservative form derives its force from the plain strain");
+  m_corrected_strain = on;
 }
 
 void ElasticForm2D::add_term(std::shared_ptr<const ElasticTerm2D> term) {
@@ -119,7 +130,7 @@ void ElasticForm2D::set_fixed_displacement(const Eigen::VectorXd& d) {
 template <class Scalar>
 void ElasticForm2D::strain_state(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u, Positions<2, Scalar>& uall,
                                  Eigen::Matrix<Scalar, Eigen::Dynamic, 4>& grad, Operators<2, Scalar>& ops,
-                                 bool hessian) const {
+                                 bool hessian, std::array<SparseMatrix<Scalar>, 2>* corrected) const {
   const Discretisation<2>& d = *m_disc;
   uall = detail::full_displacement<2, Scalar>(d, u, m_fixed_u, "ElasticForm2D");
   Positions<2, Scalar> x = d.particles.x.template cast<Scalar>() + uall;
@@ -131,10 +142,13 @@ void ElasticForm2D::strain_state(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>&
   }
   Operators<2, Scalar> fresh = assemble_operators<2, Scalar>(d.particles, d.neighbours, d.kernel, d.h, request, &x);
   detail::take_operators(ops, fresh);
-  // (grad u)_i^{ab} = sum_j (u_j^a - u_i^a) G^b_ij, stored at column a * 2 + b
+  // (grad u)_i^{ab} = sum_j (u_j^a - u_i^a) K^b_ij, stored at column a * 2 + b; K = G, or Ghat with a corrected strain
   const NeighbourList& nl = d.neighbours;
-  const Scalar* g0 = ops.G[0].valuePtr();
-  const Scalar* g1 = ops.G[1].valuePtr();
+  std::array<SparseMatrix<Scalar>, 2> local;
+  std::array<SparseMatrix<Scalar>, 2>& ghat = corrected ? *corrected : local;
+  const bool use_ghat = m_corrected_strain && detail::corrected_gradient<2, Scalar>(m_gradient.get(), d, x, ops, ghat);
+  const Scalar* g0 = use_ghat ? ghat[0].valuePtr() : ops.G[0].valuePtr();
+  const Scalar* g1 = use_ghat ? ghat[1].valuePtr() : ops.G[1].valuePtr();
   grad.resize(d.size(), 4);
   for (int i = 0; i < d.size(); ++i) {
     Scalar dxx(0), dxy(0), dyx(0), dyy(0);
@@ -177,7 +191,8 @@ void ElasticForm2D::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u,
   Positions<2, Scalar> uall;
   Eigen::Matrix<Scalar, Eigen::Dynamic, 4> grad;
   Operators<2, Scalar> ops;
-  strain_state(u, uall, grad, ops, cons);
+  std::array<SparseMatrix<Scalar>, 2> corrected;
+  strain_state(u, uall, grad, ops, cons, &corrected);
   const Eigen::Matrix2d s0 = m_prestrain.stress(m_material);
   Eigen::Matrix<Scalar, Eigen::Dynamic, 3> sig(d.size(), 3);
   for (int i = 0; i < d.size(); ++i)
@@ -212,10 +227,12 @@ void ElasticForm2D::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u,
   }
   // a_i^a = (1/rho) sum_j (sigma_j^{ab} + alpha sigma_i^{ab}) Ghat^b_ij
   const double alpha = momentum_form_alpha(m_form);
-  std::array<SparseMatrix<Scalar>, 2> corrected;
   Positions<2, Scalar> x;
-  if (m_gradient && !m_gradient->is_plain()) x = d.particles.x.template cast<Scalar>() + uall;
-  const bool use_corrected = detail::corrected_gradient<2, Scalar>(m_gradient.get(), d, x, ops, corrected);
+  bool use_corrected = m_corrected_strain && m_gradient && !m_gradient->is_plain();  // already computed above
+  if (!use_corrected && m_gradient && !m_gradient->is_plain()) {
+    x = d.particles.x.template cast<Scalar>() + uall;
+    use_corrected = detail::corrected_gradient<2, Scalar>(m_gradient.get(), d, x, ops, corrected);
+  }
   const Scalar* g0 = use_corrected ? corrected[0].valuePtr() : ops.G[0].valuePtr();
   const Scalar* g1 = use_corrected ? corrected[1].valuePtr() : ops.G[1].valuePtr();
   for (int f = 0; f < d.free_count(); ++f) {

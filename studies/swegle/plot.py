@@ -71,6 +71,9 @@ def main(out):
         ax.legend(fontsize=7, loc="upper left")
     for k in range(len(forms), nrow * ncol):
         axes[k // ncol][k % ncol].axis("off")
+    for row in axes:
+        for ax in row:
+            ax.tick_params(labelbottom=True)
     for ax in axes[-1]:
         ax.set_xlabel("t (us)")
     for row in axes:

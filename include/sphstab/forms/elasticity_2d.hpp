@@ -4,7 +4,7 @@
 /// the four SPH momentum forms, kernel at the CURRENT positions x = x0 + u.
 ///
 /// Displacement gradient and stress (all particles, free and fixed):
-///   (grad u)_i^{ab} = sum_j (u_j^a - u_i^a) G^b_ij(x),  eps = sym grad u,
+///   (grad u)_i^{ab} = sum_j (u_j^a - u_i^a) G^b_ij(x),  eps = sym grad u   (Ghat with set_corrected_strain),
 ///   sigma_i = lambda tr(eps_i) I + 2 mu eps_i + sigma0
 /// Momentum (free particles i; Powell 4.13 with sigma / rho^2 and constant rho for alpha = 1):
 ///   a_i^a = (1/rho) sum_j (sigma_j^{ab} + alpha sigma_i^{ab}) Ghat^b_ij(x),  alpha = 0, 1, -1
@@ -91,6 +91,12 @@ class ElasticForm2D final : public ForceFunction {
   std::complex<double> strain_energy(const Eigen::VectorXcd& u) const override { return energy(u); }
   Eigen::VectorXd dof_mass() const override;
 
+  /// Use the provider's Ghat for the strain too: (grad u)_i^{ab} = sum_j (u_j^a - u_i^a) Ghat^b_ij (both operators
+  /// corrected, as in NCSPH, whose gradient is exact for linear fields). Default: the strain uses the plain G.
+  /// Throws std::invalid_argument without a non-plain provider or for the conservative form.
+  void set_corrected_strain(bool on);
+  bool corrected_strain() const { return m_corrected_strain; }
+
   /// Adds a momentum term (artificial stress, S-SPH correction, ...; elastic_term.hpp) evaluated after the base form
   /// at the same state; its free rows are added to the acceleration. Terms are shared by copies (with_load).
   /// Throws std::invalid_argument for a null term.
@@ -125,7 +131,8 @@ class ElasticForm2D final : public ForceFunction {
                  Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& a) const;
   template <class Scalar>
   void strain_state(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u, Positions<2, Scalar>& uall,
-                    Eigen::Matrix<Scalar, Eigen::Dynamic, 4>& grad, Operators<2, Scalar>& ops, bool hessian) const;
+                    Eigen::Matrix<Scalar, Eigen::Dynamic, 4>& grad, Operators<2, Scalar>& ops, bool hessian,
+                    std::array<SparseMatrix<Scalar>, 2>* corrected = nullptr) const;
 
   std::shared_ptr<const Discretisation<2>> m_disc;
   ElasticMaterial m_material;
@@ -134,6 +141,7 @@ class ElasticForm2D final : public ForceFunction {
   std::shared_ptr<const GradientProvider<2>> m_gradient;
   Eigen::VectorXd m_fixed_u;
   std::vector<std::shared_ptr<const ElasticTerm2D>> m_terms;
+  bool m_corrected_strain = false;
 };
 
 }  // namespace sphstab
