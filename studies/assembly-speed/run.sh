@@ -6,7 +6,10 @@ set -euo pipefail
 bin=$1
 out=$2
 filter=${ASSEMBLY_FILTER:-.}
-"$bin/assembly_benchmark" --benchmark_filter="$filter" --benchmark_format=json >"$out/benchmark_default.json"
-GLIBC_TUNABLES=glibc.malloc.hugetlb=1 "$bin/assembly_benchmark" --benchmark_filter="$filter" \
-  --benchmark_format=json >"$out/benchmark_hugepages.json"
+# Wall, user and kernel seconds of each run (last line of time_<mode>.txt): kernel time is page-fault handling.
+TIMEFORMAT='%R %U %S'
+{ time "$bin/assembly_benchmark" --benchmark_filter="$filter" --benchmark_format=json \
+  >"$out/benchmark_default.json"; } 2>"$out/time_default.txt"
+{ time GLIBC_TUNABLES=glibc.malloc.hugetlb=1 "$bin/assembly_benchmark" --benchmark_filter="$filter" \
+  --benchmark_format=json >"$out/benchmark_hugepages.json"; } 2>"$out/time_hugepages.txt"
 "${PYTHON:-/usr/bin/python3}" "$(dirname "$0")/report.py" "$out"
