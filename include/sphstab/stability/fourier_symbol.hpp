@@ -36,7 +36,8 @@ struct SymbolCriticalTension {
 
 /// Infinite lattice: minimum of |g^|^2/(n L^) over 0 < k <= pi/dx (grid of `grid` points, then golden-section
 /// refinement to 1e-12 in k dx / pi); exactly 0 at the sawtooth when L^(pi/dx) > 1e-12 sum_m |H_m|.
-/// n = initial_stress_multiplier > 0 (n = 0 returns inf). Throws std::invalid_argument for h, dx <= 0, n < 0, grid < 16.
+/// n = initial_stress_multiplier > 0 (n = 0 returns inf). Throws std::invalid_argument for h, dx <= 0, n < 0, grid
+/// < 16.
 SymbolCriticalTension critical_tension_infinite_1d(const Kernel<1>& kernel, double h, double dx, int n,
                                                    int grid = 4096);
 
