@@ -21,6 +21,7 @@ namespace sphstab {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::string fmt(double v) {
   std::ostringstream s;
@@ -497,11 +498,21 @@ CriticalStrain critical_strain(const ElasticJacobian2d& jac, LoadSign sign, cons
   out.criterion = crit;
   const double sgn = sign == LoadSign::Tension ? 1.0 : -1.0;
 
-  if (jac.A1.nonZeros() == 0 || jac.A1.coeffs().cwiseAbs().maxCoeff() == 0.0) {
+  const auto is_zero = [](const SparseMatrix<>& a) {
+    return a.nonZeros() == 0 || a.coeffs().cwiseAbs().maxCoeff() == 0.0;
+  };
+  if (is_zero(jac.A0) && is_zero(jac.A1)) {  // no pair interacts: A = 0 is singular, stability is undefined
+    out.e = out.e_eigen = out.e_bisection = kNaN;
+    out.status = Status::NumericalIssue;
+    out.mechanism = InstabilityMechanism::None;
+    out.reason = "A0 = A1 = 0: no particle has a neighbour inside the kernel support (h too small for the lattice)";
+    return out;
+  }
+  if (is_zero(jac.A1)) {
     out.e = out.e_eigen = out.e_bisection = sgn * kInf;
     out.status = Status::Successful;
     out.mechanism = InstabilityMechanism::None;
-    out.reason = "A1 = 0 (minus form): A does not depend on e";
+    out.reason = "A1 = 0 (e.g. the minus form): A does not depend on e";
     return out;
   }
   if (crit == StrainCriterion::Spectrum) {

@@ -155,6 +155,22 @@ TEST(CriticalStrain, PeriodicSetIsReportedNotCrashed) {
   EXPECT_THROW(critical_strain(jac, LoadSign::Tension, bad), std::invalid_argument);
 }
 
+TEST(CriticalStrain, NoNeighboursInsideTheSupportIsReportedNotStable) {
+  // h = 0.3 dx: support 0.6 dx < dx, so A0 = A1 = 0. That is not "stable for every e" but undefined.
+  const ElasticJacobian2d jac = jacobian(LatticeType::Square, 6, KernelType::CubicSpline, 0.3,
+                                         MomentumForm::Conservative, PreStrainKind::Isotropic);
+  const CriticalStrain r = critical_strain(jac, LoadSign::Tension);
+  EXPECT_EQ(r.status, Status::NumericalIssue);
+  EXPECT_TRUE(std::isnan(r.e));
+  EXPECT_NE(r.reason.find("no particle has a neighbour"), std::string::npos) << r.reason;
+  // the minus form has a genuine A0 but A1 = 0: stable for every pre-strain
+  const CriticalStrain m = critical_strain(
+      jacobian(LatticeType::Square, 6, KernelType::CubicSpline, 1.3, MomentumForm::Minus, PreStrainKind::Isotropic),
+      LoadSign::Tension);
+  EXPECT_EQ(m.status, Status::Successful);
+  EXPECT_TRUE(std::isinf(m.e) && m.e > 0);
+}
+
 TEST(CriticalStrain, CriticalModeWavevectorApproachesTheZoneBoundaryZero) {
   // Square lattice, cubic h = 1.3, isotropic tension: the infinite lattice is unstable at the zone-boundary zero
   // k = (pi, 0) (l^xx(pi, 0) > 0, A0^ = 0). At n = 48 the critical mode is that sawtooth in x with the lowest
