@@ -57,6 +57,12 @@ SymbolCriticalTension critical_tension_infinite_1d(const Kernel<1>& kernel, doub
   SymbolCriticalTension r;
   r.l_hat_sawtooth = symbol(s, M_PI).l_hat;
   const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (s.w1.empty()) {  // the symbol is identically 0: stability is undefined, not unconditional
+    r.tcrit = nan;
+    r.k_over_pi = nan;
+    r.reason = "no lattice neighbour inside the kernel support (h too small)";
+    return r;
+  }
   if (n == 0) {
     r.tcrit = kInf;
     r.k_over_pi = nan;

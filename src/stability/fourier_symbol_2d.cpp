@@ -247,6 +247,11 @@ SymbolCriticalStrain critical_strain_infinite_2d(const ElasticSymbol2d& sym, Loa
   const double sgn = sign == LoadSign::Tension ? 1.0 : -1.0;
   SymbolCriticalStrain out;
   out.e = sgn * kInf;
+  if (sym.stencil_size() == 0) {  // no lattice vector inside the support: the symbol is 0, stability undefined
+    out.e = SymbolCriticalStrain::nan;
+    out.reason = "no lattice neighbour inside the kernel support (h too small)";
+    return out;
+  }
   auto report_k = [&](const Eigen::Vector2d& k) {
     const Eigen::Vector2d f = lat.fold(k) * lat.dx / M_PI;
     out.kx_over_pi = f[0];
@@ -352,6 +357,11 @@ SymbolCriticalStrain critical_strain_periodic_symbol_2d(const ElasticSymbol2d& s
   const double sgn = sign == LoadSign::Tension ? 1.0 : -1.0;
   SymbolCriticalStrain out;
   out.e = sgn * kInf;
+  if (sym.stencil_size() == 0) {  // no lattice vector inside the support: the symbol is 0, stability undefined
+    out.e = SymbolCriticalStrain::nan;
+    out.reason = "no lattice neighbour inside the kernel support (h too small)";
+    return out;
+  }
   out.reason = "A^(k_m, e) stable at every admissible k_m";
   for (size_t m = 1; m < ks.size(); ++m) {
     const bool zero = is_zone_boundary_zero(sym.lattice(), ks[m]);

@@ -33,8 +33,13 @@ TensionEstimates1d tension_estimates_1d(const Kernel<1>& kernel, double h, doubl
   // g[m] = G_{i,i+m} for m = -M..M stored at offset M; H_m for m >= 1.
   int mmax = 0;
   while ((mmax + 1) * dx < support) ++mmax;  // strict, like find_neighbours
-  std::vector<double> g(2 * mmax + 1, 0.0);
   TensionEstimates1d e;
+  if (mmax == 0) {  // no neighbour inside the support: A = 0, every estimate is undefined (not infinite)
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    e.first_minor = e.second_minor = e.nearest_neighbour = e.nearest_neighbour_minor = e.swegle = nan;
+    return e;
+  }
+  std::vector<double> g(2 * mmax + 1, 0.0);
   for (int m = 1; m <= mmax; ++m) {
     const double w1 = kernel.d1(m * dx, h) * dx, w2 = kernel.d2(m * dx, h) * dx;
     g[mmax + m] = -w1;  // x_i - x_j = -m dx < 0: dW/dx_i = W'(r) * (-1)

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "sphstab/linalg/dense_general_eigen.hpp"
+#include "sphstab/stability/fourier_symbol_2d.hpp"
 
 namespace sphstab {
 namespace {
@@ -163,6 +164,10 @@ TEST(CriticalStrain, NoNeighboursInsideTheSupportIsReportedNotStable) {
   EXPECT_EQ(r.status, Status::NumericalIssue);
   EXPECT_TRUE(std::isnan(r.e));
   EXPECT_NE(r.reason.find("no particle has a neighbour"), std::string::npos) << r.reason;
+  const ElasticSymbol2d symbol(LatticeType::Square, Kernel<2>(KernelType::CubicSpline), 0.3, 1.0, kMaterial,
+                               MomentumForm::Conservative, PreStrainKind::Isotropic);
+  EXPECT_TRUE(std::isnan(critical_strain_infinite_2d(symbol, LoadSign::Tension).e));
+  EXPECT_TRUE(std::isnan(critical_strain_periodic_symbol_2d(symbol, 8, LoadSign::Tension).e));
   // the minus form has a genuine A0 but A1 = 0: stable for every pre-strain
   const CriticalStrain m = critical_strain(
       jacobian(LatticeType::Square, 6, KernelType::CubicSpline, 1.3, MomentumForm::Minus, PreStrainKind::Isotropic),

@@ -4,6 +4,7 @@
 
 #include "sphstab/particles/lattice.hpp"
 #include "sphstab/stability/critical_tension.hpp"
+#include "sphstab/stability/fourier_symbol.hpp"
 
 namespace sphstab {
 namespace {
@@ -32,6 +33,15 @@ TEST(TensionEstimates1d, CubicByHandAtHEqualsOnePointTwoFive) {
   EXPECT_NEAR(u.first_minor, 4 * 0.104, 1e-14);
   TensionEstimates1d m = tension_estimates_1d(cubic, 1.25, 1.0, 0);
   EXPECT_TRUE(std::isinf(m.first_minor) && std::isinf(m.second_minor) && std::isinf(m.swegle));
+}
+
+TEST(TensionEstimates1d, NoNeighbourInsideTheSupportGivesNaNNotInf) {
+  const Kernel<1> k(KernelType::CubicSpline);
+  const TensionEstimates1d e = tension_estimates_1d(k, 0.5, 1.0, 4);  // support exactly dx: strict, no neighbour
+  EXPECT_TRUE(std::isnan(e.first_minor) && std::isnan(e.second_minor) && std::isnan(e.nearest_neighbour) &&
+              std::isnan(e.nearest_neighbour_minor) && std::isnan(e.swegle));
+  EXPECT_TRUE(std::isnan(critical_tension_infinite_1d(k, 0.5, 1.0, 4).tcrit));
+  EXPECT_TRUE(std::isfinite(tension_estimates_1d(k, 0.51, 1.0, 4).first_minor));
 }
 
 TEST(TensionEstimates1d, NearestNeighbourCaseReducesToPowell350) {

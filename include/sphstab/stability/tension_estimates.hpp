@@ -33,7 +33,8 @@ struct TensionEstimates1d {
 };
 
 /// Estimates from the kernel on the infinite lattice of spacing dx (h, dx > 0; n = initial_stress_multiplier >= 0; n =
-/// 0 gives inf everywhere). Throws std::invalid_argument for non-positive h or dx, or negative n.
+/// 0 gives inf everywhere; no neighbour inside the support, 2h <= dx, gives NaN everywhere). Throws
+/// std::invalid_argument for non-positive h or dx, or negative n.
 TensionEstimates1d tension_estimates_1d(const Kernel<1>& kernel, double h, double dx, int n);
 
 /// The principal-minor estimates (3.42) and (3.49) read from the matrices (k_ii = K(row, row), l_ii = L(row, row),
