@@ -8,6 +8,7 @@
 #include "sphstab/linalg/cholmod_definiteness.hpp"
 #include "sphstab/linalg/dense_general_eigen.hpp"
 #include "sphstab/stability/growth_rate.hpp"
+#include "sphstab/stability/load_bracket.hpp"
 
 namespace sphstab {
 
@@ -112,44 +113,24 @@ AffineCriticalTension spectrum_route(const AffineJacobian& j, double sign, const
     append(r.reason, "A1 = 0 (no T dependence) and A(0) passes");
     return r;
   }
-  double t = o.t_start, lo = 0, hi = 0;
-  if (ok(t)) {
-    lo = t;
-    while (true) {
-      t *= 2;
-      if (t > o.t_max) {
-        r.tcrit = sign * kInf;
-        r.lo = lo;
-        r.status = Status::Successful;
-        append(r.reason, "spectrum real and positive at |T| = 0 and t_start 2^k up to " + fmt(o.t_max));
-        return r;
-      }
-      if (!ok(t)) break;
-      lo = t;
-    }
-    hi = t;
-  } else {
-    hi = t;
-    while (true) {
-      t *= 0.5;
-      if (t < o.t_min) {
-        r.tcrit = 0.0;
-        r.lo = 0;
-        r.hi = hi;
-        r.status = Status::Successful;
-        append(r.reason, "spectrum fails for every sampled |T| >= " + fmt(o.t_min) + " (" + last_failure + ")");
-        return r;
-      }
-      if (ok(t)) break;
-      hi = t;
-    }
-    lo = t;
+  LoadBracket b = bracket_critical_load(ok, o.t_start, o.t_max, o.t_min, 2.0);
+  if (b.outcome == LoadBracket::Outcome::StableToMax) {
+    r.tcrit = sign * kInf;
+    r.lo = b.lo;
+    r.status = Status::Successful;
+    append(r.reason, "spectrum real and positive at |T| = 0 and t_start 2^k up to " + fmt(o.t_max));
+    return r;
   }
-  while (hi / lo - 1 > o.rtol) {
-    const double mid = std::sqrt(lo * hi);
-    if (mid <= lo || mid >= hi) break;
-    (ok(mid) ? lo : hi) = mid;
+  if (b.outcome == LoadBracket::Outcome::UnstableToMin) {
+    r.tcrit = 0.0;
+    r.lo = 0;
+    r.hi = b.hi;
+    r.status = Status::Successful;
+    append(r.reason, "spectrum fails for every sampled |T| >= " + fmt(o.t_min) + " (" + last_failure + ")");
+    return r;
   }
+  bisect_critical_load(b, ok, o.rtol);
+  const double lo = b.lo, hi = b.hi;
   ok(hi);  // the failure mode just beyond T_crit
   r.lo = lo;
   r.hi = hi;

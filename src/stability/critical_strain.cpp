@@ -15,6 +15,7 @@
 #include "sphstab/linalg/dense_general_eigen.hpp"
 #include "sphstab/linalg/dense_symmetric_eigen.hpp"
 #include "sphstab/linalg/symmetric_pencil.hpp"
+#include "sphstab/stability/load_bracket.hpp"
 
 namespace sphstab {
 
@@ -65,78 +66,6 @@ ColSparseMatrix lower_symmetric_part(const SparseMatrix<>& a) {
   SparseMatrix<> at = a.transpose();
   SparseMatrix<> s = 0.5 * (a + at);
   return lower_from_symmetric_rows(s);
-}
-
-struct Bracket {
-  double lo = CriticalStrain::nan, hi = CriticalStrain::nan, tau = CriticalStrain::nan;
-  int tests = 0;
-  Status status = Status::NotComputed;
-  std::string note;
-};
-
-/// Bracket by steps of a factor `step` from tau_start: lo stable, hi = step lo unstable (status Successful, tau NaN),
-/// or tau = inf when stable up to tau_max, or NumericalIssue when unstable down to tau_min.
-Bracket bracket(const std::function<bool(double)>& stable, double tau_start, double tau_max, double tau_min,
-                double step = 8.0) {
-  Bracket r;
-  auto test = [&](double t) {
-    ++r.tests;
-    return stable(t);
-  };
-  double tau = tau_start;
-  if (test(tau)) {
-    r.lo = tau;
-    while (true) {
-      tau *= step;
-      if (tau > tau_max) {
-        if (r.lo < tau_max && test(tau_max)) {
-          r.tau = kInf;
-          r.status = Status::Successful;
-          r.note = "bisection: stable up to |e| = " + fmt(tau_max);
-          return r;
-        }
-        if (r.lo < tau_max) {
-          r.hi = tau_max;
-          r.status = Status::Successful;
-          return r;
-        }
-        r.tau = kInf;
-        r.status = Status::Successful;
-        r.note = "bisection: stable up to |e| = " + fmt(tau_max);
-        return r;
-      }
-      if (!test(tau)) break;
-      r.lo = tau;
-    }
-    r.hi = tau;
-  } else {
-    r.hi = tau;
-    while (true) {
-      tau /= step;
-      if (tau < tau_min) {
-        r.status = Status::NumericalIssue;
-        r.note = "bisection: unstable down to |e| = " + fmt(tau_min);
-        return r;
-      }
-      if (test(tau)) break;
-      r.hi = tau;
-    }
-    r.lo = tau;
-  }
-  r.status = Status::Successful;
-  return r;
-}
-
-/// Geometric bisection of a finite bracket to hi/lo - 1 <= rtol; sets tau.
-void refine(Bracket& r, const std::function<bool(double)>& stable, double rtol) {
-  if (r.status != Status::Successful || std::isinf(r.tau)) return;
-  while (r.hi / r.lo - 1 > rtol) {
-    const double mid = std::sqrt(r.lo * r.hi);
-    if (mid <= r.lo || mid >= r.hi) break;
-    ++r.tests;
-    (stable(mid) ? r.lo : r.hi) = mid;
-  }
-  r.tau = std::sqrt(r.lo * r.hi);
 }
 
 void validate(const CriticalStrainOptions& o) {
@@ -213,12 +142,12 @@ void definiteness_routes(const ColSparseMatrix& k, const ColSparseMatrix& l, con
   // Shared bracket (bisection, and the shift of the sparse eigen route).
   SymmetricPencil pencil(k, l);
   CholmodDefiniteness check(opt.variant);
-  Bracket br;
+  LoadBracket br;
   const bool need_bracket = bis || (eig && !dense);
   auto pd = [&](double tau) { return check.is_positive_definite(pencil.evaluate(tau)); };
   if (need_bracket) {
     check.analyze_pattern(pencil.pattern());
-    br = bracket(pd, opt.e_start, opt.e_max, opt.e_min);
+    br = bracket_critical_load(pd, opt.e_start, opt.e_max, opt.e_min, 8.0);
   }
 
   Eigen::VectorXd vec;
@@ -242,8 +171,8 @@ void definiteness_routes(const ColSparseMatrix& k, const ColSparseMatrix& l, con
       out.eigen_backend = "spectra";
       // Shift: the positive definite end of the bracket, or e_max when A is positive definite up to e_max (then
       // nu_max <= 0 means stable for every e; without a shift Lanczos crawls towards lambda_max ~ 0-).
-      const bool stable_to_max = br.status == Status::Successful && std::isinf(br.tau);
-      const bool shifted = br.status == Status::Successful && (stable_to_max || (std::isnan(br.tau) && br.lo > 0));
+      const bool stable_to_max = need_bracket && br.outcome == LoadBracket::Outcome::StableToMax;
+      const bool shifted = stable_to_max || (need_bracket && br.outcome == LoadBracket::Outcome::Bracketed);
       const double shift = !shifted ? 0.0 : stable_to_max ? opt.e_max : br.lo;
       CholmodCholeskyOp bop(shifted ? ColSparseMatrix(pencil.evaluate(shift)) : k, opt.variant);
       if (bop.info() != Status::Successful) {
@@ -287,15 +216,17 @@ void definiteness_routes(const ColSparseMatrix& k, const ColSparseMatrix& l, con
     }
   }
   if (bis) {
-    refine(br, pd, opt.rtol);
+    bisect_critical_load(br, pd, opt.rtol);
     out.factorizations = br.tests;
-    if (!br.note.empty()) append(out.reason, br.note);
-    if (br.status == Status::Successful) {
-      out.e_bisection = sgn * br.tau;
-      out.bisection_lo = sgn * br.lo;
-      out.bisection_hi = std::isinf(br.tau) ? sgn * kInf : sgn * br.hi;
+    if (br.outcome == LoadBracket::Outcome::UnstableToMin) {
+      out.status = Status::NumericalIssue;
+      append(out.reason, "bisection: unstable down to |e| = " + fmt(opt.e_min));
     } else {
-      out.status = br.status;
+      if (br.outcome == LoadBracket::Outcome::StableToMax)
+        append(out.reason, "bisection: stable up to |e| = " + fmt(opt.e_max));
+      out.e_bisection = sgn * br.critical();
+      out.bisection_lo = sgn * br.lo;
+      out.bisection_hi = sgn * br.hi;
     }
   }
   out.mechanism = InstabilityMechanism::RealCrossing;
@@ -394,10 +325,9 @@ void spectrum_routes(const ElasticJacobian2d& jac, const CriticalStrainOptions& 
       }
     }
   } else {
-    const Bracket b = bracket(stable, opt.e_start, opt.e_max, opt.e_min);
+    const LoadBracket b = bracket_critical_load(stable, opt.e_start, opt.e_max, opt.e_min, 8.0);
     lo = b.lo;
-    hi = std::isinf(b.tau) ? kInf : b.hi;
-    if (b.status != Status::Successful) lo = 0;
+    hi = b.hi;
   }
   if (std::isinf(hi)) {
     out.e_bisection = sgn * kInf;
@@ -413,13 +343,14 @@ void spectrum_routes(const ElasticJacobian2d& jac, const CriticalStrainOptions& 
     append(out.reason, "spectrum bisection: unstable down to |e| = " + fmt(opt.e_min));
     return;
   }
-  while (hi / lo - 1 > opt.spectrum_rtol) {
-    const double mid = std::sqrt(lo * hi);
-    if (mid <= lo || mid >= hi) break;
-    (stable(mid) ? lo : hi) = mid;
-  }
+  LoadBracket refined;
+  refined.lo = lo;
+  refined.hi = hi;
+  bisect_critical_load(refined, stable, opt.spectrum_rtol);
+  lo = refined.lo;
+  hi = refined.hi;
   out.factorizations = tests;
-  out.e_bisection = sgn * std::sqrt(lo * hi);
+  out.e_bisection = sgn * refined.critical();
   out.bisection_lo = sgn * lo;
   out.bisection_hi = sgn * hi;
   // Mechanism and mode at the first unstable point.

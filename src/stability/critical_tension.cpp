@@ -15,6 +15,7 @@
 #include "sphstab/linalg/dense_symmetric_eigen.hpp"
 #include "sphstab/linalg/symmetric_pencil.hpp"
 #include "sphstab/particles/lattice.hpp"
+#include "sphstab/stability/load_bracket.hpp"
 
 namespace sphstab {
 
@@ -114,46 +115,27 @@ BisectionRoute bisection_route(const ColSparseMatrix& k, const ColSparseMatrix& 
   SymmetricPencil pencil(k, l);
   CholmodDefiniteness check(opt.variant);
   check.analyze_pattern(pencil.pattern());
-  auto pd = [&](double tau) {
-    ++r.factorizations;
-    return check.is_positive_definite(pencil.evaluate(tau));
-  };
-  double tau = opt.tau_start;
-  if (pd(tau)) {
-    r.lo = tau;
-    while (true) {
-      tau *= 2;
-      if (tau > opt.tau_max) {
-        r.tau = kInf;
-        r.status = Status::Successful;
-        r.note = "bisection: A positive definite up to n T = " + fmt(opt.tau_max);
-        return r;
-      }
-      if (!pd(tau)) break;
-      r.lo = tau;
-    }
-    r.hi = tau;
-  } else {
-    r.hi = tau;
-    while (true) {
-      tau *= 0.5;
-      if (tau < opt.tau_min) {
-        r.status = Status::NumericalIssue;
-        r.note = "bisection: A(T) not positive definite down to n T = " + fmt(opt.tau_min);
-        return r;
-      }
-      if (pd(tau)) break;
-      r.hi = tau;
-    }
-    r.lo = tau;
+  auto pd = [&](double tau) { return check.is_positive_definite(pencil.evaluate(tau)); };
+  LoadBracket b = bracket_critical_load(pd, opt.tau_start, opt.tau_max, opt.tau_min, 2.0);
+  bisect_critical_load(b, pd, opt.rtol);
+  r.factorizations = b.tests;
+  r.lo = b.lo;
+  r.hi = b.hi;
+  switch (b.outcome) {
+    case LoadBracket::Outcome::StableToMax:
+      r.tau = kInf;
+      r.status = Status::Successful;
+      r.note = "bisection: A positive definite up to n T = " + fmt(opt.tau_max);
+      break;
+    case LoadBracket::Outcome::UnstableToMin:
+      r.status = Status::NumericalIssue;
+      r.note = "bisection: A(T) not positive definite down to n T = " + fmt(opt.tau_min);
+      break;
+    case LoadBracket::Outcome::Bracketed:
+      r.tau = b.critical();
+      r.status = Status::Successful;
+      break;
   }
-  while (r.hi / r.lo - 1 > opt.rtol) {
-    const double mid = std::sqrt(r.lo * r.hi);
-    if (mid <= r.lo || mid >= r.hi) break;  // bracket at floating-point resolution
-    (pd(mid) ? r.lo : r.hi) = mid;
-  }
-  r.tau = std::sqrt(r.lo * r.hi);
-  r.status = Status::Successful;
   return r;
 }
 
