@@ -14,6 +14,7 @@
 #include "sphstab/forms/correction_gradient.hpp"
 #include "sphstab/forms/momentum_form.hpp"
 #include "sphstab/forms/wave_1d.hpp"
+#include "sphstab/io/format.hpp"
 #include "sphstab/jacobian/analytic_jacobian_2d.hpp"
 #include "sphstab/kernel/kernel.hpp"
 #include "sphstab/particles/lattice.hpp"
@@ -104,13 +105,7 @@ std::vector<double> parse_h(const std::string& spec) {
   return hs;
 }
 
-std::string num(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.12g", v);
-  return buf;
-}
+std::string num(double v) { return format_number(v, 12); }
 
 std::string csv_field(const std::string& s) {
   if (s.find_first_of(",\"\n") == std::string::npos) return s;

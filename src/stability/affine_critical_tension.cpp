@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "sphstab/io/format.hpp"
 #include "sphstab/linalg/cholmod_definiteness.hpp"
 #include "sphstab/linalg/dense_general_eigen.hpp"
 #include "sphstab/stability/growth_rate.hpp"
@@ -15,19 +16,6 @@ namespace sphstab {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
-
-void append(std::string& reason, const std::string& part) {
-  if (part.empty()) return;
-  if (!reason.empty()) reason += "; ";
-  reason += part;
-}
 
 SparseMatrix<> symmetric_part(const SparseMatrix<>& a) {
   SparseMatrix<> at = a.transpose();
@@ -50,7 +38,7 @@ void validate(const AffineJacobian& j, const Eigen::VectorXd* x, const AffineCri
   auto positive = [](double v, const char* name) {
     if (!(v > 0) || !std::isfinite(v))
       throw std::invalid_argument(std::string("affine_critical_tension: option ") + name +
-                                  " must be finite and > 0 (got " + fmt(v) + ")");
+                                  " must be finite and > 0 (got " + format_number(v) + ")");
   };
   positive(o.t_start, "t_start");
   positive(o.t_max, "t_max");
@@ -61,7 +49,7 @@ void validate(const AffineJacobian& j, const Eigen::VectorXd* x, const AffineCri
     throw std::invalid_argument("affine_critical_tension: symmetry_tol and zero_tol must be >= 0");
   if (!(o.growth_factor > 1) || !std::isfinite(o.growth_factor))
     throw std::invalid_argument("affine_critical_tension: growth_factor must be finite and > 1 (got " +
-                                fmt(o.growth_factor) + ")");
+                                format_number(o.growth_factor) + ")");
 }
 
 /// Growth rate and fastest mode of A(t) = A0 + t A1 (t signed).
@@ -104,13 +92,13 @@ AffineCriticalTension spectrum_route(const AffineJacobian& j, double sign, const
     r.tcrit = 0.0;
     r.lo = r.hi = 0.0;
     r.status = Status::Successful;
-    append(r.reason, "spectrum of A(0) already fails: " + last_failure);
+    append_reason(r.reason, "spectrum of A(0) already fails: " + last_failure);
     return r;
   }
   if (r.info.load_independent) {
     r.tcrit = sign * kInf;
     r.status = Status::Successful;
-    append(r.reason, "A1 = 0 (no T dependence) and A(0) passes");
+    append_reason(r.reason, "A1 = 0 (no T dependence) and A(0) passes");
     return r;
   }
   LoadBracket b = bracket_critical_load(ok, o.t_start, o.t_max, o.t_min, 2.0);
@@ -118,7 +106,7 @@ AffineCriticalTension spectrum_route(const AffineJacobian& j, double sign, const
     r.tcrit = sign * kInf;
     r.lo = b.lo;
     r.status = Status::Successful;
-    append(r.reason, "spectrum real and positive at |T| = 0 and t_start 2^k up to " + fmt(o.t_max));
+    append_reason(r.reason, "spectrum real and positive at |T| = 0 and t_start 2^k up to " + format_number(o.t_max));
     return r;
   }
   if (b.outcome == LoadBracket::Outcome::UnstableToMin) {
@@ -126,7 +114,8 @@ AffineCriticalTension spectrum_route(const AffineJacobian& j, double sign, const
     r.lo = 0;
     r.hi = b.hi;
     r.status = Status::Successful;
-    append(r.reason, "spectrum fails for every sampled |T| >= " + fmt(o.t_min) + " (" + last_failure + ")");
+    append_reason(r.reason,
+                  "spectrum fails for every sampled |T| >= " + format_number(o.t_min) + " (" + last_failure + ")");
     return r;
   }
   bisect_critical_load(b, ok, o.rtol);
@@ -136,7 +125,7 @@ AffineCriticalTension spectrum_route(const AffineJacobian& j, double sign, const
   r.hi = hi;
   r.tcrit = sign * std::sqrt(lo * hi);
   r.status = Status::Successful;
-  append(r.reason, "eigenvalue leaves the positive real axis: " + last_failure);
+  append_reason(r.reason, "eigenvalue leaves the positive real axis: " + last_failure);
   return r;
 }
 
@@ -152,14 +141,14 @@ AffineCriticalTension pd_route(const AffineJacobian& j, double sign, const Eigen
       r.tcrit = 0.0;
       r.lo = r.hi = 0.0;
       r.status = Status::Successful;
-      append(r.reason, "A(0) (symmetric part) is not positive definite");
+      append_reason(r.reason, "A(0) (symmetric part) is not positive definite");
       return r;
     }
   }
   if (r.info.load_independent) {
     r.tcrit = sign * kInf;
     r.status = Status::Successful;
-    append(r.reason, "A1 = 0 (no T dependence) and A(0) is positive definite");
+    append_reason(r.reason, "A1 = 0 (no T dependence) and A(0) is positive definite");
     return r;
   }
   TensionJacobian1d jac;
@@ -177,8 +166,8 @@ AffineCriticalTension pd_route(const AffineJacobian& j, double sign, const Eigen
   r.hi = r.pd.bisection_hi;
   r.status = r.pd.status;
   r.mode_wavenumber = r.pd.mode_wavenumber;
-  if (sign < 0) append(r.reason, "compression searched as A0 + |T| (-A1) (T in the messages below is |T|)");
-  append(r.reason, r.pd.reason == "ok" ? "" : r.pd.reason);
+  if (sign < 0) append_reason(r.reason, "compression searched as A0 + |T| (-A1) (T in the messages below is |T|)");
+  append_reason(r.reason, r.pd.reason == "ok" ? "" : r.pd.reason);
   return r;
 }
 
@@ -221,16 +210,16 @@ AffineCriticalTension affine_critical_load(const AffineJacobian& j, StabilityCri
   r.info = analyse_affine_jacobian(j, o);
   if (criterion == StabilityCriterion::PositiveDefinite && !r.info.symmetric)
     throw std::invalid_argument("affine_critical_load: A(T) is not symmetric (relative asymmetry " +
-                                fmt(std::max(r.info.asymmetry0, r.info.asymmetry1)) +
+                                format_number(std::max(r.info.asymmetry0, r.info.asymmetry1)) +
                                 "); use real-positive-spectrum or symmetric-part-pd");
-  if (r.info.load_independent) append(r.reason, "||A1||/||A0|| = " + fmt(r.info.a1_relative));
+  if (r.info.load_independent) append_reason(r.reason, "||A1||/||A0|| = " + format_number(r.info.a1_relative));
   const double sign = direction == LoadDirection::Tension ? 1.0 : -1.0;
   r = criterion == StabilityCriterion::RealPositiveSpectrum ? spectrum_route(j, sign, o, r)
                                                             : pd_route(j, sign, x, o, r);
   if (!std::isfinite(r.tcrit) || r.tcrit == 0.0) r.mode_wavenumber = {};  // no critical mode
   if (std::isfinite(r.tcrit) && r.tcrit != 0.0) {
     growth_at(j, o.growth_factor * r.tcrit, x, r);
-    append(r.reason, "gamma(" + fmt(o.growth_factor) + " T_crit) = " + fmt(r.growth_rate));
+    append_reason(r.reason, "gamma(" + format_number(o.growth_factor) + " T_crit) = " + format_number(r.growth_rate));
   }
   if (r.reason.empty()) r.reason = "ok";
   return r;

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "sphstab/io/format.hpp"
 #include "sphstab/linalg/cholmod_cholesky_op.hpp"
 #include "sphstab/linalg/cholmod_definiteness.hpp"
 #include "sphstab/linalg/dense_general_eigen.hpp"
@@ -23,18 +24,6 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
-
-void append(std::string& reason, const std::string& part) {
-  if (!reason.empty()) reason += "; ";
-  reason += part;
-}
 
 /// Lower triangle (column-major) of a symmetric row-major matrix without transposition: column i of the result holds
 /// the entries of row i at columns >= i (equal to the lower triangle by symmetry).
@@ -72,7 +61,7 @@ void validate(const CriticalStrainOptions& o) {
   auto positive = [](double v, const char* name) {
     if (!(v > 0) || !std::isfinite(v))
       throw std::invalid_argument(std::string("critical_strain: option ") + name + " must be finite and > 0 (got " +
-                                  fmt(v) + ")");
+                                  format_number(v) + ")");
   };
   positive(o.e_start, "e_start");
   positive(o.e_max, "e_max");
@@ -130,13 +119,14 @@ void definiteness_routes(const ColSparseMatrix& k, const ColSparseMatrix& l, con
     CholmodFactor kf(opt.variant);
     if (!kf.compute(k)) {
       out.status = Status::NumericalIssue;
-      append(out.reason,
-             "A0 is not positive definite (Cholesky failed): A(0) singular or indefinite (periodic set? use the "
-             "symbol route)");
+      append_reason(out.reason,
+                    "A0 is not positive definite (Cholesky failed): A(0) singular or indefinite (periodic set? use the "
+                    "symbol route)");
       return;
     }
     out.a0_rcond = kf.rcond_estimate();
-    if (out.a0_rcond < 1e-14) append(out.reason, "A0 near-singular (rcond estimate " + fmt(out.a0_rcond) + ")");
+    if (out.a0_rcond < 1e-14)
+      append_reason(out.reason, "A0 near-singular (rcond estimate " + format_number(out.a0_rcond) + ")");
   }
 
   // Shared bracket (bisection, and the shift of the sparse eigen route).
@@ -165,7 +155,7 @@ void definiteness_routes(const ColSparseMatrix& k, const ColSparseMatrix& l, con
         tau_eig = lambda_max > 0 ? 1.0 / lambda_max : kInf;
         if (opt.want_mode) vec = e.vectors.col(m - 1);
       } else {
-        append(out.reason, "dsygv failed (info " + std::to_string(e.lapack_info) + ")");
+        append_reason(out.reason, "dsygv failed (info " + std::to_string(e.lapack_info) + ")");
       }
     } else {
       out.eigen_backend = "spectra";
@@ -177,7 +167,7 @@ void definiteness_routes(const ColSparseMatrix& k, const ColSparseMatrix& l, con
       CholmodCholeskyOp bop(shifted ? ColSparseMatrix(pencil.evaluate(shift)) : k, opt.variant);
       if (bop.info() != Status::Successful) {
         st = Status::NumericalIssue;
-        append(out.reason, "Cholesky of the shifted B = A(lo) failed");
+        append_reason(out.reason, "Cholesky of the shifted B = A(lo) failed");
       } else {
         Spectra::SparseSymMatProd<double, Eigen::Lower, Eigen::ColMajor> op(l);
         int ncv = opt.spectra_ncv > 0 ? opt.spectra_ncv : 40;
@@ -193,24 +183,26 @@ void definiteness_routes(const ColSparseMatrix& k, const ColSparseMatrix& l, con
             const double nu = eigs.eigenvalues()[0];
             tau_eig = nu > 0 ? shift + 1.0 / nu : kInf;
             if (stable_to_max && std::isfinite(tau_eig)) {
-              append(out.reason, "eigen route: first crossing beyond e_max at |e| = " + fmt(tau_eig));
+              append_reason(out.reason, "eigen route: first crossing beyond e_max at |e| = " + format_number(tau_eig));
               tau_eig = kInf;
             }
             if (opt.want_mode) vec = eigs.eigenvectors().col(0);
-            if (attempt > 0) append(out.reason, "spectra converged with ncv = " + std::to_string(ncv));
+            if (attempt > 0) append_reason(out.reason, "spectra converged with ncv = " + std::to_string(ncv));
             break;
           }
           ncv *= 2;
         }
-        if (st != Status::Successful) append(out.reason, "spectra did not converge");
+        if (st != Status::Successful) append_reason(out.reason, "spectra did not converge");
         if (shifted && !stable_to_max && st == Status::Successful &&
             !(tau_eig > shift && tau_eig <= br.hi * (1 + 1e-10)))
-          append(out.reason, "shifted eigen route outside the bracket [" + fmt(br.lo) + " " + fmt(br.hi) + "]");
+          append_reason(out.reason, "shifted eigen route outside the bracket [" + format_number(br.lo) + " " +
+                                        format_number(br.hi) + "]");
       }
     }
     if (st == Status::Successful) {
       out.e_eigen = sgn * tau_eig;
-      if (std::isinf(tau_eig)) append(out.reason, "lambda_max <= 0: A(e) positive definite for every e of this sign");
+      if (std::isinf(tau_eig))
+        append_reason(out.reason, "lambda_max <= 0: A(e) positive definite for every e of this sign");
     } else {
       out.status = st;
     }
@@ -220,10 +212,10 @@ void definiteness_routes(const ColSparseMatrix& k, const ColSparseMatrix& l, con
     out.factorizations = br.tests;
     if (br.outcome == LoadBracket::Outcome::UnstableToMin) {
       out.status = Status::NumericalIssue;
-      append(out.reason, "bisection: unstable down to |e| = " + fmt(opt.e_min));
+      append_reason(out.reason, "bisection: unstable down to |e| = " + format_number(opt.e_min));
     } else {
       if (br.outcome == LoadBracket::Outcome::StableToMax)
-        append(out.reason, "bisection: stable up to |e| = " + fmt(opt.e_max));
+        append_reason(out.reason, "bisection: stable up to |e| = " + format_number(opt.e_max));
       out.e_bisection = sgn * br.critical();
       out.bisection_lo = sgn * br.lo;
       out.bisection_hi = sgn * br.hi;
@@ -253,7 +245,8 @@ void spectrum_routes(const ElasticJacobian2d& jac, const CriticalStrainOptions& 
   // A(0) = A0 itself must pass.
   if (!spectrum_stable(0.0, nullptr)) {
     out.status = Status::NumericalIssue;
-    append(out.reason, "A0 has an eigenvalue that is not real and positive (periodic set? use the symbol route)");
+    append_reason(out.reason,
+                  "A0 has an eigenvalue that is not real and positive (periodic set? use the symbol route)");
     return;
   }
   double tau_real = kInf;
@@ -264,7 +257,7 @@ void spectrum_routes(const ElasticJacobian2d& jac, const CriticalStrainOptions& 
     DenseGeneralEigen e = general_eigen(mm, opt.want_mode);
     if (e.status != Status::Successful) {
       out.status = Status::NumericalIssue;
-      append(out.reason, "dgeev of A0^-1 A1 failed");
+      append_reason(out.reason, "dgeev of A0^-1 A1 failed");
     } else {
       double nu_min = 0;
       Eigen::Index at = -1;
@@ -275,7 +268,7 @@ void spectrum_routes(const ElasticJacobian2d& jac, const CriticalStrainOptions& 
         if (opt.want_mode) real_vec = e.vectors.col(at);
       }
       out.e_eigen = sgn * tau_real;
-      if (std::isinf(tau_real)) append(out.reason, "no real e of this sign makes A(e) singular");
+      if (std::isinf(tau_real)) append_reason(out.reason, "no real e of this sign makes A(e) singular");
     }
   }
   if (!bis) {
@@ -306,7 +299,7 @@ void spectrum_routes(const ElasticJacobian2d& jac, const CriticalStrainOptions& 
       if (!stable(tau_real * (1 + d))) {
         hi = tau_real * (1 + d);
       } else {
-        append(out.reason, "spectrum stable just past the real crossing: doubling from there");
+        append_reason(out.reason, "spectrum stable just past the real crossing: doubling from there");
         double tau = tau_real * (1 + d);
         lo = tau;
         while (std::isinf(hi)) {
@@ -334,13 +327,13 @@ void spectrum_routes(const ElasticJacobian2d& jac, const CriticalStrainOptions& 
     out.bisection_lo = sgn * lo;
     out.factorizations = tests;
     out.mechanism = InstabilityMechanism::None;
-    append(out.reason, "spectrum bisection: stable up to |e| = " + fmt(opt.e_max));
+    append_reason(out.reason, "spectrum bisection: stable up to |e| = " + format_number(opt.e_max));
     return;
   }
   if (!(lo > 0)) {
     out.status = Status::NumericalIssue;
     out.factorizations = tests;
-    append(out.reason, "spectrum bisection: unstable down to |e| = " + fmt(opt.e_min));
+    append_reason(out.reason, "spectrum bisection: unstable down to |e| = " + format_number(opt.e_min));
     return;
   }
   LoadBracket refined;
@@ -379,9 +372,10 @@ void spectrum_routes(const ElasticJacobian2d& jac, const CriticalStrainOptions& 
       out.mode = at_hi.vectors.col(worst);
   }
   if (complex_pair)
-    append(out.reason, "complex pair (flutter) before any real crossing" +
-                           (std::isfinite(tau_real) ? std::string(" (real crossing at |e| = ") + fmt(tau_real) + ")"
-                                                    : std::string("")));
+    append_reason(out.reason, "complex pair (flutter) before any real crossing" +
+                                  (std::isfinite(tau_real)
+                                       ? std::string(" (real crossing at |e| = ") + format_number(tau_real) + ")"
+                                       : std::string("")));
 }
 
 }  // namespace
@@ -461,7 +455,7 @@ CriticalStrain critical_strain(const ElasticJacobian2d& jac, LoadSign sign, cons
     } else {
       k = lower_symmetric_part(jac.A0);
       l = lower_symmetric_part(jac.A1);
-      append(out.reason, "symmetric-part criterion: definiteness of (A + A^T)/2 (not the stability criterion)");
+      append_reason(out.reason, "symmetric-part criterion: definiteness of (A + A^T)/2 (not the stability criterion)");
     }
     l *= -sgn;
     k.makeCompressed();
@@ -475,7 +469,7 @@ CriticalStrain critical_strain(const ElasticJacobian2d& jac, LoadSign sign, cons
                               : (std::isinf(a) || std::isinf(b)) ? kInf
                                                                  : std::abs(a - b) / std::max(std::abs(a), std::abs(b));
     if (out.relative_difference > 1e-8) {
-      append(out.reason, "eigen and bisection routes disagree by " + fmt(out.relative_difference));
+      append_reason(out.reason, "eigen and bisection routes disagree by " + format_number(out.relative_difference));
       if (out.relative_difference > 1e-6) out.status = Status::NumericalIssue;
     }
   }
@@ -491,7 +485,7 @@ ParticleSet<2> strain_lattice_2d(LatticeType type, const Kernel<2>& kernel, doub
     throw std::invalid_argument("strain_lattice_2d: need at least one free particle per side (got " +
                                 std::to_string(n) + ")");
   if (!(h > 0) || !std::isfinite(h))
-    throw std::invalid_argument("strain_lattice_2d: h must be finite and > 0 (got " + fmt(h) + ")");
+    throw std::invalid_argument("strain_lattice_2d: h must be finite and > 0 (got " + format_number(h) + ")");
   if (type != LatticeType::Square && type != LatticeType::Hexagonal && type != LatticeType::FaceCentred)
     throw std::invalid_argument("strain_lattice_2d: lattice '" + lattice_name(type) +
                                 "' is not two-dimensional (valid: square, hex, face-centred)");

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "sphstab/io/format.hpp"
 #include "sphstab/linalg/cholmod_cholesky_op.hpp"
 #include "sphstab/linalg/cholmod_definiteness.hpp"
 #include "sphstab/linalg/dense_symmetric_eigen.hpp"
@@ -22,18 +23,6 @@ namespace sphstab {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
-
-void append(std::string& reason, const std::string& part) {
-  if (!reason.empty()) reason += "; ";
-  reason += part;
-}
 
 /// Basis (columns) of the complement of the translation (and, if `sawtooth`, of the sawtooth) on nf points ordered
 /// by `order`: e_i - e_{i+1} (or e_i - e_{i+2}).
@@ -125,11 +114,11 @@ BisectionRoute bisection_route(const ColSparseMatrix& k, const ColSparseMatrix& 
     case LoadBracket::Outcome::StableToMax:
       r.tau = kInf;
       r.status = Status::Successful;
-      r.note = "bisection: A positive definite up to n T = " + fmt(opt.tau_max);
+      r.note = "bisection: A positive definite up to n T = " + format_number(opt.tau_max);
       break;
     case LoadBracket::Outcome::UnstableToMin:
       r.status = Status::NumericalIssue;
-      r.note = "bisection: A(T) not positive definite down to n T = " + fmt(opt.tau_min);
+      r.note = "bisection: A(T) not positive definite down to n T = " + format_number(opt.tau_min);
       break;
     case LoadBracket::Outcome::Bracketed:
       r.tau = b.critical();
@@ -143,7 +132,7 @@ void validate(const CriticalTensionOptions& o) {
   auto positive = [](double v, const char* name) {
     if (!(v > 0) || !std::isfinite(v))
       throw std::invalid_argument(std::string("critical_tension: option ") + name + " must be finite and > 0 (got " +
-                                  fmt(v) + ")");
+                                  format_number(v) + ")");
   };
   positive(o.tau_start, "tau_start");
   positive(o.tau_max, "tau_max");
@@ -202,7 +191,7 @@ CriticalTension critical_tension(const TensionJacobian1d& jac, int n, const Crit
       if (ls > tol) {
         out.tcrit = out.tcrit_eigen = out.tcrit_bisection = 0.0;
         out.status = Status::Successful;
-        out.reason = "periodic even N: sawtooth mode has G s = 0 and s'Ls/s's = " + fmt(ls) +
+        out.reason = "periodic even N: sawtooth mode has G s = 0 and s'Ls/s's = " + format_number(ls) +
                      " > 0 so A(T) is indefinite for every T > 0";
         return out;
       }
@@ -212,10 +201,10 @@ CriticalTension critical_tension(const TensionJacobian1d& jac, int n, const Crit
         out.reason = "periodic even N: sawtooth mode has G s = 0 and s'Ls = 0 so A(T) is singular for every T";
         return out;
       }
-      append(out.reason, "sawtooth mode projected out (G s = 0 and s'Ls/s's = " + fmt(ls) +
-                             " < 0: neutral at T = 0 and stabilised by tension)");
+      append_reason(out.reason, "sawtooth mode projected out (G s = 0 and s'Ls/s's = " + format_number(ls) +
+                                    " < 0: neutral at T = 0 and stabilised by tension)");
     }
-    append(out.reason, "translation mode projected out");
+    append_reason(out.reason, "translation mode projected out");
     if (nf - (even ? 2 : 1) < 1) {
       out.status = Status::NumericalIssue;
       out.reason += "; no degrees of freedom left after deflation";
@@ -237,25 +226,26 @@ CriticalTension critical_tension(const TensionJacobian1d& jac, int n, const Crit
     kl.makeCompressed();
     if (!kf.compute(kl)) {
       out.status = Status::NumericalIssue;
-      append(out.reason, "K = G_f G_f^T is not positive definite (Cholesky failed at column " +
-                             std::to_string(kf.failed_column()) +
-                             "): A(0) is singular or indefinite so T_crit is undefined here");
+      append_reason(out.reason, "K = G_f G_f^T is not positive definite (Cholesky failed at column " +
+                                    std::to_string(kf.failed_column()) +
+                                    "): A(0) is singular or indefinite so T_crit is undefined here");
       return out;
     }
     out.k_rcond = kf.rcond_estimate();
     if (out.k_rcond < 1e-14)
-      append(out.reason, "K near-singular (rcond estimate " + fmt(out.k_rcond) + "): accuracy limited");
+      append_reason(out.reason,
+                    "K near-singular (rcond estimate " + format_number(out.k_rcond) + "): accuracy limited");
   }
 
   const bool eig = opt.method != TcritMethod::Bisection, bis = opt.method != TcritMethod::Eigen;
   if (eig) {
     EigenRoute e = eigen_route(lower_triangle(k), lower_triangle(l), opt);
     out.eigen_backend = e.backend;
-    if (!e.note.empty()) append(out.reason, e.note);
+    if (!e.note.empty()) append_reason(out.reason, e.note);
     if (e.status == Status::Successful) {
       out.lambda_max = e.lambda_max;
       out.tcrit_eigen = e.lambda_max > 0 ? 1.0 / (n * e.lambda_max) : kInf;
-      if (!(e.lambda_max > 0)) append(out.reason, "lambda_max <= 0: A(T) positive definite for every T > 0");
+      if (!(e.lambda_max > 0)) append_reason(out.reason, "lambda_max <= 0: A(T) positive definite for every T > 0");
       if (opt.want_mode && e.vector.size() > 0) {
         out.mode = basis.size() > 0 ? Eigen::VectorXd(basis * e.vector) : e.vector;
         const double nm = out.mode.norm();
@@ -269,7 +259,7 @@ CriticalTension critical_tension(const TensionJacobian1d& jac, int n, const Crit
   if (bis) {
     BisectionRoute b = bisection_route(k, l, opt);
     out.factorizations = b.factorizations;
-    if (!b.note.empty()) append(out.reason, b.note);
+    if (!b.note.empty()) append_reason(out.reason, b.note);
     if (b.status == Status::Successful) {
       out.tcrit_bisection = b.tau / n;
       out.bisection_lo = b.lo / n;
@@ -285,9 +275,9 @@ CriticalTension critical_tension(const TensionJacobian1d& jac, int n, const Crit
                                                                  : std::abs(a - b) / std::max(std::abs(a), std::abs(b));
     if (out.relative_difference > 1e-8) {
       // Both routes see K only through its rounded entries: T_crit is determined to about eps / rcond(K).
-      append(out.reason, "eigen and bisection routes disagree by " + fmt(out.relative_difference) +
-                             " (conditioning of K limits accuracy to about eps/rcond = " +
-                             fmt(std::numeric_limits<double>::epsilon() / out.k_rcond) + ")");
+      append_reason(out.reason, "eigen and bisection routes disagree by " + format_number(out.relative_difference) +
+                                    " (conditioning of K limits accuracy to about eps/rcond = " +
+                                    format_number(std::numeric_limits<double>::epsilon() / out.k_rcond) + ")");
       if (out.relative_difference > 1e-6) out.status = Status::NumericalIssue;
     }
   }
@@ -306,7 +296,7 @@ ParticleSet<1> tension_lattice_1d(const Kernel<1>& kernel, double h, int free, b
     throw std::invalid_argument("tension_lattice_1d: need at least one free particle (got " + std::to_string(free) +
                                 ")");
   if (!(h > 0) || !std::isfinite(h))
-    throw std::invalid_argument("tension_lattice_1d: h must be finite and > 0 (got " + fmt(h) + ")");
+    throw std::invalid_argument("tension_lattice_1d: h must be finite and > 0 (got " + format_number(h) + ")");
   return make_lattice<1>(
       LatticeType::Line, free,
       {.spacing = 1.0, .support_radius = layer_supports * kernel.support_radius(h), .periodic = periodic});

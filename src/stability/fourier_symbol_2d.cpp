@@ -7,18 +7,13 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "sphstab/io/format.hpp"
+
 namespace sphstab {
 
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
 
 /// Positive real roots of c0 + c1 e + c2 e^2 (appended to `roots`).
 void positive_roots(double c0, double c1, double c2, std::vector<double>& roots) {
@@ -75,7 +70,8 @@ Eigen::Vector2d BravaisLattice2d::fold(const Eigen::Vector2d& k) const {
 
 BravaisLattice2d bravais_lattice_2d(LatticeType type, double dx) {
   if (!(dx > 0) || !std::isfinite(dx))
-    throw std::invalid_argument("bravais_lattice_2d: spacing dx must be finite and > 0 (got " + fmt(dx) + ")");
+    throw std::invalid_argument("bravais_lattice_2d: spacing dx must be finite and > 0 (got " + format_number(dx) +
+                                ")");
   BravaisLattice2d l;
   l.type = type;
   l.dx = dx;
@@ -102,7 +98,7 @@ ElasticSymbol2d::ElasticSymbol2d(LatticeType type, const Kernel<2>& kernel, doub
     : m_lattice(bravais_lattice_2d(type, dx)), m_material(material), m_form(form), m_kind(kind) {
   material.validate("ElasticSymbol2d");
   if (!(h > 0) || !std::isfinite(h))
-    throw std::invalid_argument("ElasticSymbol2d: h must be finite and > 0 (got " + fmt(h) + ")");
+    throw std::invalid_argument("ElasticSymbol2d: h must be finite and > 0 (got " + format_number(h) + ")");
   m_s0 = PreStrain{kind, 1.0}.stress(material);
   const double support = kernel.support_radius(h), vol = m_lattice.cell_area();
   const int reach = static_cast<int>(std::ceil(2 * support / m_lattice.a2.y())) + 2;
@@ -269,7 +265,7 @@ SymbolCriticalStrain critical_strain_infinite_2d(const ElasticSymbol2d& sym, Loa
         report_k(k);
       }
       const Eigen::Vector2d f = lat.fold(k) * lat.dx / M_PI;
-      unstable_zeros += " (" + fmt(f[0]) + " " + fmt(f[1]) + ")";
+      unstable_zeros += " (" + format_number(f[0]) + " " + format_number(f[1]) + ")";
     }
     if (p.r.mechanism == InstabilityMechanism::Neutral) ++out.neutral_points;
   }

@@ -28,6 +28,7 @@
 #include <tuple>
 #include <vector>
 
+#include "sphstab/io/format.hpp"
 #include "sphstab/jacobian/analytic_jacobian_2d.hpp"
 #include "sphstab/stability/critical_strain.hpp"
 #include "sphstab/stability/fourier_symbol_2d.hpp"
@@ -45,20 +46,8 @@ const std::vector<KernelType> kKernels{KernelType::CubicSpline, KernelType::Quin
                                        KernelType::WendlandC4};
 const std::vector<LatticeType> kLattices{LatticeType::Square, LatticeType::Hexagonal};
 
-std::string num(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.12g", v);
-  return buf;
-}
-std::string sig(double v, int digits = 3) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-  return buf;
-}
+std::string num(double v) { return format_number(v, 12); }
+std::string sig(double v, int digits = 3) { return format_number(v, digits); }
 std::string csv_field(const std::string& s) { return s.find(',') == std::string::npos ? s : "\"" + s + "\""; }
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 std::string kind_name(PreStrainKind k) { return k == PreStrainKind::Isotropic ? "isotropic" : "uniaxial"; }

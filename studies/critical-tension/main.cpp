@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "sphstab/io/format.hpp"
 #include "sphstab/jacobian/analytic_jacobian_1d.hpp"
 #include "sphstab/stability/critical_tension.hpp"
 #include "sphstab/stability/fourier_symbol.hpp"
@@ -40,21 +41,9 @@ const std::vector<KernelType> kKernels{KernelType::CubicSpline, KernelType::Quar
 const std::vector<int> kSizes{15, 30, 60, 120, 240, 480, 960};
 const std::vector<double> kHVersusN{1.0, 1.2, 1.5, 2.0};
 
-std::string num(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.12g", v);
-  return buf;
-}
+std::string num(double v) { return format_number(v, 12); }
 
-std::string sig(double v, int digits = 3) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return "inf";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-  return buf;
-}
+std::string sig(double v, int digits = 3) { return std::isinf(v) ? "inf" : format_number(v, digits); }
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 

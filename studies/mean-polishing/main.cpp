@@ -30,6 +30,7 @@
 
 #include "sphstab/forms/correction_gradient.hpp"
 #include "sphstab/forms/wave_1d.hpp"
+#include "sphstab/io/format.hpp"
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
 #include "sphstab/particles/lattice.hpp"
 #include "sphstab/stability/affine_critical_tension.hpp"
@@ -41,21 +42,9 @@ using Clock = std::chrono::steady_clock;
 
 constexpr int kLayerSupports = 3;  // fixed layers: see tension_lattice_1d
 
-std::string num(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
+std::string num(double v) { return format_number(v, 10); }
 
-std::string sig(double v, int digits = 3) {
-  if (std::isnan(v)) return "-";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-  return buf;
-}
+std::string sig(double v, int digits = 3) { return std::isnan(v) ? "-" : format_number(v, digits); }
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
