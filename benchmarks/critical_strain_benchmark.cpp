@@ -19,8 +19,9 @@
 
 #include "sphstab/jacobian/analytic_jacobian_2d.hpp"
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
-#include "sphstab/stability/critical_strain.hpp"
-#include "sphstab/stability/fourier_symbol_2d.hpp"
+#include "sphstab/particles/lattice_presets.hpp"
+#include "sphstab/spectral/fourier_symbol_2d.hpp"
+#include "sphstab/stability/critical_load.hpp"
 
 namespace {
 
@@ -45,11 +46,11 @@ std::shared_ptr<const Discretisation<2>> discretisation(int n) {
   return d;
 }
 
-const ElasticJacobian2d& jacobian(int n) {
-  static std::map<int, std::unique_ptr<ElasticJacobian2d>> cache;
+const Linearisation& jacobian(int n) {
+  static std::map<int, std::unique_ptr<Linearisation>> cache;
   auto& j = cache[n];
   if (!j)
-    j = std::make_unique<ElasticJacobian2d>(
+    j = std::make_unique<Linearisation>(
         analytic_jacobian_2d(*discretisation(n), kMaterial, MomentumForm::Conservative, PreStrainKind::Isotropic));
   return *j;
 }
@@ -67,8 +68,7 @@ void BM_Jacobian(benchmark::State& state) {
   volatile double sink = 0;
   long nnz0 = 0, nnz1 = 0;
   for (auto _ : state) {
-    const ElasticJacobian2d j =
-        analytic_jacobian_2d(*d, kMaterial, MomentumForm::Conservative, PreStrainKind::Isotropic);
+    const Linearisation j = analytic_jacobian_2d(*d, kMaterial, MomentumForm::Conservative, PreStrainKind::Isotropic);
     nnz0 = j.A0.nonZeros();
     nnz1 = j.A1.nonZeros();
     sink = j.A0.valuePtr()[0];
@@ -86,7 +86,7 @@ void BM_JacobianCS(benchmark::State& state) {
   const Eigen::VectorXd u = Eigen::VectorXd::Zero(force.dofs());
   volatile double sink = 0;
   for (auto _ : state) {
-    const AffineJacobian j = affine_jacobian(force, u);
+    const Linearisation j = affine_jacobian(force, u);
     sink = j.A0.valuePtr()[0];
   }
   (void)sink;
@@ -96,7 +96,7 @@ void BM_JacobianCS(benchmark::State& state) {
 
 void BM_Factorize(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
-  const ElasticJacobian2d& j = jacobian(n);
+  const Linearisation& j = jacobian(n);
   ColSparseMatrix a = ColSparseMatrix(j.at(1e-5)).triangularView<Eigen::Lower>();
   a.makeCompressed();
   Eigen::CholmodSupernodalLLT<ColSparseMatrix, Eigen::Lower> chol;
@@ -116,27 +116,27 @@ void BM_Factorize(benchmark::State& state) {
   common_counters(state, n);
 }
 
-void critical(benchmark::State& state, TcritMethod method) {
+void critical(benchmark::State& state, CriticalLoadMethod method) {
   const int n = static_cast<int>(state.range(0));
-  const ElasticJacobian2d& j = jacobian(n);
-  CriticalStrainOptions opt;
+  const Linearisation& j = jacobian(n);
+  CriticalLoadOptions opt = CriticalLoadOptions::strain_2d();
   opt.method = method;
   opt.want_mode = false;
   opt.backend = EigenBackend::Spectra;
-  CriticalStrain r;
+  CriticalLoad r;
   volatile double sink = 0;
   for (auto _ : state) {
-    r = critical_strain(j, LoadSign::Tension, opt);
-    sink = r.e;
+    r = critical_load(j, LoadDirection::Tension, opt);
+    sink = r.load;
   }
   (void)sink;
-  state.counters["ecrit"] = r.e;
-  state.counters["factorizations"] = r.factorizations;
+  state.counters["ecrit"] = r.load;
+  state.counters["factorizations"] = r.evaluations;
   state.counters["ok"] = r.status == Status::Successful;
   common_counters(state, n);
 }
-void BM_Bisection(benchmark::State& s) { critical(s, TcritMethod::Bisection); }
-void BM_Eigen(benchmark::State& s) { critical(s, TcritMethod::Eigen); }
+void BM_Bisection(benchmark::State& s) { critical(s, CriticalLoadMethod::Bisection); }
+void BM_Eigen(benchmark::State& s) { critical(s, CriticalLoadMethod::Eigen); }
 
 void BM_SymbolPeriodic(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
@@ -145,7 +145,7 @@ void BM_SymbolPeriodic(benchmark::State& state) {
   volatile double sink = 0;
   SymbolCriticalStrain r;
   for (auto _ : state) {
-    r = critical_strain_periodic_symbol_2d(sym, n + 1, LoadSign::Tension);  // odd n: no zone-boundary zero
+    r = critical_strain_periodic_symbol_2d(sym, n + 1, LoadDirection::Tension);  // odd n: no zone-boundary zero
     sink = r.e;
   }
   (void)sink;

@@ -25,11 +25,11 @@
 #include <string>
 #include <vector>
 
+#include "sphstab/forms/linear_elastic.hpp"
 #include "sphstab/integrate/leapfrog.hpp"
 #include "sphstab/integrate/time_step.hpp"
 #include "sphstab/io/csv.hpp"
 #include "sphstab/particles/lattice.hpp"
-#include "sphstab/scene/linear_elastic.hpp"
 
 using namespace sphstab;
 

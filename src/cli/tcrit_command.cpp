@@ -1,6 +1,6 @@
 // `sphstab tcrit`: critical tension of a 1D lattice (Powell ch. 3) with the closed-form estimates, as CSV; with
 // --correction, of the 1D forms with a corrected kernel gradient (Powell ch. 3 §4.1.1, ch. 4 §2) by the general
-// affine route (affine_critical_tension.hpp); or (--dim 2) the critical pre-strain of a 2D lattice (elastic forms,
+// affine route (critical_load.hpp); or (--dim 2) the critical pre-strain of a 2D lattice (elastic forms,
 // analytic Jacobian A0 + e A1).
 #include <cmath>
 #include <cstdio>
@@ -11,19 +11,19 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "sphstab/core/format.hpp"
 #include "sphstab/forms/correction_gradient.hpp"
 #include "sphstab/forms/momentum_form.hpp"
 #include "sphstab/forms/wave_1d.hpp"
-#include "sphstab/io/format.hpp"
+#include "sphstab/io/csv.hpp"
 #include "sphstab/jacobian/analytic_jacobian_2d.hpp"
 #include "sphstab/kernel/kernel.hpp"
 #include "sphstab/particles/lattice.hpp"
-#include "sphstab/stability/affine_critical_tension.hpp"
-#include "sphstab/stability/critical_strain.hpp"
-#include "sphstab/stability/critical_tension.hpp"
-#include "sphstab/stability/fourier_symbol.hpp"
-#include "sphstab/stability/fourier_symbol_2d.hpp"
-#include "sphstab/stability/tension_estimates.hpp"
+#include "sphstab/particles/lattice_presets.hpp"
+#include "sphstab/spectral/fourier_symbol.hpp"
+#include "sphstab/spectral/fourier_symbol_2d.hpp"
+#include "sphstab/spectral/tension_estimates.hpp"
+#include "sphstab/stability/critical_load.hpp"
 
 namespace sphstab::cli {
 
@@ -107,19 +107,6 @@ std::vector<double> parse_h(const std::string& spec) {
 
 std::string num(double v) { return format_number(v, 12); }
 
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += (c == '"') ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
-std::string row_string(const std::vector<std::string>& row) {
-  std::string out;
-  for (size_t c = 0; c < row.size(); ++c) out += (c ? "," : "") + row[c];
-  return out + "\n";
-}
-
 /// --dim 2: critical pre-strain e_crit of an n x n lattice (fixed layers: analytic Jacobian, bisection + eigen;
 /// periodic: exact Fourier symbols) with the infinite-lattice limit.
 void run_tcrit_2d(const TcritArgs& a) {
@@ -149,12 +136,12 @@ void run_tcrit_2d(const TcritArgs& a) {
   for (const auto& f : split(a.form, ',')) forms.push_back(parse_momentum_form(f));
   if (kernels.empty() || forms.empty()) throw std::invalid_argument("tcrit: --kernel and --form must not be empty");
   const std::vector<double> hs = parse_h(a.h);
-  CriticalStrainOptions opt;
-  opt.method = parse_tcrit_method(a.method);
+  CriticalLoadOptions opt = CriticalLoadOptions::strain_2d();
+  opt.method = parse_critical_load_method(a.method);
   opt.backend = parse_eigen_backend(a.backend);
-  opt.criterion = parse_strain_criterion(a.criterion);
+  opt.criterion = parse_criterion(a.criterion);
   opt.want_mode = true;
-  const LoadSign sign = a.compression ? LoadSign::Compression : LoadSign::Tension;
+  const LoadDirection sign = a.compression ? LoadDirection::Compression : LoadDirection::Tension;
   for (double h : hs) {
     const double support = Kernel<2>(kernels[0]).support_radius(h);
     if (a.periodic && n * (type == LatticeType::Hexagonal ? std::sqrt(3.0) / 2 : 1.0) < 2 * support)
@@ -175,25 +162,24 @@ void run_tcrit_2d(const TcritArgs& a) {
       for (MomentumForm form : forms) {
         const ElasticSymbol2d symbol(type, kernel, h, 1.0, material, form, kind);
         const SymbolCriticalStrain inf = critical_strain_infinite_2d(symbol, sign);
-        CriticalStrain r;
+        CriticalLoad r;
         std::string method = a.method, backend, criterion;
-        double tsym = CriticalStrain::nan;
+        double tsym = CriticalLoad::nan;
         if (a.periodic) {
           const SymbolCriticalStrain p = critical_strain_periodic_symbol_2d(symbol, n, sign);
-          r.e = tsym = p.e;
+          r.load = tsym = p.e;
           r.mechanism = p.mechanism;
-          r.mode_k.kx_over_pi = p.kx_over_pi;
-          r.mode_k.ky_over_pi = p.ky_over_pi;
+          r.mode_wavevector.kx_over_pi = p.kx_over_pi;
+          r.mode_wavevector.ky_over_pi = p.ky_over_pi;
           r.status = Status::Successful;
           r.reason = p.reason;
           method = "symbol";
           backend = "none";
           criterion = "spectrum";
         } else {
-          const ElasticJacobian2d jac = analytic_jacobian_2d(*disc, material, form, kind);
-          r = critical_strain(jac, sign, opt);
+          r = critical_load(analytic_jacobian_2d(*disc, material, form, kind), sign, opt);
           backend = r.eigen_backend.empty() ? "none" : r.eigen_backend;
-          criterion = strain_criterion_name(r.criterion);
+          criterion = criterion_name(r.criterion);
         }
         const std::vector<std::string> row{kernel_name(kt),
                                            momentum_form_name(form),
@@ -201,27 +187,27 @@ void run_tcrit_2d(const TcritArgs& a) {
                                            std::to_string(n),
                                            a.periodic ? "1" : "0",
                                            prestrain_name,
-                                           load_sign_name(sign),
+                                           load_direction_name(sign),
                                            num(h),
                                            "critical-prestrain",
                                            method,
                                            backend,
                                            criterion,
-                                           num(r.e),
-                                           num(r.e_eigen),
-                                           num(r.e_bisection),
+                                           num(r.load),
+                                           num(r.load_eigen),
+                                           num(r.load_bisection),
                                            num(r.relative_difference),
                                            mechanism_name(r.mechanism),
                                            num(inf.e),
                                            num(tsym),
-                                           num(r.mode_k.kx_over_pi),
-                                           num(r.mode_k.ky_over_pi),
-                                           num(r.mode_k.peak_fraction),
+                                           num(r.mode_wavevector.kx_over_pi),
+                                           num(r.mode_wavevector.ky_over_pi),
+                                           num(r.mode_wavevector.peak_fraction),
                                            num(inf.kx_over_pi),
                                            num(inf.ky_over_pi),
                                            status_name(r.status),
-                                           csv_field(r.reason)};
-        out += row_string(row);
+                                           r.reason};
+        out += csv_line(row);
       }
     }
   }
@@ -254,32 +240,31 @@ void run_tcrit(const TcritArgs& a) {
   for (const auto& f : split(a.form, ',')) forms.push_back(parse_momentum_form(f));
   if (kernels.empty() || forms.empty()) throw std::invalid_argument("tcrit: --kernel and --form must not be empty");
   const std::vector<double> hs = parse_h(a.h);
-  CriticalTensionOptions opt;
-  opt.method = parse_tcrit_method(a.method);
-  opt.backend = parse_eigen_backend(a.backend);
-  opt.want_mode = opt.method != TcritMethod::Bisection;
+  const CriticalLoadMethod method = parse_critical_load_method(a.method);
+  const EigenBackend backend = parse_eigen_backend(a.backend);
+  auto with_routes = [&](CriticalLoadOptions o) {
+    o.method = method;
+    o.backend = backend;
+    o.want_mode = method != CriticalLoadMethod::Bisection;
+    return o;
+  };
 
   // Rows are collected first so that an error on any row leaves stdout empty (one error line, exit 1).
   std::string out =
       "kernel,form,N,periodic,h_over_dx,method,backend,tcrit,tcrit_eig,tcrit_bisect,rel_diff,t_first_minor,"
       "t_second_minor,t_nn,t_nn_minor,t_swegle,tcrit_infinite,tcrit_symbol,mode_k_over_pi,status,reason,criterion\n";
-  auto add_row = [&out](const std::vector<std::string>& row) {
-    for (size_t c = 0; c < row.size(); ++c) out += (c ? "," : "") + row[c];
-    out += "\n";
-  };
-  const double nan = CriticalTension::nan;
+  auto add_row = [&out](const std::vector<std::string>& row) { out += csv_line(row); };
+  const double nan = CriticalLoad::nan;
   for (KernelType type : kernels) {
     Kernel<1> kernel(type);
     for (double h : hs) {
       if (correction == Correction::None) {
         // Plain kernel: the analytic Jacobian K - n T L (Powell 3.40) and the closed-form estimates.
         const ParticleSet<1> set = tension_lattice_1d(kernel, h, nfree, a.periodic);
-        TensionJacobian1d jac = analytic_jacobian_1d(set, kernel, h);
-        if (a.compression) jac.L = SparseMatrix<>(-jac.L);  // A(T) = K + |T| n L for T < 0
-        const double sign = a.compression ? -1.0 : 1.0;
         for (MomentumForm form : forms) {
           const int n = initial_stress_multiplier(form);
-          const CriticalTension r = critical_tension(jac, n, opt);
+          const CriticalLoad r =
+              critical_tension_1d(set, kernel, h, form, with_routes(CriticalLoadOptions::tension_1d()), direction);
           const TensionEstimates1d e = tension_estimates_1d(kernel, h, 1.0, n);
           const SymbolCriticalTension inf = critical_tension_infinite_1d(kernel, h, 1.0, n);
           const double symbol =
@@ -292,9 +277,9 @@ void run_tcrit(const TcritArgs& a) {
                    num(h),
                    a.method,
                    r.eigen_backend.empty() ? "none" : r.eigen_backend,
-                   num(sign * r.tcrit),
-                   num(sign * r.tcrit_eigen),
-                   num(sign * r.tcrit_bisection),
+                   num(r.load),
+                   num(r.load_eigen),
+                   num(r.load_bisection),
                    num(r.relative_difference),
                    num(t ? e.first_minor : nan),
                    num(t ? e.second_minor : nan),
@@ -305,31 +290,27 @@ void run_tcrit(const TcritArgs& a) {
                    num(symbol),
                    num(r.mode_wavenumber.k_projection),
                    status_name(r.status),
-                   csv_field(a.compression ? "compression: T < 0 searched as K + |T| n L; " + r.reason : r.reason),
-                   criterion_name(StabilityCriterion::PositiveDefinite)});
+                   a.compression ? "compression: T < 0 searched as K + |T| n L; " + r.reason : r.reason,
+                   criterion_name(r.criterion)});
         }
         continue;
       }
       // Corrected kernel: complex-step A(T) = A0 + T A1 of the force function, then the general criteria.
       const ParticleSet<1> set = tension_lattice_1d(kernel, h, nfree, false, kCorrectedLayerSupports);
       auto disc = make_discretisation(set, kernel, h);
-      Eigen::VectorXd x(disc->free_count());
-      for (int f = 0; f < disc->free_count(); ++f) x[f] = set.x(disc->free[f], 0);
+      const Eigen::MatrixXd x = disc->free_positions();
       const auto provider = make_gradient_provider<1>(correction);
-      AffineCriticalOptions aopt;
-      aopt.symmetric = opt;
+      const CriticalLoadOptions fopt = with_routes(CriticalLoadOptions::force_function());
       for (MomentumForm form : forms) {
         WaveForm1D force(disc, form, 0.0, provider, {.corrected = corrected});
-        const ForceCriticalLoad load = critical_load(force, direction, x, aopt);
+        const ForceCriticalLoad load = force_critical_loads(force, direction, x, fopt);
         std::string note = "corrected " + force.name().substr(force.name().rfind('/') + 1) + "; fixed layers " +
                            std::to_string(kCorrectedLayerSupports) + " supports";
         if (load.residual_relative > 1e-10)
           note += "; WARNING u = 0 is not an equilibrium (max|a(0)|/max|A0| = " + num(load.residual_relative) + ")";
-        for (const AffineCriticalTension& r : load.results) {
-          const bool pd = r.criterion != StabilityCriterion::RealPositiveSpectrum;
-          const double sign = a.compression ? -1.0 : 1.0;
-          const std::string backend =
-              pd ? (r.pd.eigen_backend.empty() ? "none" : r.pd.eigen_backend) : std::string("dgeev");
+        for (const CriticalLoad& r : load.results) {
+          const bool pd = r.criterion != Criterion::Spectrum;
+          const std::string backend = pd ? (r.eigen_backend.empty() ? "none" : r.eigen_backend) : std::string("dgeev");
           add_row({kernel_name(type),
                    momentum_form_name(form),
                    std::to_string(nfree),
@@ -337,10 +318,10 @@ void run_tcrit(const TcritArgs& a) {
                    num(h),
                    a.method,
                    backend,
-                   num(r.tcrit),
-                   num(pd ? sign * r.pd.tcrit_eigen : nan),
-                   num(pd ? sign * r.pd.tcrit_bisection : r.tcrit),
-                   num(pd ? r.pd.relative_difference : nan),
+                   num(r.load),
+                   num(r.load_eigen),
+                   num(r.load_bisection),
+                   num(r.relative_difference),
                    num(nan),
                    num(nan),
                    num(nan),
@@ -348,9 +329,9 @@ void run_tcrit(const TcritArgs& a) {
                    num(nan),
                    num(nan),
                    num(nan),
-                   num(r.mode_wavenumber.k_projection),
+                   num(r.reported_wavenumber().k_projection),
                    status_name(r.status),
-                   csv_field(note + "; " + r.reason),
+                   note + "; " + r.reason,
                    criterion_name(r.criterion)});
         }
       }

@@ -3,13 +3,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <stdexcept>
-
-#include "sphstab/io/csv.hpp"
-#include "sphstab/io/progress.hpp"
-#include "sphstab/io/vtk.hpp"
 
 namespace sphstab {
 
@@ -102,8 +97,8 @@ RunResult run_leapfrog(const SecondOrderSystem& system, const Eigen::VectorXd& u
     if (system.reference_positions.size() == 0)
       throw std::invalid_argument("run_leapfrog: the box check needs system.reference_positions");
   }
-  if (opt.snapshot_every > 0 && (system.reference_positions.size() == 0 || opt.snapshot_prefix.empty()))
-    throw std::invalid_argument("run_leapfrog: snapshots need system.reference_positions and a snapshot_prefix");
+  for (const RunObserver* o : opt.observers)
+    if (o == nullptr) throw std::invalid_argument("run_leapfrog: null observer");
   const bool energy_check = std::isfinite(opt.limits.energy_growth);
   if (energy_check && !(opt.limits.energy_growth > 1))
     throw std::invalid_argument("run_leapfrog: limits.energy_growth must be > 1 (got " +
@@ -122,38 +117,14 @@ RunResult run_leapfrog(const SecondOrderSystem& system, const Eigen::VectorXd& u
   res.dt = dt;
   LeapfrogStepper st(system, u0, v0, 0.0);
 
-  std::unique_ptr<CsvWriter> csv;
-  if (!opt.csv_path.empty()) csv = std::make_unique<CsvWriter>(opt.csv_path, diagnostics_columns(dpp));
-  std::vector<std::pair<double, std::string>> pvd;
-  ProgressLine progress(opt.label, opt.progress_interval, opt.progress);
-
   auto record = [&](long step) {
     Diagnostics d = compute_diagnostics(system, st.u(), st.v(), step, st.time());
-    if (opt.keep_history) res.history.push_back(d);
-    if (csv) {
-      std::vector<CsvCell> row;
-      row.reserve(5 + dpp + 2);
-      row.emplace_back(d.step);
-      for (double x : {d.time, d.kinetic, d.strain, d.total}) row.emplace_back(x);
-      for (int a = 0; a < dpp; ++a) row.push_back(d.momentum[a]);
-      row.push_back(d.max_abs_displacement);
-      row.push_back(d.max_abs_velocity);
-      csv->row(row);
-    }
+    for (RunObserver* o : opt.observers) o->record(d);
+    if (opt.keep_history) res.history.push_back(std::move(d));
   };
   auto snapshot = [&](long step) {
-    const long np = st.u().size() / dpp;
-    Eigen::MatrixXd x(np, dpp);
-    for (long i = 0; i < np; ++i)
-      for (int a = 0; a < dpp; ++a) x(i, a) = system.reference_positions[i * dpp + a] + st.u()[i * dpp + a];
-    char name[32];
-    std::snprintf(name, sizeof(name), "_%06ld.vtp", step);
-    const std::string path = opt.snapshot_prefix + name;
-    std::vector<VtkField> fields = {
-        {"displacement", dpp, st.u()}, {"velocity", dpp, st.v()}, {"acceleration", dpp, st.a()}};
-    write_vtp(path, x, fields);
-    pvd.emplace_back(st.time(), std::filesystem::path(path).filename().string());
-    write_pvd(opt.snapshot_prefix + ".pvd", pvd);  // rewritten each time: valid even if the run stops
+    const StepView view{step, st.time(), st.u(), st.v(), st.a()};
+    for (RunObserver* o : opt.observers) o->snapshot(view);
   };
   auto observe = [&]() {
     if (opt.observer && opt.observe_every > 0) opt.observer(StepView{st.steps(), st.time(), st.u(), st.v(), st.a()});
@@ -225,11 +196,7 @@ RunResult run_leapfrog(const SecondOrderSystem& system, const Eigen::VectorXd& u
     if (last || (opt.diagnostics_every > 0 && n % opt.diagnostics_every == 0)) record(n);
     if (opt.snapshot_every > 0 && (n % opt.snapshot_every == 0 || last)) snapshot(n);
     if (opt.observe_every > 0 && (n % opt.observe_every == 0 || last)) observe();
-    if (opt.progress) {
-      char buf[96];
-      std::snprintf(buf, sizeof(buf), "step %ld/%ld t = %.4g", n, nsteps, st.time());
-      progress.update(static_cast<double>(n), static_cast<double>(nsteps), buf);
-    }
+    for (RunObserver* o : opt.observers) o->advanced(n, nsteps, st.time());
   }
   res.status = status;
   res.steps = st.steps();
@@ -247,9 +214,8 @@ RunResult run_leapfrog(const SecondOrderSystem& system, const Eigen::VectorXd& u
     record(res.steps);
     if (opt.snapshot_every > 0 && status != RunStatus::NonFinite) snapshot(res.steps);
   }
-  if (csv) csv->flush();
   res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  if (opt.progress) progress.finish(res.message);
+  for (RunObserver* o : opt.observers) o->finished(res.message);
   return res;
 }
 

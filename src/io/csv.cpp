@@ -6,9 +6,7 @@
 
 namespace sphstab {
 
-namespace {
-
-std::string quote_if_needed(const std::string& s) {
+std::string csv_quote(const std::string& s) {
   if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
   std::string q = "\"";
   for (char c : s) {
@@ -17,6 +15,14 @@ std::string quote_if_needed(const std::string& s) {
   }
   return q + "\"";
 }
+
+std::string csv_line(const std::vector<std::string>& fields) {
+  std::string out;
+  for (std::size_t c = 0; c < fields.size(); ++c) out += (c ? "," : "") + csv_quote(fields[c]);
+  return out + "\n";
+}
+
+namespace {
 
 std::vector<std::string> split_line(const std::string& line) {
   std::vector<std::string> cells;
@@ -60,7 +66,7 @@ std::string format_csv_cell(const CsvCell& cell) {
     return std::string(buf, res.ptr);
   }
   if (cell.kind == CsvCell::Kind::Integer) return std::to_string(cell.integer);
-  return quote_if_needed(cell.text);
+  return csv_quote(cell.text);
 }
 
 CsvWriter::CsvWriter(const std::string& path, std::vector<std::string> columns, bool flush_every_row)
@@ -68,7 +74,7 @@ CsvWriter::CsvWriter(const std::string& path, std::vector<std::string> columns, 
   if (m_columns.empty()) throw std::invalid_argument("CsvWriter: empty column list for '" + path + "'");
   m_out.open(path, std::ios::out | std::ios::trunc);
   if (!m_out) throw std::runtime_error("CsvWriter: cannot open '" + path + "' for writing");
-  for (std::size_t k = 0; k < m_columns.size(); ++k) m_out << (k ? "," : "") << quote_if_needed(m_columns[k]);
+  for (std::size_t k = 0; k < m_columns.size(); ++k) m_out << (k ? "," : "") << csv_quote(m_columns[k]);
   m_out << '\n';
   m_out.flush();
 }

@@ -8,17 +8,7 @@
 
 namespace sphstab {
 
-SparseMatrix<> TensionJacobian1d::matrix(MomentumForm form, double tension) const {
-  return matrix(initial_stress_multiplier(form) * tension);
-}
-
-SparseMatrix<> TensionJacobian1d::matrix(double tau) const {
-  SparseMatrix<> a = K - tau * L;
-  a.makeCompressed();
-  return a;
-}
-
-TensionJacobian1d analytic_jacobian_1d(const ParticleSet<1>& p, const Operators<1>& ops) {
+Linearisation analytic_jacobian_1d(const ParticleSet<1>& p, const Operators<1>& ops, MomentumForm form) {
   p.validate("analytic_jacobian_1d");
   const int n = p.size();
   const SparseMatrix<>& g = ops.G[0];
@@ -30,17 +20,17 @@ TensionJacobian1d analytic_jacobian_1d(const ParticleSet<1>& p, const Operators<
     throw std::invalid_argument("analytic_jacobian_1d: Hessian operator H must be " + std::to_string(n) + " x " +
                                 std::to_string(n) + " (assemble with hessian = true)");
 
-  TensionJacobian1d jac;
+  Linearisation jac;
   jac.free_index = p.indices(Role::Free);
-  const int nf = jac.size();
+  const int nf = static_cast<int>(jac.free_index.size());
   if (nf == 0) throw std::invalid_argument("analytic_jacobian_1d: the particle set has no free particles");
   jac.periodic = p.periodic[0];
   jac.spacing = p.spacing;
-  jac.x.resize(nf);
+  jac.x.resize(nf, 1);
   std::vector<int> local(n, -1);
   for (int k = 0; k < nf; ++k) {
     local[jac.free_index[k]] = k;
-    jac.x[k] = p.x(jac.free_index[k], 0);
+    jac.x(k, 0) = p.x(jac.free_index[k], 0);
   }
 
   // Preconditions: G antisymmetric on the free rows and zero row sums (complete symmetric neighbourhoods).
@@ -78,8 +68,8 @@ TensionJacobian1d analytic_jacobian_1d(const ParticleSet<1>& p, const Operators<
     gf.setFromTriplets(t.begin(), t.end());
   }
   SparseMatrix<> gft = gf.transpose();
-  jac.K = (gf * gft).pruned(0.0, 0.0);
-  jac.K.makeCompressed();
+  jac.A0 = (gf * gft).pruned(0.0, 0.0);
+  jac.A0.makeCompressed();
   {
     std::vector<Eigen::Triplet<double>> t;
     for (int k = 0; k < nf; ++k) {
@@ -93,17 +83,20 @@ TensionJacobian1d analytic_jacobian_1d(const ParticleSet<1>& p, const Operators<
       }
       t.emplace_back(k, k, diag);
     }
-    jac.L.resize(nf, nf);
-    jac.L.setFromTriplets(t.begin(), t.end());
-    jac.L.makeCompressed();
+    jac.A1.resize(nf, nf);
+    jac.A1.setFromTriplets(t.begin(), t.end());  // L
+    jac.A1 *= -static_cast<double>(initial_stress_multiplier(form));
+    jac.A1.makeCompressed();
   }
+  jac.symmetric = true;
+  jac.complete = true;
   return jac;
 }
 
-TensionJacobian1d analytic_jacobian_1d(const ParticleSet<1>& p, const Kernel<1>& kernel, double h) {
+Linearisation analytic_jacobian_1d(const ParticleSet<1>& p, const Kernel<1>& kernel, double h, MomentumForm form) {
   const NeighbourList nl = find_neighbours(p, kernel.support_radius(h));
   const Operators<1> ops = assemble_operators(p, nl, kernel, h, {.kernel = false, .gradient = true, .hessian = true});
-  return analytic_jacobian_1d(p, ops);
+  return analytic_jacobian_1d(p, ops, form);
 }
 
 }  // namespace sphstab

@@ -42,14 +42,8 @@ SparseMatrix<> block_matrix(int nfree, RowFn&& row_blocks, long nnz_hint) {
 
 }  // namespace
 
-SparseMatrix<> ElasticJacobian2d::at(double e) const {
-  SparseMatrix<> a = A0 + e * A1;
-  a.makeCompressed();
-  return a;
-}
-
-ElasticJacobian2d analytic_jacobian_2d(const Discretisation<2>& d, const Operators<2>& ops,
-                                       const ElasticMaterial& material, MomentumForm form, PreStrainKind kind) {
+Linearisation analytic_jacobian_2d(const Discretisation<2>& d, const Operators<2>& ops, const ElasticMaterial& material,
+                                   MomentumForm form, PreStrainKind kind) {
   material.validate("analytic_jacobian_2d");
   const int n = d.size(), nf = d.free_count();
   const NeighbourList& nl = d.neighbours;
@@ -65,9 +59,8 @@ ElasticJacobian2d analytic_jacobian_2d(const Discretisation<2>& d, const Operato
   check(ops.H[0][1], "H[x][y]");
   check(ops.H[1][1], "H[y][y]");
 
-  ElasticJacobian2d jac;
-  jac.form = form;
-  jac.kind = kind;
+  Linearisation jac;
+  jac.dofs_per_particle = 2;
   jac.free_index = d.free;
   jac.x.resize(nf, 2);
   for (int f = 0; f < nf; ++f) jac.x.row(f) = d.particles.x.row(d.free[f]);
@@ -177,14 +170,14 @@ ElasticJacobian2d analytic_jacobian_2d(const Discretisation<2>& d, const Operato
   return jac;
 }
 
-ElasticJacobian2d analytic_jacobian_2d(const Discretisation<2>& d, const ElasticMaterial& material, MomentumForm form,
-                                       PreStrainKind kind) {
+Linearisation analytic_jacobian_2d(const Discretisation<2>& d, const ElasticMaterial& material, MomentumForm form,
+                                   PreStrainKind kind) {
   const Operators<2> ops = assemble_operators<2>(d.particles, d.neighbours, d.kernel, d.h,
                                                  {.kernel = false, .gradient = true, .hessian = true});
   return analytic_jacobian_2d(d, ops, material, form, kind);
 }
 
-ElasticJacobian2d analytic_jacobian_2d(const ElasticForm2D& force) {
+Linearisation analytic_jacobian_2d(const ElasticForm2D& force) {
   if (force.gradient_provider() && !force.gradient_provider()->is_plain())
     throw std::invalid_argument("analytic_jacobian_2d: gradient provider '" + force.gradient_provider()->name() +
                                 "' is not covered by the closed form (use affine_jacobian)");

@@ -66,39 +66,34 @@ SparseMatrix<> ComplexStepJacobian::compute(const Eigen::VectorXd& u, const Forc
       }
     }
   }
-  m_info = finite ? JacobianStatus::Successful : JacobianStatus::NumericalIssue;
+  m_info = finite ? Status::Successful : Status::NumericalIssue;
   return A;
 }
 
 SparseMatrix<> jacobian(const ForceFunction& force, const Eigen::VectorXd& u) {
   ComplexStepJacobian jac(force);
   SparseMatrix<> A = jac.compute(u);
-  if (jac.info() != JacobianStatus::Successful)
+  if (jac.info() != Status::Successful)
     throw std::runtime_error("jacobian: the force function " + force.name() + " is not finite at u");
   return A;
 }
 
-AffineJacobian affine_jacobian(const ForceFunction& force, const Eigen::VectorXd& u) {
+Linearisation affine_jacobian(const ForceFunction& force, const Eigen::VectorXd& u, double symmetry_tol) {
   ComplexStepJacobian jac(force);
   auto f0 = force.with_load(0.0), f1 = force.with_load(1.0);
-  AffineJacobian split;
+  Linearisation split;
+  split.dofs_per_particle = force.dim();
   split.A0 = jac.compute(u, f0.get());
-  if (jac.info() != JacobianStatus::Successful)
+  if (jac.info() != Status::Successful)
     throw std::runtime_error("affine_jacobian: the force function " + force.name() + " is not finite at u");
   split.A1 = jac.compute(u, f1.get());
-  if (jac.info() != JacobianStatus::Successful)
+  if (jac.info() != Status::Successful)
     throw std::runtime_error("affine_jacobian: the force function " + force.name() + " is not finite at u");
+  split.symmetric = relative_asymmetry(split.A0) <= symmetry_tol && relative_asymmetry(split.A1) <= symmetry_tol;
   // Same pattern: subtract value by value (keeps the structure, explicit zeros included).
   Eigen::Map<Eigen::VectorXd>(split.A1.valuePtr(), split.A1.nonZeros()) -=
       Eigen::Map<const Eigen::VectorXd>(split.A0.valuePtr(), split.A0.nonZeros());
   return split;
-}
-
-double relative_asymmetry(const SparseMatrix<>& A) {
-  const double norm = A.norm();
-  if (norm == 0.0) return 0.0;
-  SparseMatrix<> At = A.transpose();
-  return SparseMatrix<>(A - At).norm() / norm;
 }
 
 }  // namespace sphstab

@@ -12,6 +12,14 @@ int ParticleSet<Dim>::count(Role r) const {
 }
 
 template <int Dim>
+typename ParticleSet<Dim>::Points ParticleSet<Dim>::positions(Role r) const {
+  const std::vector<int> idx = indices(r);
+  Points p(static_cast<Eigen::Index>(idx.size()), Dim);
+  for (std::size_t k = 0; k < idx.size(); ++k) p.row(static_cast<Eigen::Index>(k)) = x.row(idx[k]);
+  return p;
+}
+
+template <int Dim>
 std::vector<int> ParticleSet<Dim>::indices(Role r) const {
   std::vector<int> out;
   for (int i = 0; i < size(); ++i)

@@ -36,7 +36,7 @@ void newton(const ForceFunction& force, const EquilibriumOptions& o, double refe
   for (int it = 1; it <= o.max_iterations; ++it) {
     if (refresh || !have_lu) {
       const SparseMatrix<> Ar = jac.compute(out.u);
-      if (jac.info() != JacobianStatus::Successful) {
+      if (jac.info() != Status::Successful) {
         out.status = Status::NumericalIssue;
         out.message = "non-finite Jacobian";
         return;

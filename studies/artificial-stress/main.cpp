@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "sphstab/stability/lattice_dispersion.hpp"
+#include "sphstab/spectral/lattice_dispersion.hpp"
 
 using namespace sphstab;
 

@@ -28,10 +28,11 @@
 #include <tuple>
 #include <vector>
 
-#include "sphstab/io/format.hpp"
+#include "sphstab/core/format.hpp"
 #include "sphstab/jacobian/analytic_jacobian_2d.hpp"
-#include "sphstab/stability/critical_strain.hpp"
-#include "sphstab/stability/fourier_symbol_2d.hpp"
+#include "sphstab/particles/lattice_presets.hpp"
+#include "sphstab/spectral/fourier_symbol_2d.hpp"
+#include "sphstab/stability/critical_load.hpp"
 
 namespace {
 
@@ -74,9 +75,9 @@ struct SweepRow {
   double h;
   MomentumForm form;
   PreStrainKind kind;
-  LoadSign sign;
+  LoadDirection sign;
   int n;
-  CriticalStrain r;
+  CriticalLoad r;
   SymbolCriticalStrain inf;
   double seconds;
 };
@@ -89,13 +90,13 @@ std::string sweep_header() {
 std::string sweep_line(const SweepRow& s) {
   std::ostringstream o;
   o << lattice_name(s.lattice) << "," << kernel_name(s.kernel) << "," << num(s.h) << "," << momentum_form_name(s.form)
-    << "," << kind_name(s.kind) << "," << load_sign_name(s.sign) << "," << s.n << ","
-    << strain_criterion_name(s.r.criterion) << "," << num(s.r.e) << "," << num(s.r.e_eigen) << ","
-    << num(s.r.e_bisection) << "," << num(s.r.relative_difference) << "," << mechanism_name(s.r.mechanism) << ","
-    << num(s.r.mode_k.kx_over_pi) << "," << num(s.r.mode_k.ky_over_pi) << "," << num(s.r.mode_k.peak_fraction) << ","
-    << num(s.inf.e) << "," << num(s.inf.kx_over_pi) << "," << num(s.inf.ky_over_pi) << ","
-    << mechanism_name(s.inf.mechanism) << "," << status_name(s.r.status) << "," << csv_field(s.r.reason) << ","
-    << sig(s.seconds, 4) << "\n";
+    << "," << kind_name(s.kind) << "," << load_direction_name(s.sign) << "," << s.n << ","
+    << criterion_name(s.r.criterion) << "," << num(s.r.load) << "," << num(s.r.load_eigen) << ","
+    << num(s.r.load_bisection) << "," << num(s.r.relative_difference) << "," << mechanism_name(s.r.mechanism) << ","
+    << num(s.r.mode_wavevector.kx_over_pi) << "," << num(s.r.mode_wavevector.ky_over_pi) << ","
+    << num(s.r.mode_wavevector.peak_fraction) << "," << num(s.inf.e) << "," << num(s.inf.kx_over_pi) << ","
+    << num(s.inf.ky_over_pi) << "," << mechanism_name(s.inf.mechanism) << "," << status_name(s.r.status) << ","
+    << csv_field(s.r.reason) << "," << sig(s.seconds, 4) << "\n";
   return o.str();
 }
 
@@ -136,14 +137,15 @@ int main(int argc, char** argv) {
           for (PreStrainKind kind : {PreStrainKind::Isotropic, PreStrainKind::UniaxialX})
             for (MomentumForm form : all_momentum_forms()) {
               if (!subset && (form != MomentumForm::Conservative || kind != PreStrainKind::Isotropic)) continue;
-              const ElasticJacobian2d jac = analytic_jacobian_2d(*disc, ops, kMaterial, form, kind);
+              const Linearisation jac = analytic_jacobian_2d(*disc, ops, kMaterial, form, kind);
               const ElasticSymbol2d symbol(lt, kernel, h, 1.0, kMaterial, form, kind);
-              for (LoadSign sign : {LoadSign::Tension, LoadSign::Compression}) {
+              for (LoadDirection sign : {LoadDirection::Tension, LoadDirection::Compression}) {
                 const auto tc = Clock::now();
-                CriticalStrainOptions opt;
-                if (!jac.symmetric) opt.criterion = StrainCriterion::SymmetricPart;  // dense spectrum: nonsymmetric.csv
-                opt.method = subset && form == MomentumForm::Conservative ? TcritMethod::Both : TcritMethod::Eigen;
-                SweepRow row{lt, kt, h, form, kind, sign, n_main, critical_strain(jac, sign, opt), {}, 0};
+                CriticalLoadOptions opt = CriticalLoadOptions::strain_2d();
+                if (!jac.symmetric) opt.criterion = Criterion::SymmetricPart;  // dense spectrum: nonsymmetric.csv
+                opt.method =
+                    subset && form == MomentumForm::Conservative ? CriticalLoadMethod::Both : CriticalLoadMethod::Eigen;
+                SweepRow row{lt, kt, h, form, kind, sign, n_main, critical_load(jac, sign, opt), {}, 0};
                 row.inf = critical_strain_infinite_2d(symbol, sign, 128);
                 row.seconds = seconds_since(tc);
                 sweep_csv << sweep_line(row);
@@ -183,13 +185,12 @@ int main(int argc, char** argv) {
     for (const Job& j : jobs) {
       const Kernel<2> kernel(j.kt);
       auto disc = make_discretisation(strain_lattice_2d(j.lt, kernel, j.h, j.n), kernel, j.h);
-      const ElasticJacobian2d jac =
-          analytic_jacobian_2d(*disc, kMaterial, MomentumForm::Plus, PreStrainKind::UniaxialX);
+      const Linearisation jac = analytic_jacobian_2d(*disc, kMaterial, MomentumForm::Plus, PreStrainKind::UniaxialX);
       const ElasticSymbol2d symbol(j.lt, kernel, j.h, 1.0, kMaterial, MomentumForm::Plus, PreStrainKind::UniaxialX);
-      for (LoadSign sign : {LoadSign::Tension, LoadSign::Compression}) {
+      for (LoadDirection sign : {LoadDirection::Tension, LoadDirection::Compression}) {
         const auto tc = Clock::now();
-        CriticalStrainOptions opt;
-        opt.criterion = StrainCriterion::Spectrum;
+        CriticalLoadOptions opt = CriticalLoadOptions::strain_2d();
+        opt.criterion = Criterion::Spectrum;
         SweepRow row{j.lt,
                      j.kt,
                      j.h,
@@ -197,7 +198,7 @@ int main(int argc, char** argv) {
                      PreStrainKind::UniaxialX,
                      sign,
                      j.n,
-                     critical_strain(jac, sign, opt),
+                     critical_load(jac, sign, opt),
                      critical_strain_infinite_2d(symbol, sign, 128),
                      0};
         row.seconds = seconds_since(tc);
@@ -217,9 +218,9 @@ int main(int argc, char** argv) {
     LatticeType lt;
     KernelType kt;
     double h;
-    LoadSign sign;
+    LoadDirection sign;
     int n;
-    CriticalStrain r;
+    CriticalLoad r;
     SymbolCriticalStrain periodic, inf;
     double seconds;
     std::string method;
@@ -241,31 +242,31 @@ int main(int argc, char** argv) {
                                        PreStrainKind::Isotropic);
           for (int n : sizes) {
             auto disc = make_discretisation(strain_lattice_2d(lt, kernel, h, n), kernel, h);
-            const ElasticJacobian2d jac =
+            const Linearisation jac =
                 analytic_jacobian_2d(*disc, kMaterial, MomentumForm::Conservative, PreStrainKind::Isotropic);
-            for (LoadSign sign : {LoadSign::Tension, LoadSign::Compression}) {
+            for (LoadDirection sign : {LoadDirection::Tension, LoadDirection::Compression}) {
               const auto tc = Clock::now();
-              CriticalStrainOptions opt;
+              CriticalLoadOptions opt = CriticalLoadOptions::strain_2d();
               // Bisection (~40 factorisations) up to n = 20; the eigen route alone above (benchmark.md: timing).
-              opt.method = n <= 20 ? TcritMethod::Both : TcritMethod::Eigen;
+              opt.method = n <= 20 ? CriticalLoadMethod::Both : CriticalLoadMethod::Eigen;
               NRow row{lt,
                        kt,
                        h,
                        sign,
                        n,
-                       critical_strain(jac, sign, opt),
+                       critical_load(jac, sign, opt),
                        critical_strain_periodic_symbol_2d(symbol, n, sign),
                        critical_strain_infinite_2d(symbol, sign),
                        0,
                        n <= 20 ? "both" : "eig"};
               row.seconds = seconds_since(tc);
               csv << lattice_name(lt) << "," << kernel_name(kt) << "," << num(h) << ",conservative,isotropic,"
-                  << load_sign_name(sign) << "," << n << "," << row.method << "," << num(row.r.e) << ","
-                  << num(row.r.e_eigen) << "," << num(row.r.e_bisection) << "," << num(row.r.relative_difference) << ","
-                  << num(row.r.mode_k.kx_over_pi) << "," << num(row.r.mode_k.ky_over_pi) << "," << num(row.periodic.e)
-                  << "," << num(row.periodic.kx_over_pi) << "," << num(row.periodic.ky_over_pi) << "," << num(row.inf.e)
-                  << "," << status_name(row.r.status) << "," << csv_field(row.r.reason) << "," << sig(row.seconds, 4)
-                  << "\n";
+                  << load_direction_name(sign) << "," << n << "," << row.method << "," << num(row.r.load) << ","
+                  << num(row.r.load_eigen) << "," << num(row.r.load_bisection) << "," << num(row.r.relative_difference)
+                  << "," << num(row.r.mode_wavevector.kx_over_pi) << "," << num(row.r.mode_wavevector.ky_over_pi) << ","
+                  << num(row.periodic.e) << "," << num(row.periodic.kx_over_pi) << "," << num(row.periodic.ky_over_pi)
+                  << "," << num(row.inf.e) << "," << status_name(row.r.status) << "," << csv_field(row.r.reason) << ","
+                  << sig(row.seconds, 4) << "\n";
               nrows.push_back(std::move(row));
             }
           }
@@ -282,7 +283,7 @@ int main(int argc, char** argv) {
     double h;
     MomentumForm form;
     PreStrainKind kind;
-    LoadSign sign;
+    LoadDirection sign;
     SymbolCriticalStrain s;
   };
   std::vector<InfRow> infrows;
@@ -296,10 +297,10 @@ int main(int argc, char** argv) {
           for (MomentumForm form : {MomentumForm::Conservative, MomentumForm::Plus})
             for (PreStrainKind kind : {PreStrainKind::Isotropic, PreStrainKind::UniaxialX}) {
               const ElasticSymbol2d symbol(lt, Kernel<2>(kt), h, 1.0, kMaterial, form, kind);
-              for (LoadSign sign : {LoadSign::Tension, LoadSign::Compression}) {
+              for (LoadDirection sign : {LoadDirection::Tension, LoadDirection::Compression}) {
                 InfRow row{lt, kt, h, form, kind, sign, critical_strain_infinite_2d(symbol, sign, 128)};
                 csv << lattice_name(lt) << "," << kernel_name(kt) << "," << num(h) << "," << momentum_form_name(form)
-                    << "," << kind_name(kind) << "," << load_sign_name(sign) << "," << num(row.s.e) << ","
+                    << "," << kind_name(kind) << "," << load_direction_name(sign) << "," << num(row.s.e) << ","
                     << num(row.s.kx_over_pi) << "," << num(row.s.ky_over_pi) << "," << mechanism_name(row.s.mechanism)
                     << "," << row.s.neutral_points << "," << csv_field(row.s.reason) << "\n";
                 infrows.push_back(row);
@@ -329,10 +330,10 @@ int main(int argc, char** argv) {
         const ElasticSymbol2d sym(lt, cubic, h, 1.0, kMaterial, MomentumForm::Plus, PreStrainKind::Isotropic);
         const auto v = sym({M_PI, 0});
         GmsRow g{lt, h, v.l(0, 0), v.l(1, 1), -v.s[0], 0, 0, 0, 0, std::nan(""), std::nan(""), "", ""};
-        g.ek_t = critical_strain_2x2(v.a0, v.a1, LoadSign::Tension, 1e-12 * v.a1.cwiseAbs().maxCoeff()).e;
-        g.ek_c = critical_strain_2x2(v.a0, v.a1, LoadSign::Compression, 1e-12 * v.a1.cwiseAbs().maxCoeff()).e;
-        const auto it = critical_strain_infinite_2d(sym, LoadSign::Tension);
-        const auto ic = critical_strain_infinite_2d(sym, LoadSign::Compression);
+        g.ek_t = critical_strain_2x2(v.a0, v.a1, LoadDirection::Tension, 1e-12 * v.a1.cwiseAbs().maxCoeff()).e;
+        g.ek_c = critical_strain_2x2(v.a0, v.a1, LoadDirection::Compression, 1e-12 * v.a1.cwiseAbs().maxCoeff()).e;
+        const auto it = critical_strain_infinite_2d(sym, LoadDirection::Tension);
+        const auto ic = critical_strain_infinite_2d(sym, LoadDirection::Compression);
         g.einf_t = it.e;
         g.einf_c = ic.e;
         g.kinf_t = "(" + sig(it.kx_over_pi) + " " + sig(it.ky_over_pi) + ")";
@@ -340,11 +341,11 @@ int main(int argc, char** argv) {
         if (!quick && finite_n) {
           auto disc = make_discretisation(strain_lattice_2d(lt, cubic, h, 20), cubic, h);
           const auto jac = analytic_jacobian_2d(*disc, kMaterial, MomentumForm::Plus, PreStrainKind::Isotropic);
-          CriticalStrainOptions opt;
-          opt.method = TcritMethod::Eigen;
+          CriticalLoadOptions opt = CriticalLoadOptions::strain_2d();
+          opt.method = CriticalLoadMethod::Eigen;
           opt.want_mode = false;
-          g.en_t = critical_strain(jac, LoadSign::Tension, opt).e;
-          g.en_c = critical_strain(jac, LoadSign::Compression, opt).e;
+          g.en_t = critical_load(jac, LoadDirection::Tension, opt).load;
+          g.en_c = critical_load(jac, LoadDirection::Compression, opt).load;
         }
         csv << lattice_name(lt) << "," << num(h) << "," << num(g.bx) << "," << num(g.by) << "," << num(g.ax) << ","
             << num(g.ek_t) << "," << num(g.ek_c) << "," << num(g.einf_t) << "," << num(g.einf_c) << "," << g.kinf_t
@@ -356,7 +357,7 @@ int main(int argc, char** argv) {
 
   // ---------------- summary ----------------
   auto find = [&](const std::vector<SweepRow>& rows, LatticeType lt, KernelType kt, double h, MomentumForm f,
-                  PreStrainKind kind, LoadSign s) -> const SweepRow* {
+                  PreStrainKind kind, LoadDirection s) -> const SweepRow* {
     for (const auto& r : rows)
       if (r.lattice == lt && r.kernel == kt && std::abs(r.h - h) < 1e-9 && r.form == f && r.kind == kind && r.sign == s)
         return &r;
@@ -368,21 +369,21 @@ int main(int argc, char** argv) {
   std::string worst_rd;
   for (const auto& r : sweep) {
     if (r.r.status != Status::Successful) ++n_bad_status;
-    if (!std::isnan(r.r.relative_difference) && std::isfinite(r.r.e)) {
+    if (!std::isnan(r.r.relative_difference) && std::isfinite(r.r.load)) {
       ++n_rows_both;
       if (r.r.relative_difference > 1e-8) ++n_over;
       if (r.r.relative_difference > max_rd) {
         max_rd = r.r.relative_difference;
         worst_rd = lattice_name(r.lattice) + " " + kernel_name(r.kernel) + " h/dx = " + sig(r.h) + " " +
-                   momentum_form_name(r.form) + " " + kind_name(r.kind) + " " + load_sign_name(r.sign) +
-                   " (e = " + sig(r.r.e) + ")";
+                   momentum_form_name(r.form) + " " + kind_name(r.kind) + " " + load_direction_name(r.sign) +
+                   " (e = " + sig(r.r.load) + ")";
       }
     }
-    if (r.form == MomentumForm::Conservative && r.kind == PreStrainKind::Isotropic && std::isfinite(r.r.e)) {
+    if (r.form == MomentumForm::Conservative && r.kind == PreStrainKind::Isotropic && std::isfinite(r.r.load)) {
       const auto* p = find(sweep, r.lattice, r.kernel, r.h, MomentumForm::Plus, r.kind, r.sign);
       const auto* u = find(sweep, r.lattice, r.kernel, r.h, MomentumForm::Uncorrected, r.kind, r.sign);
-      if (p) max_ratio_dev_plus = std::max(max_ratio_dev_plus, std::abs(p->r.e / r.r.e / 2 - 1));
-      if (u) max_ratio_dev_unc = std::max(max_ratio_dev_unc, std::abs(u->r.e / r.r.e / 4 - 1));
+      if (p) max_ratio_dev_plus = std::max(max_ratio_dev_plus, std::abs(p->r.load / r.r.load / 2 - 1));
+      if (u) max_ratio_dev_unc = std::max(max_ratio_dev_unc, std::abs(u->r.load / r.r.load / 4 - 1));
     }
   }
 
@@ -448,18 +449,19 @@ int main(int argc, char** argv) {
   for (LatticeType lt : kLattices)
     for (KernelType kt : kKernels)
       for (double h : {1.0, 1.3, 1.6, 2.0, 2.5}) {
-        const auto* t = find(sweep, lt, kt, h, MomentumForm::Conservative, PreStrainKind::Isotropic, LoadSign::Tension);
+        const auto* t =
+            find(sweep, lt, kt, h, MomentumForm::Conservative, PreStrainKind::Isotropic, LoadDirection::Tension);
         const auto* c =
-            find(sweep, lt, kt, h, MomentumForm::Conservative, PreStrainKind::Isotropic, LoadSign::Compression);
+            find(sweep, lt, kt, h, MomentumForm::Conservative, PreStrainKind::Isotropic, LoadDirection::Compression);
         if (!t || !c) continue;
         auto k = [](const SweepRow* r) {
-          return std::isfinite(r->r.e)
-                     ? "(" + sig(r->r.mode_k.kx_over_pi, 2) + ", " + sig(r->r.mode_k.ky_over_pi, 2) + ")"
-                     : std::string("-");
+          return std::isfinite(r->r.load) ? "(" + sig(r->r.mode_wavevector.kx_over_pi, 2) + ", " +
+                                                sig(r->r.mode_wavevector.ky_over_pi, 2) + ")"
+                                          : std::string("-");
         };
-        md << "| " << lattice_name(lt) << " | " << kernel_name(kt) << " | " << sig(h) << " | " << sig(t->r.e) << " | "
-           << k(t) << " | " << sig(t->inf.e) << " | " << sig(c->r.e) << " | " << k(c) << " | " << sig(c->inf.e)
-           << " |\n";
+        md << "| " << lattice_name(lt) << " | " << kernel_name(kt) << " | " << sig(h) << " | " << sig(t->r.load)
+           << " | " << k(t) << " | " << sig(t->inf.e) << " | " << sig(c->r.load) << " | " << k(c) << " | "
+           << sig(c->inf.e) << " |\n";
       }
 
   // Infinite-lattice classification
@@ -468,7 +470,7 @@ int main(int argc, char** argv) {
   for (const auto& r : infrows) {
     if (r.lt == LatticeType::FaceCentred || r.form != MomentumForm::Conservative) continue;
     ++inf_total;
-    if (r.sign == LoadSign::Tension) {
+    if (r.sign == LoadDirection::Tension) {
       ++nt;
       if (r.s.e == 0)
         ++inf_zero_t;
@@ -514,19 +516,19 @@ int main(int argc, char** argv) {
     for (const auto& [key, rows] : groups) {
       std::vector<double> x, y;
       for (const NRow* r : rows)
-        if (r->n >= 40 && std::isfinite(r->r.e) && r->r.e != 0) x.push_back(r->n), y.push_back(r->r.e);
+        if (r->n >= 40 && std::isfinite(r->r.load) && r->r.load != 0) x.push_back(r->n), y.push_back(r->r.load);
       const NRow* last = rows.back();
       md << "| " << lattice_name(last->lt) << " | " << kernel_name(last->kt) << " | " << sig(last->h) << " | "
-         << load_sign_name(last->sign);
+         << load_direction_name(last->sign);
       for (int n : {10, 20, 40, 80}) {
         const NRow* f = nullptr;
         for (const NRow* r : rows)
           if (r->n == n) f = r;
-        md << " | " << (f ? sig(f->r.e) : "-");
+        md << " | " << (f ? sig(f->r.load) : "-");
       }
       md << " | " << (x.size() >= 2 ? sig(-loglog_slope(x, y), 3) : "-") << " | " << sig(last->periodic.e) << " | "
-         << sig(last->inf.e) << " | (" << sig(last->r.mode_k.kx_over_pi, 2) << ", " << sig(last->r.mode_k.ky_over_pi, 2)
-         << ") |\n";
+         << sig(last->inf.e) << " | (" << sig(last->r.mode_wavevector.kx_over_pi, 2) << ", "
+         << sig(last->r.mode_wavevector.ky_over_pi, 2) << ") |\n";
     }
   }
   md << "\nWhere e_inf = 0, |e_crit| ~ n^-p with p from the table (the critical mode is a zone-boundary zero "
@@ -537,12 +539,12 @@ int main(int argc, char** argv) {
   int ns_total = 0, ns_flutter = 0;
   double ns_ratio_min = 1e300, ns_ratio_max = 0;
   for (const auto& r : nonsym) {
-    if (!std::isfinite(r.r.e)) continue;
+    if (!std::isfinite(r.r.load)) continue;
     ++ns_total;
     if (r.r.mechanism == InstabilityMechanism::ComplexPair) {
       ++ns_flutter;
-      if (std::isfinite(r.r.e_eigen)) {
-        const double q = r.r.e / r.r.e_eigen;
+      if (std::isfinite(r.r.load_eigen)) {
+        const double q = r.r.load / r.r.load_eigen;
         ns_ratio_min = std::min(ns_ratio_min, q), ns_ratio_max = std::max(ns_ratio_max, q);
       }
     }
@@ -560,9 +562,9 @@ int main(int argc, char** argv) {
   for (const auto& r : nonsym)
     if (std::abs(r.h - 1.3) < 1e-9 && (r.kernel == KernelType::CubicSpline || r.kernel == KernelType::WendlandC2)) {
       const auto* sp = find(sweep, r.lattice, r.kernel, r.h, MomentumForm::Plus, PreStrainKind::UniaxialX, r.sign);
-      md << "| " << lattice_name(r.lattice) << " | " << kernel_name(r.kernel) << " | " << load_sign_name(r.sign)
-         << " | " << r.n << " | " << sig(r.r.e) << " | " << mechanism_name(r.r.mechanism) << " | " << sig(r.r.e_eigen)
-         << " | " << (sp ? sig(sp->r.e) : "-") << " |\n";
+      md << "| " << lattice_name(r.lattice) << " | " << kernel_name(r.kernel) << " | " << load_direction_name(r.sign)
+         << " | " << r.n << " | " << sig(r.r.load) << " | " << mechanism_name(r.r.mechanism) << " | "
+         << sig(r.r.load_eigen) << " | " << (sp ? sig(sp->r.load) : "-") << " |\n";
     }
 
   // GMS

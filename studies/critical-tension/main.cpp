@@ -24,12 +24,13 @@
 #include <string>
 #include <vector>
 
-#include "sphstab/io/format.hpp"
+#include "sphstab/core/format.hpp"
+#include "sphstab/growth/growth_rate.hpp"
 #include "sphstab/jacobian/analytic_jacobian_1d.hpp"
-#include "sphstab/stability/critical_tension.hpp"
-#include "sphstab/stability/fourier_symbol.hpp"
-#include "sphstab/stability/growth_rate.hpp"
-#include "sphstab/stability/tension_estimates.hpp"
+#include "sphstab/particles/lattice_presets.hpp"
+#include "sphstab/spectral/fourier_symbol.hpp"
+#include "sphstab/spectral/tension_estimates.hpp"
+#include "sphstab/stability/critical_load.hpp"
 
 namespace {
 
@@ -57,7 +58,7 @@ std::vector<double> h_grid() {
 struct SweepRow {
   KernelType kernel;
   double h;
-  CriticalTension r;
+  CriticalLoad r;
   TensionEstimates1d est;
   SymbolCriticalTension inf;
 };
@@ -97,8 +98,9 @@ int main(int argc, char** argv) {
   // ---- Fig. 3.2: N = 30, conservative. Timed sweeps per method (jacobian assembly included). ----
   std::cout << "critical-tension: N = 30 sweep, " << kKernels.size() << " kernels x " << hs.size() << " h\n";
   std::map<std::string, double> timing;
-  for (auto [name, method] : {std::pair{"eig", TcritMethod::Eigen}, std::pair{"bisect", TcritMethod::Bisection},
-                              std::pair{"both", TcritMethod::Both}}) {
+  for (auto [name, method] :
+       {std::pair{"eig", CriticalLoadMethod::Eigen}, std::pair{"bisect", CriticalLoadMethod::Bisection},
+        std::pair{"both", CriticalLoadMethod::Both}}) {
     // Best of 3 (the machine is shared; the minimum is the least disturbed measurement).
     double best = 1e300;
     for (int rep = 0; rep < 3; ++rep) {
@@ -107,8 +109,9 @@ int main(int argc, char** argv) {
       for (KernelType type : kKernels) {
         Kernel<1> kernel(type);
         for (double h : hs) {
-          const TensionJacobian1d jac = analytic_jacobian_1d(tension_lattice_1d(kernel, h, 30), kernel, h);
-          sink += critical_tension(jac, n_cons, {.method = method}).tcrit;
+          CriticalLoadOptions o = CriticalLoadOptions::tension_1d();
+          o.method = method;
+          sink += critical_tension_1d(tension_lattice_1d(kernel, h, 30), kernel, h, MomentumForm::Conservative, o).load;
           sink += tension_estimates_1d(kernel, h, 1.0, n_cons).first_minor;
         }
       }
@@ -123,12 +126,14 @@ int main(int argc, char** argv) {
   for (KernelType type : kKernels) {
     Kernel<1> kernel(type);
     for (double h : hs) {
-      const TensionJacobian1d jac = analytic_jacobian_1d(tension_lattice_1d(kernel, h, 30), kernel, h);
-      SweepRow row{type, h, critical_tension(jac, n_cons, {.want_mode = true}),
+      const ParticleSet<1> set = tension_lattice_1d(kernel, h, 30);
+      CriticalLoadOptions with_mode = CriticalLoadOptions::tension_1d();
+      with_mode.want_mode = true;
+      SweepRow row{type, h, critical_tension_1d(set, kernel, h, MomentumForm::Conservative, with_mode),
                    tension_estimates_1d(kernel, h, 1.0, n_cons), critical_tension_infinite_1d(kernel, h, 1.0, n_cons)};
-      const CriticalTension u = critical_tension(jac, initial_stress_multiplier(MomentumForm::Uncorrected));
-      const CriticalTension p = critical_tension(jac, initial_stress_multiplier(MomentumForm::Plus));
-      form_rows.push_back({u.tcrit, p.tcrit, row.r.tcrit});
+      const CriticalLoad u = critical_tension_1d(set, kernel, h, MomentumForm::Uncorrected);
+      const CriticalLoad p = critical_tension_1d(set, kernel, h, MomentumForm::Plus);
+      form_rows.push_back({u.load, p.load, row.r.load});
       sweep.push_back(std::move(row));
     }
   }
@@ -138,12 +143,12 @@ int main(int argc, char** argv) {
          "t_nn,t_nn_minor,t_swegle,tcrit_infinite,l_hat_sawtooth,k_infinite_over_pi,mode_k_over_pi,"
          "mode_k_sign_changes,k_rcond,status,reason\n";
     for (const auto& s : sweep)
-      f << kernel_name(s.kernel) << "," << num(s.h) << "," << num(s.r.tcrit) << "," << num(s.r.tcrit_eigen) << ","
-        << num(s.r.tcrit_bisection) << "," << num(s.r.relative_difference) << "," << num(s.est.first_minor) << ","
-        << num(s.est.first_minor / s.r.tcrit) << "," << num(s.est.second_minor) << "," << num(s.est.nearest_neighbour)
+      f << kernel_name(s.kernel) << "," << num(s.h) << "," << num(s.r.load) << "," << num(s.r.load_eigen) << ","
+        << num(s.r.load_bisection) << "," << num(s.r.relative_difference) << "," << num(s.est.first_minor) << ","
+        << num(s.est.first_minor / s.r.load) << "," << num(s.est.second_minor) << "," << num(s.est.nearest_neighbour)
         << "," << num(s.est.nearest_neighbour_minor) << "," << num(s.est.swegle) << "," << num(s.inf.tcrit) << ","
         << num(s.inf.l_hat_sawtooth) << "," << num(s.inf.k_over_pi) << "," << num(s.r.mode_wavenumber.k_projection)
-        << "," << num(s.r.mode_wavenumber.k_sign_changes) << "," << num(s.r.k_rcond) << "," << status_name(s.r.status)
+        << "," << num(s.r.mode_wavenumber.k_sign_changes) << "," << num(s.r.a0_rcond) << "," << status_name(s.r.status)
         << "," << s.r.reason << "\n";
   }
   double max_form_dev = 0;
@@ -165,7 +170,7 @@ int main(int argc, char** argv) {
     KernelType kernel;
     double h;
     int n;
-    CriticalTension r;
+    CriticalLoad r;
     double seconds;
   };
   std::vector<NRow> nrows;
@@ -175,8 +180,10 @@ int main(int argc, char** argv) {
     for (double h : kHVersusN)
       for (int n : kSizes) {
         const auto t0 = Clock::now();
-        const TensionJacobian1d jac = analytic_jacobian_1d(tension_lattice_1d(kernel, h, n), kernel, h);
-        CriticalTension r = critical_tension(jac, n_cons, {.want_mode = true});
+        CriticalLoadOptions with_mode = CriticalLoadOptions::tension_1d();
+        with_mode.want_mode = true;
+        CriticalLoad r =
+            critical_tension_1d(tension_lattice_1d(kernel, h, n), kernel, h, MomentumForm::Conservative, with_mode);
         nrows.push_back({type, h, n, std::move(r), seconds_since(t0)});
       }
   }
@@ -193,10 +200,10 @@ int main(int argc, char** argv) {
          "seconds,status,reason\n";
     for (const auto& row : nrows) {
       const SymbolCriticalTension inf = critical_tension_infinite_1d(Kernel<1>(row.kernel), row.h, 1.0, n_cons);
-      f << kernel_name(row.kernel) << "," << num(row.h) << "," << row.n << "," << num(row.r.tcrit) << ","
-        << num(row.r.tcrit_eigen) << "," << num(row.r.tcrit_bisection) << "," << num(row.r.relative_difference) << ","
+      f << kernel_name(row.kernel) << "," << num(row.h) << "," << row.n << "," << num(row.r.load) << ","
+        << num(row.r.load_eigen) << "," << num(row.r.load_bisection) << "," << num(row.r.relative_difference) << ","
         << num(inf.tcrit) << "," << num(row.r.mode_wavenumber.k_projection) << "," << row.r.eigen_backend << ","
-        << num(row.r.k_rcond) << "," << num(row.seconds) << "," << status_name(row.r.status) << "," << row.r.reason
+        << num(row.r.a0_rcond) << "," << num(row.seconds) << "," << status_name(row.r.status) << "," << row.r.reason
         << "\n";
     }
     std::ofstream g(out_dir + "/exponents.csv");
@@ -209,13 +216,13 @@ int main(int argc, char** argv) {
         // routes within 1e-6).
         std::vector<const NRow*> ok;
         for (const auto& row : nrows)
-          if (row.kernel == type && row.h == h && row.r.status == Status::Successful && std::isfinite(row.r.tcrit))
+          if (row.kernel == type && row.h == h && row.r.status == Status::Successful && std::isfinite(row.r.load))
             ok.push_back(&row);
         if (ok.size() > 3) ok.erase(ok.begin(), ok.end() - 3);
         for (const NRow* row : ok) {
           x.push_back(row->n);
-          y.push_back(row->r.tcrit);
-          ye.push_back(row->r.tcrit - inf.tcrit);
+          y.push_back(row->r.load);
+          ye.push_back(row->r.load - inf.tcrit);
         }
         const double p = x.size() >= 2 ? -loglog_slope(x, y) : std::nan("");
         const bool excess_ok = inf.tcrit > 0 && std::all_of(ye.begin(), ye.end(), [](double v) { return v > 0; });
@@ -233,12 +240,13 @@ int main(int argc, char** argv) {
   for (KernelType type : kKernels) {
     Kernel<1> kernel(type);
     const double h = 1.2;
-    const TensionJacobian1d jac = analytic_jacobian_1d(tension_lattice_1d(kernel, h, 30), kernel, h);
-    const CriticalTension r = critical_tension(jac, n_cons);
+    const Linearisation jac =
+        analytic_jacobian_1d(tension_lattice_1d(kernel, h, 30), kernel, h, MomentumForm::Conservative);
+    const CriticalLoad r = critical_load(jac, LoadDirection::Tension, CriticalLoadOptions::tension_1d());
     for (double factor : {0.5, 1.5, 4.0}) {
-      const double t = factor * r.tcrit;
-      const GrowthAnalysis g = growth_rate(Eigen::MatrixXd(jac.matrix(MomentumForm::Conservative, t)), jac.x);
-      gr << kernel_name(type) << "," << num(h) << "," << num(r.tcrit) << "," << num(t) << "," << num(g.growth_rate)
+      const double t = factor * r.load;
+      const GrowthAnalysis g = growth_rate(Eigen::MatrixXd(jac.at(t)), jac.x.col(0));
+      gr << kernel_name(type) << "," << num(h) << "," << num(r.load) << "," << num(t) << "," << num(g.growth_rate)
          << "," << g.unstable.size() << "," << (g.unstable.empty() ? "nan" : num(g.unstable[0].wavenumber.k_projection))
          << "," << (g.unstable.empty() ? "nan" : num(g.unstable[0].wavenumber.k_sign_changes)) << "\n";
     }
@@ -262,28 +270,28 @@ int main(int argc, char** argv) {
   double min_tcrit_above_1e8 = 1e300, max_tcrit_above_1e8 = 0;
   for (const auto& s : sweep) {
     ++total;
-    if (std::isfinite(s.r.tcrit)) ++finite_count;
+    if (std::isfinite(s.r.load)) ++finite_count;
     if (s.r.status == Status::Successful) ++successful;
     if (s.r.relative_difference > 1e-8) {
       ++above_1e8;
-      min_tcrit_above_1e8 = std::min(min_tcrit_above_1e8, s.r.tcrit);
-      max_tcrit_above_1e8 = std::max(max_tcrit_above_1e8, s.r.tcrit);
+      min_tcrit_above_1e8 = std::min(min_tcrit_above_1e8, s.r.load);
+      max_tcrit_above_1e8 = std::max(max_tcrit_above_1e8, s.r.load);
     }
     if (s.r.relative_difference > max_rel_diff) {
       max_rel_diff = s.r.relative_difference;
       max_rel_diff_h = s.h;
       max_rel_diff_kernel = kernel_name(s.kernel);
     }
-    const double ratio = s.est.first_minor / s.r.tcrit;
+    const double ratio = s.est.first_minor / s.r.load;
     ratio_by_kernel[s.kernel].push_back(ratio);
     if (s.h <= 1.0 + 1e-12) ratio_small_h[s.kernel].push_back(ratio);
     auto& pk = peak[s.kernel];
-    if (s.r.tcrit > pk.first) pk = {s.r.tcrit, s.h};
+    if (s.r.load > pk.first) pk = {s.r.load, s.h};
     if (s.h >= 1.2 - 1e-12 && s.h <= 2.0 + 1e-12) {
       auto& b = band[s.kernel];
-      if (b.first == 0 && b.second == 0) b = {s.r.tcrit, s.r.tcrit};
-      b.first = std::min(b.first, s.r.tcrit);
-      b.second = std::max(b.second, s.r.tcrit);
+      if (b.first == 0 && b.second == 0) b = {s.r.load, s.r.load};
+      b.first = std::min(b.first, s.r.load);
+      b.second = std::max(b.second, s.r.load);
     }
   }
   double all_ratio_min = 1e300, all_ratio_max = 0;
@@ -360,8 +368,8 @@ int main(int argc, char** argv) {
     double t30 = std::nan(""), t960 = std::nan("");
     for (const auto& row : nrows)
       if (row.kernel == e.kernel && row.h == e.h) {
-        if (row.n == 30) t30 = row.r.tcrit;
-        if (row.n == 960 && row.r.status == Status::Successful) t960 = row.r.tcrit;
+        if (row.n == 30) t30 = row.r.load;
+        if (row.n == 960 && row.r.status == Status::Successful) t960 = row.r.load;
       }
     if (e.tinf == 0 && e.l_pi > 1e-12) p_zero_limit.push_back(e.slope);
     md << "| " << kernel_name(e.kernel) << " | " << num(e.h) << " | " << sig(e.l_pi) << " | " << sig(e.tinf) << " | "
@@ -395,20 +403,20 @@ int main(int argc, char** argv) {
   std::map<double, std::pair<double, KernelType>> leader;   // h -> (max tcrit, kernel)
   double minor_ratio_min = 1e300, minor_ratio_max = 0;
   for (const auto& s : sweep) {
-    const double ratio = s.est.first_minor / s.r.tcrit;
+    const double ratio = s.est.first_minor / s.r.load;
     if (s.h <= 1.0 + 1e-12) r_small_min = std::min(r_small_min, ratio), r_small_max = std::max(r_small_max, ratio);
     if (s.h > 1.0 + 1e-12 && s.h <= 1.4 + 1e-12)
       r_mid_min = std::min(r_mid_min, ratio), r_mid_max = std::max(r_mid_max, ratio);
-    if (s.h >= 1.5 - 1e-12) tcrit_large_h[s.kernel].push_back(s.r.tcrit);
+    if (s.h >= 1.5 - 1e-12) tcrit_large_h[s.kernel].push_back(s.r.load);
     if (s.inf.tcrit > 1e-12) window[s.kernel].push_back(s.h);
     auto& sp = spread[s.h];
-    if (sp.first == 0 && sp.second == 0) sp = {s.r.tcrit, s.r.tcrit};
-    sp.first = std::min(sp.first, s.r.tcrit);
-    sp.second = std::max(sp.second, s.r.tcrit);
+    if (sp.first == 0 && sp.second == 0) sp = {s.r.load, s.r.load};
+    sp.first = std::min(sp.first, s.r.load);
+    sp.second = std::max(sp.second, s.r.load);
     minor_ratio_min = std::min(minor_ratio_min, s.est.first_minor / s.est.second_minor);
     minor_ratio_max = std::max(minor_ratio_max, s.est.first_minor / s.est.second_minor);
     auto& ld = leader[s.h];
-    if (s.r.tcrit > ld.first) ld = {s.r.tcrit, s.kernel};
+    if (s.r.load > ld.first) ld = {s.r.load, s.kernel};
   }
   double spread_small_min = 1e300, spread_small_max = 0, spread_large_max = 0;
   for (auto& [h, sp] : spread) {
@@ -451,10 +459,10 @@ int main(int argc, char** argv) {
   for (const auto& row : nrows)
     if (row.n == 960 && std::abs(row.h - 1.2) < 1e-12 && row.r.status == Status::Successful) {
       const double est = tension_estimates_1d(Kernel<1>(row.kernel), row.h, 1.0, n_cons).first_minor;
-      r960_min = std::min(r960_min, est / row.r.tcrit);
-      r960_max = std::max(r960_max, est / row.r.tcrit);
-      t960_min = std::min(t960_min, row.r.tcrit);
-      t960_max = std::max(t960_max, row.r.tcrit);
+      r960_min = std::min(r960_min, est / row.r.load);
+      r960_max = std::max(r960_max, est / row.r.load);
+      t960_min = std::min(t960_min, row.r.load);
+      t960_max = std::max(t960_max, row.r.load);
     }
   double band_max_min = 1e300, band_max_max = 0;
   int peaks_in_range = 0;

@@ -27,17 +27,17 @@
 #include <string>
 #include <vector>
 
+#include "sphstab/core/format.hpp"
 #include "sphstab/forms/elasticity_2d.hpp"
 #include "sphstab/forms/wave_1d.hpp"
-#include "sphstab/io/format.hpp"
 #include "sphstab/jacobian/analytic_jacobian_1d.hpp"
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
 #include "sphstab/linalg/dense_symmetric_eigen.hpp"
 #include "sphstab/numerics/quadrature.hpp"
 #include "sphstab/particles/lattice.hpp"
-#include "sphstab/stability/affine_critical_tension.hpp"
-#include "sphstab/stability/critical_tension.hpp"
-#include "sphstab/stability/fourier_symbol.hpp"
+#include "sphstab/particles/lattice_presets.hpp"
+#include "sphstab/spectral/fourier_symbol.hpp"
+#include "sphstab/stability/critical_load.hpp"
 
 namespace {
 
@@ -117,16 +117,16 @@ int main(int argc, char** argv) {
   for (KernelType type : all_kernel_types()) {
     Kernel<1> kernel(type);
     for (double h : hs) {
-      TensionJacobian1d jac = analytic_jacobian_1d(tension_lattice_1d(kernel, h, n), kernel, h);
-      TensionJacobian1d comp = jac;
-      comp.L = SparseMatrix<>(-jac.L);  // A(T) = K + |T| n L for T < 0
+      const ParticleSet<1> set = tension_lattice_1d(kernel, h, n);
+      CriticalLoadOptions with_mode = CriticalLoadOptions::tension_1d();
+      with_mode.want_mode = true;
       for (MomentumForm form : forms)
         for (int dir = 0; dir < 2; ++dir) {
-          const CriticalTension r =
-              critical_tension(dir == 0 ? jac : comp, initial_stress_multiplier(form), {.want_mode = true});
-          const double t = dir == 0 ? r.tcrit : -r.tcrit;
-          tcrit.push_back({kernel_name(type), h, momentum_form_name(form), dir == 0 ? "tension" : "compression", t,
-                           std::isfinite(r.tcrit) ? r.mode_wavenumber.k_projection : NAN, status_name(r.status),
+          const LoadDirection d = dir == 0 ? LoadDirection::Tension : LoadDirection::Compression;
+          const CriticalLoad r = critical_tension_1d(set, kernel, h, form, with_mode, d);
+          const double t = r.load;
+          tcrit.push_back({kernel_name(type), h, momentum_form_name(form), load_direction_name(d), t,
+                           std::isfinite(r.load) ? r.mode_wavenumber.k_projection : NAN, status_name(r.status),
                            r.reason});
           if (dir == 1 && form == MomentumForm::Conservative) cons_minus[{kernel_name(type), h}] = t;
         }
@@ -151,19 +151,13 @@ int main(int argc, char** argv) {
       Kernel<1> kernel(type);
       for (double h : {1.2, 1.6, 2.0, 2.4}) {
         auto disc = make_discretisation(tension_lattice_1d(kernel, h, n), kernel, h);
-        Eigen::VectorXd x(disc->free_count());
-        for (int f = 0; f < disc->free_count(); ++f) x[f] = disc->particles.x(disc->free[f], 0);
-        const TensionJacobian1d jac = analytic_jacobian_1d(disc->particles, kernel, h);
-        TensionJacobian1d comp = jac;
-        comp.L = SparseMatrix<>(-jac.L);
         for (MomentumForm form : forms) {
-          const AffineJacobian split =
-              affine_jacobian(WaveForm1D(disc, form, 0.0), Eigen::VectorXd::Zero(disc->dofs()));
+          Linearisation split = affine_jacobian(WaveForm1D(disc, form, 0.0), Eigen::VectorXd::Zero(disc->dofs()));
+          split.x = disc->free_positions();
           for (LoadDirection dir : {LoadDirection::Tension, LoadDirection::Compression}) {
-            const double affine = affine_critical_tension(split, dir, x).front().tcrit;
-            const bool t = dir == LoadDirection::Tension;
+            const double affine = critical_loads(split, dir).front().load;
             const double analytic =
-                (t ? 1.0 : -1.0) * critical_tension(t ? jac : comp, initial_stress_multiplier(form)).tcrit;
+                critical_tension_1d(disc->particles, kernel, h, form, CriticalLoadOptions::tension_1d(), dir).load;
             double rel = 0;
             if (std::isinf(analytic) != std::isinf(affine)) {
               rel = INFINITY;
@@ -190,13 +184,14 @@ int main(int argc, char** argv) {
     ft_min[kernel_name(type)] = min_fourier_transform(type);
     for (double h : hs) {
       const ParticleSet<1> set = tension_lattice_1d(kernel, h, n);
-      const TensionJacobian1d jac = analytic_jacobian_1d(set, kernel, h);
+      const Linearisation jac = analytic_jacobian_1d(set, kernel, h);  // uncorrected: A1 = -L
+      const Eigen::MatrixXd l_dense = -Eigen::MatrixXd(jac.A1);
       // W''-matrix of the free block, diagonal W''(0) included (Powell's "W''_km" of condition 1).
-      Eigen::MatrixXd m(jac.size(), jac.size());
-      for (int a = 0; a < jac.size(); ++a)
-        for (int b = 0; b < jac.size(); ++b) m(a, b) = kernel.d2(std::abs(jac.x[a] - jac.x[b]), h);
+      Eigen::MatrixXd m(jac.dofs(), jac.dofs());
+      for (int a = 0; a < jac.dofs(); ++a)
+        for (int b = 0; b < jac.dofs(); ++b) m(a, b) = kernel.d2(std::abs(jac.x(a, 0) - jac.x(b, 0)), h);
       const double w2_lmax = symmetric_eigen(m).values.maxCoeff();
-      const double l_lmin = symmetric_eigen(Eigen::MatrixXd(jac.L)).values.minCoeff();
+      const double l_lmin = symmetric_eigen(l_dense).values.minCoeff();
       double sym_max = -1e300, l_sym_min = 1e300, t_inf = -INFINITY;
       for (int g = 0; g <= 4096; ++g) {
         const double k = std::numbers::pi * g / 4096;
@@ -208,7 +203,7 @@ int main(int argc, char** argv) {
         if (s.l_hat < -1e-12) t_inf = std::max(t_inf, -s.g_abs2 / (4 * -s.l_hat));
       }
       const double row_sum = w2_symbol(kernel, h, 0.0);
-      const double l_scale = Eigen::VectorXd(Eigen::MatrixXd(jac.L).diagonal()).cwiseAbs().maxCoeff();
+      const double l_scale = Eigen::VectorXd(l_dense.diagonal()).cwiseAbs().maxCoeff();
       conditions.push_back({kernel_name(type), h, ft_min[kernel_name(type)], w2_lmax, sym_max, row_sum, l_lmin, l_scale,
                             l_sym_min, cons_minus[{kernel_name(type), h}], t_inf, w2_lmax < 0.0, (row_sum > 0.0),
                             sym_max <= 1e-12});
@@ -346,7 +341,7 @@ int main(int argc, char** argv) {
      << "- T_crit: analytic Jacobian + critical_tension (CHOLMOD bisection and generalised eigenproblem, which agree "
         "to 1e-8); compression with L -> -L. Cross-check with the complex-step Jacobians of the force functions and "
         "the "
-        "general affine route (affine_critical_tension.hpp) at h/dx = 1.2, 1.6, 2.0, 2.4: "
+        "general affine route (critical_load.hpp) at h/dx = 1.2, 1.6, 2.0, 2.4: "
      << cross_cases << " cases, max relative difference " << sig(cross_max, 2) << ", " << cross_class_mismatch
      << " finite/infinite mismatches.\n"
      << "- Asymmetry: cubic, h = " << ha << " dx, 1D line of " << n1 << " free particles (load = T), 2D square " << n2

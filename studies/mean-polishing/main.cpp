@@ -4,7 +4,7 @@
 // u = 0, the exact Jacobian A(T) = A0 + T A1 (complex step through the correction; dual numbers inside for the
 // corrected conservative forms) and its critical loads in tension (T_crit > 0) and compression (T_crit^- < 0):
 // criterion pd for symmetric A (Cholesky bisection + generalised eigenproblem), real-positive-spectrum and
-// symmetric-part-pd otherwise (affine_critical_tension.hpp). Plus momentum conservation and locality at displaced
+// symmetric-part-pd otherwise (critical_load.hpp). Plus momentum conservation and locality at displaced
 // states.
 //
 // Writes to --out DIR:
@@ -28,12 +28,13 @@
 #include <string>
 #include <vector>
 
+#include "sphstab/core/format.hpp"
 #include "sphstab/forms/correction_gradient.hpp"
 #include "sphstab/forms/wave_1d.hpp"
-#include "sphstab/io/format.hpp"
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
 #include "sphstab/particles/lattice.hpp"
-#include "sphstab/stability/affine_critical_tension.hpp"
+#include "sphstab/particles/lattice_presets.hpp"
+#include "sphstab/stability/critical_load.hpp"
 
 namespace {
 
@@ -97,12 +98,6 @@ struct Row {
   double seconds;
 };
 
-Eigen::VectorXd free_positions(const Discretisation<1>& d) {
-  Eigen::VectorXd x(d.free_count());
-  for (int f = 0; f < d.free_count(); ++f) x[f] = d.particles.x(d.free[f], 0);
-  return x;
-}
-
 std::shared_ptr<const GradientProvider<1>> provider(const Variant& v) {
   return make_gradient_provider<1>(v.correction, v.options);
 }
@@ -112,10 +107,8 @@ void run_case(int n, KernelType type, double h, const Variant& v, const FormCase
   auto disc = make_discretisation(tension_lattice_1d(kernel, h, n, false, kLayerSupports), kernel, h);
   const auto t0 = Clock::now();
   WaveForm1D force(disc, fc.form, 0.0, provider(v), {.corrected = fc.target});
-  const Eigen::VectorXd x = free_positions(*disc);
-  const ForceCriticalLoad tension = critical_load(force, LoadDirection::Tension, x);
-  const std::vector<AffineCriticalTension> compression =
-      affine_critical_tension(tension.jacobian, LoadDirection::Compression, x);
+  const ForceCriticalLoad tension = force_critical_loads(force, LoadDirection::Tension, disc->free_positions());
+  const std::vector<CriticalLoad> compression = critical_loads(tension.jacobian, LoadDirection::Compression);
   const double seconds = seconds_since(t0);
   const std::string target = v.correction == Correction::None                           ? "-"
                              : force.strain_corrected() && force.divergence_corrected() ? "both"
@@ -124,10 +117,10 @@ void run_case(int n, KernelType type, double h, const Variant& v, const FormCase
   const std::string strain_sum =
       force.strain_corrected() ? (force.strain_sum() == StrainSum::Direct ? "direct" : "difference") : "plain";
   for (const auto* list : {&tension.results, &compression})
-    for (const AffineCriticalTension& r : *list)
+    for (const CriticalLoad& r : *list)
       rows.push_back({n, kernel_name(type), h, v.name, momentum_form_name(fc.form), target, strain_sum,
-                      load_direction_name(r.direction), criterion_name(r.criterion), r.tcrit, r.growth_rate,
-                      r.mode_wavenumber.k_projection, r.info.a1_relative, r.info.asymmetry0, r.info.asymmetry1,
+                      load_direction_name(r.direction), criterion_name(r.criterion), r.load, r.growth_rate,
+                      r.reported_wavenumber().k_projection, r.a1_relative, r.asymmetry0, r.asymmetry1,
                       tension.residual_relative, status_name(r.status), r.reason, seconds});
 }
 
@@ -307,18 +300,18 @@ int main(int argc, char** argv) {
     Kernel<1> kernel(KernelType::CubicSpline);
     const double h = 1.3;
     auto disc = make_discretisation(tension_lattice_1d(kernel, h, n), kernel, h);
-    const Eigen::VectorXd x = free_positions(*disc);
+    const Eigen::MatrixXd x = disc->free_positions();
     for (const Variant& v : variants())
       for (const FormCase& fc : form_cases()) {
         if (fc.target == CorrectedOperator::Both) continue;
         WaveForm1D force(disc, fc.form, 0.0, provider(v), {.corrected = fc.target});
-        const ForceCriticalLoad t = critical_load(force, LoadDirection::Tension, x);
-        const auto c = affine_critical_tension(t.jacobian, LoadDirection::Compression, x);
-        const AffineCriticalTension& r0 = t.results.front();
+        const ForceCriticalLoad t = force_critical_loads(force, LoadDirection::Tension, x);
+        const auto c = critical_loads(t.jacobian, LoadDirection::Compression);
+        const CriticalLoad& r0 = t.results.front();
         thin.push_back({v.name, momentum_form_name(fc.form),
                         v.correction == Correction::None ? "-" : corrected_operator_name(fc.target),
-                        t.residual_relative, std::max(r0.info.asymmetry0, r0.info.asymmetry1), r0.tcrit,
-                        t.results.size() > 1 ? t.results[1].tcrit : NAN, c.front().tcrit, criterion_name(r0.criterion),
+                        t.residual_relative, std::max(r0.asymmetry0, r0.asymmetry1), r0.load,
+                        t.results.size() > 1 ? t.results[1].load : NAN, c.front().load, criterion_name(r0.criterion),
                         t.results.size() > 1 ? criterion_name(t.results[1].criterion) : "-"});
       }
     std::ofstream csv(out + "/thin_layers.csv");

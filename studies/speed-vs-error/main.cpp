@@ -13,12 +13,12 @@
 #include <map>
 #include <sstream>
 
+#include "sphstab/forms/elastic_bar.hpp"
 #include "sphstab/integrate/leapfrog.hpp"
 #include "sphstab/integrate/time_step.hpp"
 #include "sphstab/io/csv.hpp"
 #include "sphstab/io/progress.hpp"
-#include "sphstab/scene/bar_wave_exact.hpp"
-#include "sphstab/scene/elastic_bar.hpp"
+#include "sphstab/problems/bar_wave_exact.hpp"
 
 using namespace sphstab;
 using Clock = std::chrono::steady_clock;

@@ -27,18 +27,20 @@
 #include "sphstab/forms/stabilised_sph.hpp"
 #include "sphstab/forms/total_lagrangian.hpp"
 #include "sphstab/forms/wave_1d.hpp"
+#include "sphstab/growth/growth_run.hpp"
+#include "sphstab/growth/linear_growth.hpp"
+#include "sphstab/growth/mirror_symmetry.hpp"
+#include "sphstab/growth/swegle_run.hpp"
 #include "sphstab/io/csv.hpp"
+#include "sphstab/io/run_output.hpp"
 #include "sphstab/io/vtk.hpp"
 #include "sphstab/jacobian/analytic_jacobian_1d.hpp"
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
 #include "sphstab/particles/lattice.hpp"
-#include "sphstab/scene/swegle.hpp"
-#include "sphstab/stability/dominant_wavenumber.hpp"
-#include "sphstab/stability/dominant_wavevector.hpp"
+#include "sphstab/problems/swegle.hpp"
+#include "sphstab/spectral/dominant_wavenumber.hpp"
+#include "sphstab/spectral/dominant_wavevector.hpp"
 #include "sphstab/stability/equilibrium.hpp"
-#include "sphstab/stability/growth_run.hpp"
-#include "sphstab/stability/linear_growth.hpp"
-#include "sphstab/stability/mirror_symmetry.hpp"
 
 using namespace sphstab;
 
@@ -179,7 +181,7 @@ Linear analyse(const ForceFunction& f, const Eigen::VectorXd& u, const Classes& 
   ComplexStepJacobian jac(f);
   const SparseMatrix<> As = jac.compute(u);
   L.colours = jac.colours();
-  if (jac.info() != JacobianStatus::Successful) return L;
+  if (jac.info() != Status::Successful) return L;
   L.asymmetry = relative_asymmetry(As);
   L.commutation = commutation_error(c.symmetry, As);
   const Eigen::MatrixXd A(As);
@@ -572,8 +574,8 @@ int main(int argc, char** argv) {
         o.dt = h;
         o.t_end = T;
         o.diagnostics_every = std::max<long>(1, static_cast<long>(std::llround(T / h)) / 1000);
-        o.progress = true;
-        o.label = "energy " + name;
+        ProgressReport progress("energy " + name);
+        o.observers = {&progress};
         const RunResult rr = run_leapfrog(sys, Eigen::VectorXd::Zero(force->dofs()), es.v0, o);
         const double e0 = rr.history.front().total;
         double dev = 0, st = 0, se = 0, stt = 0, ste = 0;
@@ -614,9 +616,7 @@ int main(int argc, char** argv) {
       Q(20 - i, i) = 1;  // T f = -f  <=>  f_{20-i} = f_i
       Q.col(i).normalize();
     }
-    const TensionJacobian1d tj = analytic_jacobian_1d(set, k, h);
-    Eigen::VectorXd x1(21);
-    for (int f = 0; f < 21; ++f) x1[f] = disc->particles.x(disc->free[f], 0);
+    const Eigen::VectorXd x1 = disc->free_positions().col(0);
     CsvWriter ke1(out + "/onedim_ke.csv", {"form", "T", "t", "kinetic"});
     const double detect1 = std::log(onset) / (2 * t_end_1d);
     // The four momentum forms (analytic Jacobian of Powell 3.40 available) and the corrected kernels of the 2D study.
@@ -645,7 +645,8 @@ int main(int argc, char** argv) {
         const Eigen::VectorXd zero = Eigen::VectorXd::Zero(force->dofs());
         const Eigen::MatrixXd A(jacobian(*force, zero));
         r.gamma_cs = matrix_growth(A).gamma;
-        if (!f1.provider) r.gamma_analytic = matrix_growth(Eigen::MatrixXd(tj.matrix(f1.form, r.T))).gamma;
+        if (!f1.provider)
+          r.gamma_analytic = matrix_growth(Eigen::MatrixXd(analytic_jacobian_1d(set, k, h, f1.form).at(r.T))).gamma;
         const LinearGrowth ge = matrix_growth(Q.transpose() * A * Q, true);
         r.gamma_exc = ge.gamma;
         if (ge.mode.size()) r.k_mode = dominant_wavenumber(Q * ge.mode, x1, false);

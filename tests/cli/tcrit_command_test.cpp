@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "sphstab/jacobian/analytic_jacobian_2d.hpp"
-#include "sphstab/stability/critical_strain.hpp"
-#include "sphstab/stability/critical_tension.hpp"
+#include "sphstab/particles/lattice_presets.hpp"
+#include "sphstab/stability/critical_load.hpp"
 
 namespace sphstab {
 namespace {
@@ -65,9 +65,9 @@ TEST(TcritCommand, PrintsCsvAgreeingWithLibrary) {
   auto row = fields(ls[1 + 9]);
   EXPECT_EQ(row[col("h_over_dx")], "1.25");
   Kernel<1> cubic(KernelType::CubicSpline);
-  CriticalTension ref =
+  const CriticalLoad ref =
       critical_tension_1d(tension_lattice_1d(cubic, 1.25, 30), cubic, 1.25, MomentumForm::Conservative);
-  EXPECT_NEAR(std::stod(row[col("tcrit")]) / ref.tcrit, 1.0, 1e-11);  // printed with 12 significant digits
+  EXPECT_NEAR(std::stod(row[col("tcrit")]) / ref.load, 1.0, 1e-11);  // printed with 12 significant digits
   EXPECT_NEAR(std::stod(row[col("t_first_minor")]), 0.104, 1e-12);
   EXPECT_EQ(row[col("N")], "30");
 }
@@ -86,7 +86,7 @@ TEST(TcritCommand, MinusFormAndPeriodic) {
 }
 
 TEST(TcritCommand, CorrectionAddsCriterionColumn) {
-  // Plain rows are unchanged apart from criterion = pd.
+  // Plain rows: criterion = definiteness.
   CliRun plain = run("tcrit --n 30 --kernel cubic --form conservative --h 1.25");
   ASSERT_EQ(plain.status, 0);
   auto pl = lines(plain.out);
@@ -94,11 +94,11 @@ TEST(TcritCommand, CorrectionAddsCriterionColumn) {
   auto header = fields(pl[0]);
   ASSERT_EQ(header.back(), "criterion");
   auto col = [&](const char* name) { return std::find(header.begin(), header.end(), name) - header.begin(); };
-  EXPECT_EQ(fields(pl[1])[col("criterion")], "pd");
+  EXPECT_EQ(fields(pl[1])[col("criterion")], "definiteness");
   Kernel<1> cubic(KernelType::CubicSpline);
-  const CriticalTension ref =
+  const CriticalLoad ref =
       critical_tension_1d(tension_lattice_1d(cubic, 1.25, 30), cubic, 1.25, MomentumForm::Conservative);
-  EXPECT_NEAR(std::stod(fields(pl[1])[col("tcrit")]) / ref.tcrit, 1.0, 1e-11);
+  EXPECT_NEAR(std::stod(fields(pl[1])[col("tcrit")]) / ref.load, 1.0, 1e-11);
 
   // Mean polish (Powell 3.64): no T dependence for any form, T_crit = inf; Shepard conservative (3.59): finite,
   // well inside (0, 0.01).
@@ -111,7 +111,7 @@ TEST(TcritCommand, CorrectionAddsCriterionColumn) {
   for (size_t i = 1; i < ml.size(); ++i) {
     auto row = fields(ml[i]);
     EXPECT_EQ(row[col("tcrit")], "inf") << ml[i];
-    EXPECT_EQ(row[col("criterion")], "pd") << ml[i];
+    EXPECT_EQ(row[col("criterion")], "definiteness") << ml[i];
     EXPECT_EQ(row[col("status")], "successful") << ml[i];
   }
   CliRun shep = run("tcrit --n 30 --kernel cubic --form conservative --h 1.3 --correction shepard");
@@ -169,11 +169,12 @@ TEST(TcritCommand, TwoDimensionalCriticalPreStrain) {
   Kernel<2> k(KernelType::WendlandC4);
   const ElasticMaterial nu03{.lambda = 1.2115384615384615, .mu = 0.80769230769230769, .rho = 1.0};
   auto d = make_discretisation(strain_lattice_2d(LatticeType::Hexagonal, k, 1.4, 10), k, 1.4);
-  const CriticalStrain ref = critical_strain(
-      analytic_jacobian_2d(*d, nu03, MomentumForm::Conservative, PreStrainKind::UniaxialX), LoadSign::Compression);
-  ASSERT_TRUE(std::isfinite(ref.e));
-  EXPECT_NEAR(std::stod(row[col("tcrit")]) / ref.e, 1.0, 1e-11);  // 12 significant digits
-  EXPECT_LT(std::stod(row[col("tcrit")]), 0.0);                   // compression: signed
+  const CriticalLoad ref =
+      critical_load(analytic_jacobian_2d(*d, nu03, MomentumForm::Conservative, PreStrainKind::UniaxialX),
+                    LoadDirection::Compression, CriticalLoadOptions::strain_2d());
+  ASSERT_TRUE(std::isfinite(ref.load));
+  EXPECT_NEAR(std::stod(row[col("tcrit")]) / ref.load, 1.0, 1e-11);  // 12 significant digits
+  EXPECT_LT(std::stod(row[col("tcrit")]), 0.0);                      // compression: signed
   // The non-symmetric uniaxial plus form uses the dense eigenvalue criterion.
   auto plus = fields(ls[1 + 7]);
   EXPECT_EQ(plus[col("form")], "plus");

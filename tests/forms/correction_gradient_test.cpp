@@ -202,10 +202,10 @@ TEST(CorrectionGradient, NoTensionDependenceForNormalisedKernelsAtEquilibrium) {
                        Correction::MeanPolish, Correction::ShepardColumnPolish})
     for (MomentumForm form : {MomentumForm::Uncorrected, MomentumForm::Plus}) {
       WaveForm1D force(d, form, 0.0, make_gradient_provider<1>(c));
-      const AffineJacobian split = affine_jacobian(force, u0);
+      const Linearisation split = affine_jacobian(force, u0);
       EXPECT_LE(split.A1.norm(), 1e-13 * split.A0.norm()) << force.name();
     }
-  const AffineJacobian minus = affine_jacobian(WaveForm1D(d, MomentumForm::Minus, 0.0), u0);
+  const Linearisation minus = affine_jacobian(WaveForm1D(d, MomentumForm::Minus, 0.0), u0);
   EXPECT_LE(minus.A1.norm(), 1e-13 * minus.A0.norm());
   // ... whereas the plain kernel, the column Shepard divergence (rows do not sum to 0) and the conservative Shepard
   // form (3.59: the columns of the Shepard gradient do not sum to 0) do depend on T.
@@ -213,7 +213,7 @@ TEST(CorrectionGradient, NoTensionDependenceForNormalisedKernelsAtEquilibrium) {
                          std::pair{Correction::ColumnShepard, MomentumForm::Plus},
                          std::pair{Correction::Shepard, MomentumForm::Conservative}}) {
     WaveForm1D force(d, form, 0.0, make_gradient_provider<1>(c));
-    const AffineJacobian split = affine_jacobian(force, u0);
+    const Linearisation split = affine_jacobian(force, u0);
     EXPECT_GE(split.A1.norm(), 0.1 * split.A0.norm()) << force.name();
   }
 }
@@ -227,7 +227,7 @@ TEST(CorrectionGradient, PolishedConservativeFormsArePositiveDefiniteForAllTensi
       const Eigen::VectorXd u0 = Eigen::VectorXd::Zero(d->dofs());
       for (Correction c : {Correction::MeanPolish, Correction::ShepardColumnPolish, Correction::ColumnShepard}) {
         WaveForm1D force(d, MomentumForm::Conservative, 0.0, make_gradient_provider<1>(c));
-        const AffineJacobian split = affine_jacobian(force, u0);
+        const Linearisation split = affine_jacobian(force, u0);
         EXPECT_LE(split.A1.norm(), 1e-12 * split.A0.norm()) << force.name();
         for (double T : {-100.0, -1.0, -0.01, 0.0, 0.01, 1.0, 100.0}) {
           const SparseMatrix<> a = split.at(T);
@@ -236,7 +236,7 @@ TEST(CorrectionGradient, PolishedConservativeFormsArePositiveDefiniteForAllTensi
       }
       // The plain conservative form is not: it loses definiteness between T = 0 and T = 1 (T_crit ~ 1e-3..1e-1).
       WaveForm1D plain(d, MomentumForm::Conservative, 0.0);
-      const AffineJacobian split = affine_jacobian(plain, u0);
+      const Linearisation split = affine_jacobian(plain, u0);
       EXPECT_TRUE(is_positive_definite(lower_triangle(split.at(0.0))));
       EXPECT_FALSE(is_positive_definite(lower_triangle(split.at(1.0)))) << kernel_name(type) << " h=" << h;
     }

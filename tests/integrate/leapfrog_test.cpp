@@ -9,6 +9,7 @@
 
 #include "sphstab/integrate/time_step.hpp"
 #include "sphstab/io/csv.hpp"
+#include "sphstab/io/run_output.hpp"
 
 namespace sphstab {
 namespace {
@@ -192,7 +193,9 @@ TEST(BlowUp, UnstableSystemStopsAtThePredictedStep) {
   opt.dt = dt;
   opt.t_end = 100;
   opt.diagnostics_every = 50;
-  opt.csv_path = (dir / "diag.csv").string();
+  const std::string csv_path = (dir / "diag.csv").string();
+  DiagnosticsCsv csv(csv_path, 1);
+  opt.observers = {&csv};
   opt.limits.max_displacement = 1.0;
   auto r = run_leapfrog(s, Eigen::VectorXd::Constant(1, u0), Eigen::VectorXd::Zero(1), opt);
   EXPECT_EQ(r.status, RunStatus::DisplacementLimit);
@@ -200,7 +203,7 @@ TEST(BlowUp, UnstableSystemStopsAtThePredictedStep) {
   EXPECT_NEAR(r.time, std::acosh(1.0 / u0), 0.02);  // discrete vs continuous crossing time
   EXPECT_NE(r.message.find("step " + std::to_string(predicted)), std::string::npos) << r.message;
   // Everything written before the stop is on disk: step 0, every 50th step, and the failing step.
-  auto t = read_csv(opt.csv_path);
+  auto t = read_csv(csv_path);
   auto steps = t.numeric_column("step");
   ASSERT_EQ(static_cast<long>(steps.size()), predicted / 50 + 2);
   EXPECT_EQ(steps.back(), predicted);
@@ -296,9 +299,8 @@ TEST(Leapfrog, ProgressLineReportsOnStderr) {
   LeapfrogOptions opt;
   opt.dt = 0.01;
   opt.max_steps = 50;
-  opt.progress = true;
-  opt.progress_interval = 0.0;  // report every step
-  opt.label = "osc-test";
+  ProgressReport progress("osc-test", 0.0);  // report every step
+  opt.observers = {&progress};
   testing::internal::CaptureStderr();
   auto r = run_leapfrog(oscillator(1.0), Eigen::VectorXd::Ones(1), Eigen::VectorXd::Zero(1), opt);
   const std::string err = testing::internal::GetCapturedStderr();

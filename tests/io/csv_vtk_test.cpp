@@ -7,6 +7,7 @@
 
 #include "sphstab/integrate/leapfrog.hpp"
 #include "sphstab/io/csv.hpp"
+#include "sphstab/io/run_output.hpp"
 #include "sphstab/io/vtk.hpp"
 
 namespace sphstab {
@@ -113,8 +114,9 @@ TEST(Vtk, LeapfrogSnapshotsAndCsvMatchTheFinalState) {
   opt.max_steps = 100;
   opt.diagnostics_every = 10;
   opt.snapshot_every = 50;
-  opt.snapshot_prefix = dir.file("osc");
-  opt.csv_path = dir.file("osc.csv");
+  VtkSeries vtk(dir.file("osc"), s);
+  DiagnosticsCsv csv(dir.file("osc.csv"), 2);
+  opt.observers = {&vtk, &csv};
   auto r = run_leapfrog(s, Eigen::Vector2d(0.1, -0.2), Eigen::Vector2d(0.0, 0.05), opt);
   ASSERT_TRUE(r.completed()) << r.message;
   auto snap = read_vtp(dir.file("osc_000100.vtp"));
@@ -122,7 +124,7 @@ TEST(Vtk, LeapfrogSnapshotsAndCsvMatchTheFinalState) {
   EXPECT_EQ(snap.points(0, 1), 2.0 + r.u[1]);
   EXPECT_EQ(snap.field("velocity").values[1], r.v[1]);
   EXPECT_TRUE(fs::exists(dir.file("osc.pvd")));
-  auto t = read_csv(opt.csv_path);
+  auto t = read_csv(dir.file("osc.csv"));
   EXPECT_EQ(t.rows.size(), 11u);
   const auto& last = r.history.back();
   EXPECT_EQ(t.numeric_column("total").back(), last.total);

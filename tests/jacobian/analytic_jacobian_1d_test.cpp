@@ -87,18 +87,21 @@ TEST(AnalyticJacobian1d, MatchesComplexStepOfEveryForm) {
   for (auto [type, h] : {std::pair{KernelType::QuinticSpline, 1.3}, std::pair{KernelType::CubicSpline, 1.7},
                          std::pair{KernelType::WendlandC4, 2.2}}) {
     Lattice1d s(type, h, 12);
-    TensionJacobian1d jac = analytic_jacobian_1d(s.p, s.kernel, h);
-    ASSERT_EQ(jac.size(), 12);
-    const double scale = Eigen::MatrixXd(jac.K).norm() + t * Eigen::MatrixXd(jac.L).norm();
+    const Linearisation jac = analytic_jacobian_1d(s.p, s.kernel, h);  // uncorrected: A0 = K, A1 = -L
+    ASSERT_EQ(jac.dofs(), 12);
+    ASSERT_TRUE(jac.symmetric);
+    const double scale = Eigen::MatrixXd(jac.A0).norm() + t * Eigen::MatrixXd(jac.A1).norm();
     for (auto [form, alpha] : {std::pair{MomentumForm::Uncorrected, 0.0}, std::pair{MomentumForm::Plus, 1.0},
                                std::pair{MomentumForm::Minus, -1.0}}) {
       Eigen::MatrixXd cs = jacobian_by_complex_step(s, [&](const VecC& u) { return s.force_alpha(u, t, alpha); });
-      Eigen::MatrixXd closed = Eigen::MatrixXd(jac.matrix(form, t));
+      Eigen::MatrixXd closed = Eigen::MatrixXd(analytic_jacobian_1d(s.p, s.kernel, h, form).at(t));
       EXPECT_LT((cs - closed).norm(), 1e-13 * scale) << kernel_name(type) << " " << momentum_form_name(form);
     }
     Eigen::MatrixXd cs = jacobian_by_complex_step(s, [&](const VecC& u) { return s.force_conservative(u, t); });
-    EXPECT_LT((cs - Eigen::MatrixXd(jac.matrix(MomentumForm::Conservative, t))).norm(), 1e-13 * scale)
-        << kernel_name(type) << " conservative";
+    const Linearisation cons = analytic_jacobian_1d(s.p, s.kernel, h, MomentumForm::Conservative);
+    EXPECT_LT((cs - Eigen::MatrixXd(cons.at(t))).norm(), 1e-13 * scale) << kernel_name(type) << " conservative";
+    // A1 = -n L exactly (n = 4 is a power of two).
+    EXPECT_EQ(Eigen::MatrixXd(cons.A1), -4.0 * Eigen::MatrixXd(-jac.A1)) << kernel_name(type);
   }
 }
 
@@ -121,19 +124,19 @@ TEST(AnalyticJacobian1d, ConservativeForceIsMinusEnergyGradient) {
 
 TEST(AnalyticJacobian1d, StructureOfKAndL) {
   Lattice1d s(KernelType::Gaussian, 1.6, 20);
-  TensionJacobian1d jac = analytic_jacobian_1d(s.p, s.kernel, s.h);
-  Eigen::MatrixXd k = jac.K, l = jac.L;
+  const Linearisation jac = analytic_jacobian_1d(s.p, s.kernel, s.h);
+  Eigen::MatrixXd k = jac.A0, l = -Eigen::MatrixXd(jac.A1);
   EXPECT_LT((k - k.transpose()).norm(), 1e-14 * k.norm());
   EXPECT_LT((l - l.transpose()).norm(), 1e-14 * l.norm());
   // Diagonal of K = sum over ALL j of G_ij^2 (free and fixed neighbours): the same for every free particle.
   for (int i = 1; i < 20; ++i) EXPECT_NEAR(k(i, i), k(0, 0), 1e-13 * k(0, 0));
   // Periodic lattice: translation is a null vector of both.
   Lattice1d per(KernelType::Gaussian, 1.6, 21, true);
-  TensionJacobian1d pj = analytic_jacobian_1d(per.p, per.kernel, per.h);
+  const Linearisation pj = analytic_jacobian_1d(per.p, per.kernel, per.h);
   EXPECT_TRUE(pj.periodic);
   Eigen::VectorXd one = Eigen::VectorXd::Ones(21);
-  EXPECT_LT((pj.K * one).norm(), 1e-13);
-  EXPECT_LT((pj.L * one).norm(), 1e-13);
+  EXPECT_LT((pj.A0 * one).norm(), 1e-13);
+  EXPECT_LT((pj.A1 * one).norm(), 1e-13);
 }
 
 TEST(AnalyticJacobian1d, RejectsIrregularSetsAndMissingOperators) {

@@ -51,8 +51,8 @@ TEST(AnalyticJacobian2d, MatchesComplexStepOnLattices) {
       for (MomentumForm form : all_momentum_forms())
         for (PreStrainKind kind : {PreStrainKind::Isotropic, PreStrainKind::UniaxialX}) {
           ElasticForm2D force(d, kMaterial, form, {kind, 0.0});
-          const AffineJacobian cs = affine_jacobian(force, Eigen::VectorXd::Zero(force.dofs()));
-          const ElasticJacobian2d an = analytic_jacobian_2d(force);
+          const Linearisation cs = affine_jacobian(force, Eigen::VectorXd::Zero(force.dofs()));
+          const Linearisation an = analytic_jacobian_2d(force);
           const std::string what = lattice_name(c.lattice) + " " + kernel_name(c.kernel) + " h=" + std::to_string(c.h) +
                                    " " + force.name() + (periodic ? " periodic" : "");
           // Complex step is exact to round-off; both sides sum O(100) terms of size max|A|.
@@ -90,8 +90,8 @@ TEST(AnalyticJacobian2d, MatchesComplexStepOffLattice) {
   for (MomentumForm form : all_momentum_forms())
     for (PreStrainKind kind : {PreStrainKind::Isotropic, PreStrainKind::UniaxialX}) {
       ElasticForm2D force(d, kMaterial, form, {kind, 0.0});
-      const AffineJacobian cs = affine_jacobian(force, Eigen::VectorXd::Zero(force.dofs()));
-      const ElasticJacobian2d an = analytic_jacobian_2d(force);
+      const Linearisation cs = affine_jacobian(force, Eigen::VectorXd::Zero(force.dofs()));
+      const Linearisation an = analytic_jacobian_2d(force);
       EXPECT_LE(relative_max_difference(an.A0, cs.A0), 1e-10) << force.name();
       if (form != MomentumForm::Minus) EXPECT_LE(relative_max_difference(an.A1, cs.A1), 1e-10) << force.name();
       EXPECT_FALSE(an.symmetric) << force.name();

@@ -83,7 +83,7 @@ TEST(ComplexStepJacobian, ExactOnAToyForce) {
   ComplexStepJacobian jac(chain);
   EXPECT_EQ(jac.colours(), 3);  // tridiagonal: columns i, i+3, ... share no row
   Eigen::MatrixXd A = jac.compute(u);
-  EXPECT_EQ(jac.info(), JacobianStatus::Successful);
+  EXPECT_EQ(jac.info(), Status::Successful);
   EXPECT_LE((A - chain.exact_minus_jacobian(u)).cwiseAbs().maxCoeff(), 1e-14);
   auto split = affine_jacobian(chain, u);
   EXPECT_LE((Eigen::MatrixXd(split.A1) + Eigen::MatrixXd::Identity(30, 30)).cwiseAbs().maxCoeff(), 1e-14);
@@ -92,9 +92,9 @@ TEST(ComplexStepJacobian, ExactOnAToyForce) {
 TEST(ComplexStepJacobian, ReportsNonFiniteForces) {
   SpringChain chain(10, 0.1, 0.0, /*poison=*/true);
   ComplexStepJacobian jac(chain);
-  EXPECT_EQ(jac.info(), JacobianStatus::NotComputed);
+  EXPECT_EQ(jac.info(), Status::NotComputed);
   jac.compute(Eigen::VectorXd::Zero(10));
-  EXPECT_EQ(jac.info(), JacobianStatus::NumericalIssue);
+  EXPECT_EQ(jac.info(), Status::NumericalIssue);
   EXPECT_THROW(jacobian(chain, Eigen::VectorXd::Zero(10)), std::runtime_error);
   EXPECT_THROW(jac.compute(Eigen::VectorXd::Zero(9)), std::invalid_argument);
   EXPECT_THROW(ComplexStepJacobian(chain, ColouringStrategy::Greedy, 0.0), std::invalid_argument);

@@ -16,7 +16,7 @@
 
 #include "sphstab/forms/elastic_term.hpp"
 #include "sphstab/forms/elasticity_2d.hpp"
-#include "sphstab/stress/artificial_stress.hpp"
+#include "sphstab/models/artificial_stress.hpp"
 
 namespace sphstab {
 

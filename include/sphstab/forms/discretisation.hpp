@@ -29,6 +29,8 @@ struct Discretisation {
   int size() const { return particles.size(); }
   int free_count() const { return static_cast<int>(free.size()); }
   int dofs() const { return Dim * free_count(); }
+  /// Reference positions of the free particles, free_count x Dim (the DOF order).
+  Eigen::MatrixXd free_positions() const { return particles.positions(Role::Free); }
 };
 
 /// Builds a Discretisation: validates the set, finds neighbours within `neighbour_radius` (default, when <= 0:

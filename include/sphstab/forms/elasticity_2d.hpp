@@ -38,9 +38,9 @@
 
 #include "sphstab/forms/discretisation.hpp"
 #include "sphstab/forms/elastic_term.hpp"
-#include "sphstab/forms/force_function.hpp"
 #include "sphstab/forms/gradient_provider.hpp"
 #include "sphstab/forms/momentum_form.hpp"
+#include "sphstab/system/force_function.hpp"
 
 namespace sphstab {
 

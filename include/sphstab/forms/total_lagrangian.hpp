@@ -23,8 +23,8 @@
 
 #include "sphstab/forms/discretisation.hpp"
 #include "sphstab/forms/elasticity_2d.hpp"
-#include "sphstab/forms/force_function.hpp"
-#include "sphstab/scene/linear_elastic.hpp"
+#include "sphstab/forms/linear_elastic.hpp"
+#include "sphstab/system/force_function.hpp"
 
 namespace sphstab {
 

@@ -41,9 +41,9 @@
 #include <vector>
 
 #include "sphstab/forms/discretisation.hpp"
-#include "sphstab/forms/force_function.hpp"
 #include "sphstab/forms/gradient_provider.hpp"
 #include "sphstab/forms/momentum_form.hpp"
+#include "sphstab/system/force_function.hpp"
 
 namespace sphstab {
 

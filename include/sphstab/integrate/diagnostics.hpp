@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "sphstab/integrate/second_order_system.hpp"
+#include "sphstab/system/second_order_system.hpp"
 
 namespace sphstab {
 

@@ -1,7 +1,7 @@
 #pragma once
 /// \file leapfrog.hpp
-/// Explicit leap-frog (kick-drift-kick, velocity Verlet) for ü = a(u), with diagnostics, CSV/VTK output and
-/// blow-up detection.
+/// Explicit leap-frog (kick-drift-kick, velocity Verlet) for ü = a(u), with diagnostics, blow-up detection and
+/// observers (output lives in io/run_output.hpp).
 ///
 /// One step (Powell Alg. 1.1 / eq. 1.40 written in synchronised form; one force evaluation per step):
 ///   v^{n+1/2} = v^n + dt/2 a(u^n)
@@ -14,7 +14,7 @@
 /// conserved exactly).
 ///
 /// An unstable run is a result: run_leapfrog stops and reports a RunStatus with the step and time, and keeps
-/// everything written so far (CSV rows are flushed as they are written).
+/// everything its observers wrote so far.
 ///
 /// \code{.cpp}
 /// sphstab::SecondOrderSystem sys;
@@ -35,7 +35,8 @@
 #include <vector>
 
 #include "sphstab/integrate/diagnostics.hpp"
-#include "sphstab/integrate/second_order_system.hpp"
+#include "sphstab/integrate/run_observer.hpp"
+#include "sphstab/system/second_order_system.hpp"
 
 namespace sphstab {
 
@@ -83,31 +84,19 @@ struct BlowUpLimits {
   double energy_floor = 0;  ///< lower bound of the reference energy (needed if E(0) = 0)
 };
 
-/// What an observer sees every observe_every steps (and at step 0 and at the end).
-struct StepView {
-  long step;
-  double time;
-  const Eigen::VectorXd& u;
-  const Eigen::VectorXd& v;
-  const Eigen::VectorXd& a;
-};
-
 struct LeapfrogOptions {
   double dt = 0;        ///< > 0 (use cfl_time_step for the CFL rule)
   double t_end = 0;     ///< > 0: run to t_end (with land_on_t_end, dt is reduced to t_end / ceil(t_end / dt))
   long max_steps = -1;  ///< used when t_end <= 0
   bool land_on_t_end = true;
-  int diagnostics_every = 0;    ///< record every k steps (0: only step 0 and the last step)
-  bool keep_history = true;     ///< keep records in RunResult::history
-  std::string csv_path;         ///< diagnostics CSV (empty: none); rows are flushed as written
-  int snapshot_every = 0;       ///< VTK snapshot every k steps (0: none); needs reference_positions
-  std::string snapshot_prefix;  ///< "<dir>/<name>": writes <prefix>_<step>.vtp and <prefix>.pvd
-  int observe_every = 0;        ///< observer callback every k steps (0: never)
+  int diagnostics_every = 0;  ///< record every k steps (0: only step 0 and the last step)
+  bool keep_history = true;   ///< keep records in RunResult::history
+  int snapshot_every = 0;     ///< RunObserver::snapshot every k steps (0: none)
+  int observe_every = 0;      ///< observer callback every k steps (0: never)
   std::function<void(const StepView&)> observer;
+  /// Output of the run (io/run_output.hpp: diagnostics CSV, VTK series, progress line), not owned.
+  std::vector<RunObserver*> observers;
   BlowUpLimits limits;
-  bool progress = false;  ///< progress line on stderr
-  std::string label = "leapfrog";
-  double progress_interval = 2.0;  ///< seconds between progress lines
 };
 
 struct RunResult {

@@ -16,7 +16,7 @@
 #include <complex>
 #include <string>
 
-#include "sphstab/integrate/second_order_system.hpp"
+#include "sphstab/system/second_order_system.hpp"
 
 namespace sphstab {
 

@@ -21,8 +21,8 @@
 #include <memory>
 
 #include "sphstab/forms/discretisation.hpp"
-#include "sphstab/integrate/second_order_system.hpp"
 #include "sphstab/operators/operators.hpp"
+#include "sphstab/system/second_order_system.hpp"
 
 namespace sphstab {
 

@@ -33,6 +33,11 @@ struct CsvCell {
   CsvCell(const char* s) : kind(Kind::Text), text(s) {}
 };
 
+/// `s` as one CSV field: unchanged, or quoted ("" escapes ") when it holds a comma, quote or line break.
+std::string csv_quote(const std::string& s);
+/// One CSV line (fields quoted as needed, "\n"-terminated).
+std::string csv_line(const std::vector<std::string>& fields);
+
 /// Formats one cell as written by CsvWriter (shortest round-trip form for doubles, "nan"/"inf"/"-inf").
 std::string format_csv_cell(const CsvCell& cell);
 

@@ -23,34 +23,23 @@
 #include <vector>
 
 #include "sphstab/forms/momentum_form.hpp"
+#include "sphstab/jacobian/linearisation.hpp"
 #include "sphstab/kernel/kernel.hpp"
 #include "sphstab/operators/operators.hpp"
 #include "sphstab/particles/particle_set.hpp"
 
 namespace sphstab {
 
-/// K and L of Powell (3.40) on the free block. Free degree of freedom k is particle free_index[k].
-struct TensionJacobian1d {
-  SparseMatrix<> K;             ///< nf x nf, symmetric positive semi-definite
-  SparseMatrix<> L;             ///< nf x nf, symmetric
-  std::vector<int> free_index;  ///< nf particle indices (ascending)
-  Eigen::VectorXd x;            ///< nf positions of the free particles
-  bool periodic = false;        ///< the particle set is periodic (translation is then a null mode of K and L)
-  double spacing = 0;           ///< lattice spacing dx (0 if unknown)
-
-  int size() const { return static_cast<int>(free_index.size()); }
-  /// A(T) = K - n T L with n = initial_stress_multiplier(form).
-  SparseMatrix<> matrix(MomentumForm form, double tension) const;
-  /// A = K - tau L (tau = n T).
-  SparseMatrix<> matrix(double tau) const;
-};
-
-/// K and L from assembled operators (G[0] and H[0][0] required, N x N). Throws std::invalid_argument if an operator
-/// is missing, sizes differ, there are no free particles, or the preconditions above fail (tolerance 1e-10 of the
-/// largest |G_ij|).
-TensionJacobian1d analytic_jacobian_1d(const ParticleSet<1>& particles, const Operators<1>& operators);
+/// A(T) = K - n T L of Powell (3.40) on the free block as a Linearisation: A0 = K, A1 = -n L
+/// (n = initial_stress_multiplier(form); n is a power of two, so A1 is exact). Free degree of freedom k is particle
+/// free_index[k]; x holds the free positions; `symmetric` is true (K and L are symmetric for every 1D form here).
+/// For the uncorrected form (n = 1) A1 = -L itself. Throws std::invalid_argument if an operator is missing, sizes
+/// differ, there are no free particles, or the preconditions above fail (tolerance 1e-10 of the largest |G_ij|).
+Linearisation analytic_jacobian_1d(const ParticleSet<1>& particles, const Operators<1>& operators,
+                                   MomentumForm form = MomentumForm::Uncorrected);
 
 /// Convenience: neighbour search with the kernel's support and operator assembly, then the overload above.
-TensionJacobian1d analytic_jacobian_1d(const ParticleSet<1>& particles, const Kernel<1>& kernel, double h);
+Linearisation analytic_jacobian_1d(const ParticleSet<1>& particles, const Kernel<1>& kernel, double h,
+                                   MomentumForm form = MomentumForm::Uncorrected);
 
 }  // namespace sphstab

@@ -54,7 +54,7 @@
 /// \code{.cpp}
 /// auto set = sphstab::make_lattice<2>(sphstab::LatticeType::Square, 20, {.spacing = 1.0, .support_radius = 2.6});
 /// auto disc = sphstab::make_discretisation(set, sphstab::Kernel<2>(sphstab::KernelType::WendlandC2), 1.3);
-/// sphstab::ElasticJacobian2d jac = sphstab::analytic_jacobian_2d(*disc, {.lambda = 1, .mu = 1, .rho = 1},
+/// sphstab::Linearisation jac = sphstab::analytic_jacobian_2d(*disc, {.lambda = 1, .mu = 1, .rho = 1},
 ///     sphstab::MomentumForm::Conservative, sphstab::PreStrainKind::Isotropic);
 /// sphstab::SparseMatrix<> a = jac.at(1e-3);   // A(e) at e = 1e-3, dofs x dofs, interleaved f * 2 + a
 /// \endcode
@@ -64,43 +64,30 @@
 #include "sphstab/forms/discretisation.hpp"
 #include "sphstab/forms/elasticity_2d.hpp"
 #include "sphstab/forms/momentum_form.hpp"
+#include "sphstab/jacobian/linearisation.hpp"
 #include "sphstab/operators/operators.hpp"
 
 namespace sphstab {
 
-/// A(e) = A0 + e A1 on the free degrees of freedom (dof = f * 2 + a, free particles in ascending index).
-struct ElasticJacobian2d {
-  SparseMatrix<> A0;  ///< dofs x dofs, material stiffness over rho (pattern: particles within 2 neighbour hops)
-  SparseMatrix<> A1;  ///< dofs x dofs, initial-stress stiffness per unit pre-strain (pattern: 1 neighbour hop)
-  MomentumForm form = MomentumForm::Conservative;
-  PreStrainKind kind = PreStrainKind::Isotropic;
-  /// A(e) symmetric for every e: conservative, minus, or isotropic pre-strain, with equal volumes and complete
-  /// neighbourhoods of the free particles (then A0 and A1 are symmetric to round-off).
-  bool symmetric = false;
-  bool complete = false;        ///< every free particle has sum_j G_ij = 0 (tolerance 1e-10 max |G|)
-  std::vector<int> free_index;  ///< particle index of each free particle (ascending)
-  Eigen::MatrixX2d x;           ///< positions of the free particles, free_count x 2
-  bool periodic = false;        ///< the particle set is periodic in both axes
-  double spacing = 0;           ///< lattice spacing dx of the particle set (0 if unknown)
-
-  int dofs() const { return static_cast<int>(A0.rows()); }
-  /// A0 + e A1 (row-major, compressed).
-  SparseMatrix<> at(double e) const;
-};
+/// The result is a Linearisation (jacobian/linearisation.hpp) with dofs_per_particle = 2 (dof = f * 2 + a, free
+/// particles in ascending index), A0 the material stiffness over rho (pattern: particles within 2 neighbour hops),
+/// A1 the initial-stress stiffness per unit pre-strain (1 hop), `symmetric` when A(e) is symmetric for every e
+/// (conservative, minus, or isotropic pre-strain, with equal volumes and complete neighbourhoods of the free
+/// particles), `complete` when every free particle has sum_j G_ij = 0 (tolerance 1e-10 max |G|).
 
 /// Analytic A0, A1 from operators G, H assembled at the rest positions (`operators` must hold G and H with the
 /// neighbour-list pattern of `discretisation`). Throws std::invalid_argument for an invalid material, missing or
 /// mis-sized operators.
-ElasticJacobian2d analytic_jacobian_2d(const Discretisation<2>& discretisation, const Operators<2>& operators,
-                                       const ElasticMaterial& material, MomentumForm form, PreStrainKind kind);
+Linearisation analytic_jacobian_2d(const Discretisation<2>& discretisation, const Operators<2>& operators,
+                                   const ElasticMaterial& material, MomentumForm form, PreStrainKind kind);
 
 /// As above, assembling G and H first.
-ElasticJacobian2d analytic_jacobian_2d(const Discretisation<2>& discretisation, const ElasticMaterial& material,
-                                       MomentumForm form, PreStrainKind kind);
+Linearisation analytic_jacobian_2d(const Discretisation<2>& discretisation, const ElasticMaterial& material,
+                                   MomentumForm form, PreStrainKind kind);
 
 /// The Jacobian of a force function's form, material and pre-strain kind (its load e is not used: A0 and A1 do not
 /// depend on it). Throws std::invalid_argument if the force has a non-plain gradient provider or non-zero fixed
 /// displacements (the closed form covers neither).
-ElasticJacobian2d analytic_jacobian_2d(const ElasticForm2D& force);
+Linearisation analytic_jacobian_2d(const ElasticForm2D& force);
 
 }  // namespace sphstab

@@ -12,23 +12,18 @@
 /// Eigen::VectorXd u = Eigen::VectorXd::Zero(force.dofs());
 /// sphstab::SparseMatrix<> A = jac.compute(u);          // A = -da/du, dofs x dofs, row-major
 /// int evaluations = jac.colours();                     // complex force evaluations per Jacobian
-/// auto split = sphstab::affine_jacobian(force, u);     // A(T) = split.A0 + T * split.A1
+/// sphstab::Linearisation lin = sphstab::affine_jacobian(force, u);  // A(T) = lin.A0 + T * lin.A1
 /// \endcode
 #include <Eigen/Core>
 #include <vector>
 
-#include "sphstab/forms/force_function.hpp"
-#include "sphstab/jacobian/sparsity.hpp"
+#include "sphstab/core/status.hpp"
+#include "sphstab/jacobian/linearisation.hpp"
+#include "sphstab/neighbours/sparsity.hpp"
 #include "sphstab/operators/operators.hpp"
+#include "sphstab/system/force_function.hpp"
 
 namespace sphstab {
-
-/// Outcome of the last ComplexStepJacobian::compute().
-enum class JacobianStatus {
-  Successful,
-  NotComputed,
-  NumericalIssue  ///< the force function returned a non-finite value; the affected entries are NaN
-};
 
 enum class ColouringStrategy {
   Greedy,  ///< greedy distance-2 colouring (colours independent of N)
@@ -50,8 +45,9 @@ class ComplexStepJacobian {
   /// must still be alive.
   SparseMatrix<> compute(const Eigen::VectorXd& u, const ForceFunction* force = nullptr) const;
 
-  /// Successful, or NumericalIssue when the last compute() met a non-finite force value.
-  JacobianStatus info() const { return m_info; }
+  /// Successful, or NumericalIssue when the last compute() met a non-finite force value (the affected entries are
+  /// NaN).
+  Status info() const { return m_info; }
   /// Complex force evaluations per compute() (= number of colours).
   int colours() const { return m_ncolours; }
   const std::vector<int>& colouring() const { return m_colour; }
@@ -64,7 +60,7 @@ class ComplexStepJacobian {
   SparsityPattern m_pattern;
   std::vector<int> m_colour;
   int m_ncolours = 0;
-  mutable JacobianStatus m_info = JacobianStatus::NotComputed;
+  mutable Status m_info = Status::NotComputed;
   std::vector<std::vector<int>> m_columns_of_colour;
   SparsityPattern m_transpose;             ///< rows of each column
   std::vector<long> m_transpose_position;  ///< for each transposed entry, its position in the row-major values
@@ -74,17 +70,9 @@ class ComplexStepJacobian {
 SparseMatrix<> jacobian(const ForceFunction& force, const Eigen::VectorXd& u);
 
 /// The affine split in the load: A(load) = A0 + load * A1, with A0 = A(0) and A1 = A(1) - A(0) (exact because
-/// every form is affine in its load; verified in the tests).
-struct AffineJacobian {
-  SparseMatrix<> A0;
-  SparseMatrix<> A1;
-  SparseMatrix<> at(double load) const { return SparseMatrix<>(A0 + load * A1); }
-};
+/// every form is affine in its load; verified in the tests). dofs_per_particle = force.dim(); `symmetric` is
+/// measured: relative_asymmetry of A(0) and A(1) both <= symmetry_tol. Positions (x) are left to the caller.
 /// Throws std::runtime_error if the force is not finite at u.
-AffineJacobian affine_jacobian(const ForceFunction& force, const Eigen::VectorXd& u);
-
-/// ||A - A^T||_F / ||A||_F (0 for the zero matrix). Powell Thm 3.8: 0 (up to round-off) iff conservative, for
-/// equal particle masses.
-double relative_asymmetry(const SparseMatrix<>& A);
+Linearisation affine_jacobian(const ForceFunction& force, const Eigen::VectorXd& u, double symmetry_tol = 1e-12);
 
 }  // namespace sphstab

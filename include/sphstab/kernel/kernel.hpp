@@ -20,6 +20,8 @@
 #include <string>
 #include <vector>
 
+#include "sphstab/numerics/real_part.hpp"
+
 namespace sphstab {
 
 enum class KernelType {
@@ -44,19 +46,6 @@ KernelType parse_kernel_type(const std::string& name);
 std::string kernel_name(KernelType type);
 /// All kernel types, in declaration order.
 const std::vector<KernelType>& all_kernel_types();
-
-template <class S>
-struct Dual;  // numerics/dual.hpp
-
-namespace detail {
-inline double re(double x) { return x; }
-inline double re(const std::complex<double>& x) { return x.real(); }
-/// Real part of a dual number's value (branches follow the value, numerics/dual.hpp).
-template <class S>
-double re(const Dual<S>& x) {
-  return re(x.v);
-}
-}  // namespace detail
 
 /// A radial smoothing kernel in Dim dimensions (Dim = 1, 2, 3). Small value type: copy freely.
 ///

@@ -11,7 +11,7 @@
 #include <Eigen/Sparse>
 #include <memory>
 
-#include "sphstab/linalg/status.hpp"
+#include "sphstab/core/status.hpp"
 
 namespace sphstab {
 

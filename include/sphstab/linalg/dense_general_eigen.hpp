@@ -4,7 +4,7 @@
 /// Jacobian A = -df/du of a non-conservative SPH form, whose eigenvalues may be complex.
 #include <Eigen/Dense>
 
-#include "sphstab/linalg/status.hpp"
+#include "sphstab/core/status.hpp"
 
 namespace sphstab {
 

@@ -8,7 +8,7 @@
 ///       Generalised eigenvectors are B-normalised: x^T B x = 1.
 #include <Eigen/Dense>
 
-#include "sphstab/linalg/status.hpp"
+#include "sphstab/core/status.hpp"
 
 namespace sphstab {
 

@@ -22,7 +22,7 @@
 #include <complex>
 #include <type_traits>
 
-#include "sphstab/kernel/kernel.hpp"  // detail::re for duals
+#include "sphstab/numerics/real_part.hpp"
 
 namespace sphstab {
 

@@ -34,6 +34,8 @@ struct ParticleSet {
   int count(Role r) const;
   /// Indices of the particles with role r, ascending.
   std::vector<int> indices(Role r) const;
+  /// Positions of the particles with role r, in ascending index (count(r) x Dim): the free block of the DOFs.
+  Points positions(Role r) const;
   Point box_length() const { return box_hi - box_lo; }
 
   /// Minimum-image separation x_i - x_j.

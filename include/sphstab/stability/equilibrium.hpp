@@ -8,8 +8,8 @@
 #include <Eigen/Core>
 #include <string>
 
-#include "sphstab/forms/force_function.hpp"
-#include "sphstab/linalg/status.hpp"
+#include "sphstab/core/status.hpp"
+#include "sphstab/system/force_function.hpp"
 
 namespace sphstab {
 
