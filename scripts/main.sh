@@ -22,5 +22,9 @@ for dir in studies/*/; do
     "$exe" --out "results/$name"
   fi
   if [ -f "$dir/plot.py" ]; then "${PYTHON:-/usr/bin/python3}" "$dir/plot.py" "results/$name"; fi
+  if [ -f "$dir/summary.md.in" ]; then
+    "${PYTHON:-/usr/bin/python3}" scripts/render_summary.py "$dir/summary.md.in" "results/$name/summary.json" \
+      > "results/$name/summary.md"
+  fi
   echo "== study $name done in $((SECONDS - start)) s"
 done

@@ -1,0 +1,92 @@
+#pragma once
+/// \file study.hpp
+/// Helpers shared by the study drivers (studies/<name>/main.cpp): wall time, fits, random vectors, h grids and the
+/// number formats of summaries. Drivers compute and write data (CSV, summary.json); the prose of a study lives in
+/// its README.md and summary.md.in (rendered by scripts/render_summary.py).
+#include <Eigen/Core>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "sphstab/core/format.hpp"
+
+namespace sphstab::study {
+
+using Clock = std::chrono::steady_clock;
+
+/// Seconds of wall time since t0.
+inline double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// Least-squares slope of log|y| against log x over the points with x > 0 and finite non-zero y (the observed order
+/// or exponent of a power law); NaN with fewer than two such points.
+inline double loglog_slope(const std::vector<double>& x, const std::vector<double>& y) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  int m = 0;
+  for (std::size_t k = 0; k < x.size() && k < y.size(); ++k) {
+    if (!(x[k] > 0) || !std::isfinite(y[k]) || y[k] == 0) continue;
+    const double a = std::log(x[k]), b = std::log(std::abs(y[k]));
+    sx += a;
+    sy += b;
+    sxx += a * a;
+    sxy += a * b;
+    ++m;
+  }
+  if (m < 2) return std::nan("");
+  return (m * sxy - sx * sy) / (m * sxx - sx * sx);
+}
+
+/// n values uniform in [-amplitude, amplitude] from std::mt19937(seed) (reproducible across runs and machines).
+inline Eigen::VectorXd random_vector(int n, double amplitude, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> d(-amplitude, amplitude);
+  Eigen::VectorXd v(n);
+  for (int i = 0; i < n; ++i) v[i] = d(rng);
+  return v;
+}
+
+/// v with `digits` significant digits for prose and tables: "-" for NaN, "inf"/"-inf".
+inline std::string sig(double v, int digits = 3) { return std::isnan(v) ? "-" : format_number(v, digits); }
+
+/// Key numbers of a study for its summary template: summary.json, one flat object of strings.
+class Summary {
+ public:
+  /// A number with `digits` significant digits (sig()), or text.
+  void set(const std::string& key, double value, int digits = 3) { m_values[key] = sig(value, digits); }
+  void set(const std::string& key, const std::string& text) { m_values[key] = text; }
+  void set(const std::string& key, const char* text) { m_values[key] = text; }
+  void set(const std::string& key, long value) { m_values[key] = std::to_string(value); }
+  void set(const std::string& key, int value) { m_values[key] = std::to_string(value); }
+  /// Writes <dir>/summary.json. Throws std::runtime_error if the file cannot be written.
+  void write(const std::string& dir) const {
+    std::ofstream f(dir + "/summary.json");
+    if (!f) throw std::runtime_error("cannot write " + dir + "/summary.json");
+    f << "{\n";
+    std::size_t k = 0;
+    for (const auto& [key, value] : m_values) f << "  " << quote(key) << ": " << quote(value) << (++k < m_values.size() ? ",\n" : "\n");
+    f << "}\n";
+  }
+
+ private:
+  static std::string quote(const std::string& s) {
+    std::string q = "\"";
+    for (char c : s) {
+      if (c == '"' || c == '\\') q += '\\', q += c;
+      else if (c == '\n') q += "\\n";
+      else if (static_cast<unsigned char>(c) < 0x20) {
+        char buf[8];
+        std::snprintf(buf, sizeof buf, "\\u%04x", c);
+        q += buf;
+      } else q += c;
+    }
+    return q + "\"";
+  }
+  std::map<std::string, std::string> m_values;
+};
+
+}  // namespace sphstab::study
