@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "sphstab/growth/system_spectrum.hpp"
 #include "sphstab/linalg/dense_general_eigen.hpp"
 
 namespace sphstab {
@@ -31,13 +32,7 @@ GrowthAnalysis growth_rate(const Eigen::MatrixXd& a, const Eigen::VectorXd& x, b
     UnstableMode m;
     m.mu = mu;
     m.growth = g;
-    Eigen::VectorXcd v = eig.vectors.col(k);
-    // Rotate v by a phase so that its real part carries the largest share: phi = arg(sum v_i^2) / 2.
-    const std::complex<double> s = (v.array() * v.array()).sum();
-    v *= std::polar(1.0, -0.5 * std::arg(s));
-    m.shape = v.real();
-    const double norm = m.shape.norm();
-    if (norm > 0) m.shape /= norm;
+    m.shape = real_mode_shape(eig.vectors.col(k));
     m.wavenumber = dominant_wavenumber(m.shape, x, periodic);
     out.unstable.push_back(std::move(m));
   }

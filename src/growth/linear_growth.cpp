@@ -6,6 +6,7 @@
 #include <string>
 
 #include "sphstab/growth/growth_rate.hpp"
+#include "sphstab/growth/system_spectrum.hpp"
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
 #include "sphstab/linalg/dense_general_eigen.hpp"
 
@@ -31,13 +32,7 @@ LinearGrowth matrix_growth(const Eigen::MatrixXd& A, bool mode) {
         best = k;
       }
     }
-    if (mode) {
-      Eigen::VectorXcd v = eig.vectors.col(best);
-      const std::complex<double> s = (v.array() * v.array()).sum();
-      v *= std::polar(1.0, -0.5 * std::arg(s));  // rotate to be as real as possible
-      out.mode = v.real();
-      if (out.mode.norm() > 0) out.mode.normalize();
-    }
+    if (mode) out.mode = real_mode_shape(eig.vectors.col(best));
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;

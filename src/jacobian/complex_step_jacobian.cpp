@@ -10,13 +10,24 @@ namespace sphstab {
 
 ComplexStepJacobian::ComplexStepJacobian(const ForceFunction& force, ColouringStrategy strategy, double step)
     : m_force(&force), m_step(step) {
-  if (!(step > 0) || !std::isfinite(step))
-    throw std::invalid_argument("ComplexStepJacobian: step must be finite and > 0 (got " + std::to_string(step) + ")");
   m_pattern = force.dof_pattern();
-  if (m_pattern.rows != force.dofs() || m_pattern.cols != force.dofs())
-    throw std::invalid_argument("ComplexStepJacobian: force pattern is " + std::to_string(m_pattern.rows) + " x " +
-                                std::to_string(m_pattern.cols) + " but the force has " + std::to_string(force.dofs()) +
-                                " dofs");
+  analyse(strategy, force.dofs(), "force");
+}
+
+ComplexStepJacobian::ComplexStepJacobian(const SemiDiscreteSystem& system, ColouringStrategy strategy, double step)
+    : m_system(&system), m_step(step) {
+  m_pattern = system.pattern();
+  analyse(strategy, system.size(), "system");
+}
+
+void ComplexStepJacobian::analyse(ColouringStrategy strategy, int size, const char* who) {
+  if (!(m_step > 0) || !std::isfinite(m_step))
+    throw std::invalid_argument("ComplexStepJacobian: step must be finite and > 0 (got " + std::to_string(m_step) +
+                                ")");
+  if (m_pattern.rows != size || m_pattern.cols != size)
+    throw std::invalid_argument("ComplexStepJacobian: " + std::string(who) + " pattern is " +
+                                std::to_string(m_pattern.rows) + " x " + std::to_string(m_pattern.cols) + " but the " +
+                                who + " has " + std::to_string(size) + " unknowns");
   if (strategy == ColouringStrategy::Greedy) {
     m_colour = colour_columns(m_pattern);
   } else {
@@ -36,10 +47,12 @@ ComplexStepJacobian::ComplexStepJacobian(const ForceFunction& force, ColouringSt
 }
 
 SparseMatrix<> ComplexStepJacobian::compute(const Eigen::VectorXd& u, const ForceFunction* force) const {
-  const ForceFunction& f = force ? *force : *m_force;
+  if (m_system && force)
+    throw std::invalid_argument("ComplexStepJacobian::compute: a force function was given to a system's Jacobian");
+  const ForceFunction* f = force ? force : m_force;
   const int n = m_pattern.rows;
-  if (f.dofs() != n)
-    throw std::invalid_argument("ComplexStepJacobian::compute: force has " + std::to_string(f.dofs()) +
+  if (f && f->dofs() != n)
+    throw std::invalid_argument("ComplexStepJacobian::compute: force has " + std::to_string(f->dofs()) +
                                 " dofs, the analysed pattern " + std::to_string(n));
   if (u.size() != n)
     throw std::invalid_argument("ComplexStepJacobian::compute: u has " + std::to_string(u.size()) +
@@ -52,17 +65,21 @@ SparseMatrix<> ComplexStepJacobian::compute(const Eigen::VectorXd& u, const Forc
   std::fill(values, values + m_pattern.nonzeros(), 0.0);
 
   bool finite = true;
+  const double sign = f ? -1.0 : 1.0;
   const std::complex<double> ih(0.0, m_step);
   Eigen::VectorXcd uc = u.cast<std::complex<double>>(), a;
   for (const std::vector<int>& columns : m_columns_of_colour) {
     for (int k : columns) uc[k] += ih;
-    f.acceleration(uc, a);
+    if (f)
+      f->acceleration(uc, a);
+    else
+      m_system->rate(uc, a);
     for (int k : columns) {
       uc[k] = u[k];
       for (long e = m_transpose.offsets[k]; e < m_transpose.offsets[k + 1]; ++e) {
         const std::complex<double> v = a[m_transpose.indices[e]];
         if (!std::isfinite(v.real()) || !std::isfinite(v.imag())) finite = false;
-        values[m_transpose_position[e]] = -v.imag() / m_step;  // A = -da/du
+        values[m_transpose_position[e]] = sign * v.imag() / m_step;  // A = -da/du, J = dF/dy
       }
     }
   }
@@ -76,6 +93,14 @@ SparseMatrix<> jacobian(const ForceFunction& force, const Eigen::VectorXd& u) {
   if (jac.info() != Status::Successful)
     throw std::runtime_error("jacobian: the force function " + force.name() + " is not finite at u");
   return A;
+}
+
+SparseMatrix<> jacobian(const SemiDiscreteSystem& system, const Eigen::VectorXd& y) {
+  ComplexStepJacobian jac(system);
+  SparseMatrix<> J = jac.compute(y);
+  if (jac.info() != Status::Successful)
+    throw std::runtime_error("jacobian: the system " + system.name() + " is not finite at y");
+  return J;
 }
 
 Linearisation affine_jacobian(const ForceFunction& force, const Eigen::VectorXd& u, double symmetry_tol) {

@@ -1,5 +1,5 @@
 // The closed form A(T) = K - n T L (Powell (3.40)) against complex-step differentiation of the force functions
-// themselves, written here independently from the DESIGN.md definitions.
+// themselves, written here independently from the definitions of docs/conventions.md §4.
 #include "sphstab/jacobian/analytic_jacobian_1d.hpp"
 
 #include <gtest/gtest.h>

@@ -4,7 +4,7 @@
 /// operators, two sparse matrix-vector products per step) or updated-Lagrangian (operators reassembled at the
 /// current positions every step) form.
 ///
-/// Discretisation (DESIGN.md operators, G_ij = ∂W(|x_i - x_j|)/∂x_i V_j):
+/// Discretisation (docs/conventions.md §3 operators, G_ij = ∂W(|x_i - x_j|)/∂x_i V_j):
 ///   strain      ε = D_u u,   D_u = G (Plain), G - diag(G 1) (Minus, zeroth-order corrected, Powell 1.15), or
 ///                            diag(1/m1) (G - diag(G 1)) (Corrected: first-order, exact for linear u; the 1D
 ///                            form of the normalised gradient of Powell 1.19 without the Shepard step), with the

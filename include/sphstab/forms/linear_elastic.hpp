@@ -1,7 +1,7 @@
 #pragma once
 /// \file linear_elastic.hpp
 /// Small-strain linear elasticity rho ü = ∇·σ, σ = λ tr(ε) I + 2µ ε, ε = sym(∇u), discretised with the SPH
-/// operators G^a of DESIGN.md, in three interchangeable implementations of the SAME force:
+/// operators G^a of docs/conventions.md §3, in three interchangeable implementations of the SAME force:
 ///   - TL, sparse matrices (acceleration, frame Total): B^a = D_u^a and C^a = D_σ^a assembled once at the reference
 ///     positions; one evaluation = Dim gradient SpMVs (each on the Dim displacement components at once), a pointwise
 ///     stress update and Dim divergence SpMVs. Pure SpMV, no kernel evaluations.

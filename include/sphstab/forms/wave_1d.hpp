@@ -4,7 +4,7 @@
 /// momentum forms, evaluated with the kernel at the CURRENT positions x = x0 + u, optionally with a corrected
 /// kernel gradient Ghat (a GradientProvider, e.g. make_gradient_provider<1>(Correction::MeanPolish)).
 ///
-/// Stress (all particles, free and fixed; Powell 3.26 with the sign of DESIGN.md, 3.55 when corrected):
+/// Stress (all particles, free and fixed; Powell 3.26 with the sign of docs/conventions.md §4, 3.55 when corrected):
 ///   s_i = sum_j (u_j - u_i) K_ij(x) + T            (K = G, or K = Ghat with StrainSum::Difference)
 ///   s_i = sum_j u_j K_ij(x) + T                     (K = Ghat with StrainSum::Direct, Powell 3.55 alpha = 0)
 /// Momentum (free particles i), Powell 3.28, with D = G or Ghat:

@@ -2,8 +2,8 @@
 /// \file growth_rate.hpp
 /// Linear growth rates of u'' = -A u (A = -df/du at an equilibrium, any real square matrix, symmetric or not).
 /// With u = v e^{lambda t}: lambda^2 = -mu for each eigenvalue mu of A, so the growth rate of the mode is
-/// Re sqrt(-mu) (principal root, >= 0) and the system's rate is gamma = max_mu Re sqrt(-mu) (DESIGN.md; Powell
-/// (3.7), Theorem 3.1: unstable unless every mu is real and positive). Eigenvalues by dense LAPACK dgeev.
+/// Re sqrt(-mu) (principal root, >= 0) and the system's rate is gamma = max_mu Re sqrt(-mu) (docs/conventions.md §6;
+/// Powell (3.7), Theorem 3.1: unstable unless every mu is real and positive). Eigenvalues by dense LAPACK dgeev.
 ///
 /// \note A tiny |mu| or a tiny imaginary part from rounding gives a spurious Re sqrt(-mu) of order
 ///       sqrt(eps ||A||); modes are listed as unstable only above `tolerance` (default 1e-6 sqrt(||A||_F)),

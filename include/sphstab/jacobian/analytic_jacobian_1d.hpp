@@ -1,6 +1,7 @@
 #pragma once
 /// \file analytic_jacobian_1d.hpp
-/// Closed-form linearisation of the 1D pre-tensioned SPH forms at the equilibrium u = 0 (Powell (3.40), DESIGN.md):
+/// Closed-form linearisation of the 1D pre-tensioned SPH forms at the equilibrium u = 0 (Powell (3.40),
+/// docs/conventions.md §4):
 ///
 ///   A(T) = -df/du = K - n T L   on the free block, n = initial_stress_multiplier(form) (1, 2, 4; 0 for minus),
 ///   K = G_f G_f^T                  (material stiffness; G_f = free ROWS of G, ALL columns: the sum over j runs over

@@ -1,6 +1,7 @@
 #pragma once
 /// \file complex_step_jacobian.hpp
-/// The generic exact sparse Jacobian A = -da/du of any ForceFunction, by complex-step differentiation with
+/// The generic exact sparse Jacobian A = -da/du of any ForceFunction (and J = dF/dy of any SemiDiscreteSystem), by
+/// complex-step differentiation with
 /// column colouring: for each colour c, one complex evaluation a(u + i h e_c) with e_c = sum of the unit vectors
 /// of the columns of colour c gives A_rk = -Im a_r / h for the (unique) column k of colour c in row r.
 /// With h = 1e-30 there is no subtractive cancellation: the result is exact to round-off (Squire & Trapp 1998;
@@ -22,6 +23,7 @@
 #include "sphstab/neighbours/sparsity.hpp"
 #include "sphstab/operators/operators.hpp"
 #include "sphstab/system/force_function.hpp"
+#include "sphstab/system/semi_discrete_system.hpp"
 
 namespace sphstab {
 
@@ -36,13 +38,17 @@ class ComplexStepJacobian {
  public:
   static constexpr double default_step = 1e-30;
 
-  /// Analyses force.dof_pattern() and colours its columns.
+  /// Analyses force.dof_pattern() and colours its columns; compute() then returns A = -da/du.
   explicit ComplexStepJacobian(const ForceFunction& force, ColouringStrategy strategy = ColouringStrategy::Greedy,
+                               double step = default_step);
+  /// Analyses system.pattern() and colours its columns; compute() then returns J = dF/dy (the system must stay
+  /// alive).
+  explicit ComplexStepJacobian(const SemiDiscreteSystem& system, ColouringStrategy strategy = ColouringStrategy::Greedy,
                                double step = default_step);
 
   /// A = -da/du at u (size dofs()), on the pattern (explicit zeros kept). Uses `force` if given (it must have
   /// the same dofs() and pattern; e.g. with_load()), else the force function given to the constructor, which
-  /// must still be alive.
+  /// must still be alive. For a system: J = dF/dy at y = u (`force` must be null).
   SparseMatrix<> compute(const Eigen::VectorXd& u, const ForceFunction* force = nullptr) const;
 
   /// Successful, or NumericalIssue when the last compute() met a non-finite force value (the affected entries are
@@ -55,7 +61,9 @@ class ComplexStepJacobian {
   double step() const { return m_step; }
 
  private:
-  const ForceFunction* m_force;
+  void analyse(ColouringStrategy strategy, int size, const char* who);
+  const ForceFunction* m_force = nullptr;
+  const SemiDiscreteSystem* m_system = nullptr;
   double m_step;
   SparsityPattern m_pattern;
   std::vector<int> m_colour;
@@ -68,6 +76,8 @@ class ComplexStepJacobian {
 
 /// A = -da/du at u (greedy colouring). Throws std::runtime_error if the force is not finite at u.
 SparseMatrix<> jacobian(const ForceFunction& force, const Eigen::VectorXd& u);
+/// J = dF/dy at y (greedy colouring). Throws std::runtime_error if the rate is not finite at y.
+SparseMatrix<> jacobian(const SemiDiscreteSystem& system, const Eigen::VectorXd& y);
 
 /// The affine split in the load: A(load) = A0 + load * A1, with A0 = A(0) and A1 = A(1) - A(0) (exact because
 /// every form is affine in its load; verified in the tests). dofs_per_particle = force.dim(); `symmetric` is

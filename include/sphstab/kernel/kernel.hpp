@@ -3,8 +3,8 @@
 /// Smoothing kernels W(r, h) with first and second radial derivatives in 1, 2 and 3 dimensions.
 ///
 /// Every family is written as a shape f(s) on its native variable s (native support s_max) and evaluated at
-/// s = kappa * q, q = r / h. With KernelScaling::Support2h (the default, DESIGN.md) kappa = s_max / 2, so every
-/// kernel vanishes at r = 2h and h/dx means the same thing for every family (Powell Fig. 3.2 uses equal
+/// s = kappa * q, q = r / h. With KernelScaling::Support2h (the default, docs/conventions.md §2) kappa = s_max / 2, so
+/// every kernel vanishes at r = 2h and h/dx means the same thing for every family (Powell Fig. 3.2 uses equal
 /// supports). KernelScaling::Native uses kappa = 1, the convention of the kernel's source:
 ///   cubic B-spline 2h, quartic 2.5h, quintic 3h (Powell A.1-A.3), Wendland and Lucy h (A.6, A.7),
 ///   truncated Gaussian exp(-q^2) cut at 3h (A.5), hat 2h (Powell 3.60), modified mollifier h (Ismail 2.19).

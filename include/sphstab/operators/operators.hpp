@@ -1,6 +1,6 @@
 #pragma once
 /// \file operators.hpp
-/// Sparse SPH operator matrices assembled from a neighbour list (DESIGN.md conventions):
+/// Sparse SPH operator matrices assembled from a neighbour list (docs/conventions.md §3):
 ///   W_ij    = W(|x_i - x_j|, h) V_j                              (kernel / interpolation matrix)
 ///   G^a_ij  = dW(|x_i - x_j|, h)/dx_i^a V_j, G^a_ii = 0            (gradient w.r.t. the FIRST index)
 ///   H^ab_ij = d^2W(|x_i - x_j|, h)/dx_i^a dx_i^b V_j for i != j, H_ii = 0 (stored as explicit zeros)

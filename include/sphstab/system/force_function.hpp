@@ -17,7 +17,8 @@ namespace sphstab {
 /// Accelerations of the free DOFs as a function of their displacements, a = f(u) (the right-hand side of
 /// u'' = f(u)). DOFs: free particles only, interleaved dof = f * Dim + a (see Discretisation).
 ///
-/// \note Sign convention: the Jacobian reported by sphstab is A = -da/du (DESIGN.md), positive definite at a
+/// \note Sign convention: the Jacobian reported by sphstab is A = -da/du (docs/conventions.md §6), positive definite at
+/// a
 ///       stable equilibrium; the load parameter (1D tension T, 2D pre-strain e) enters a affinely, so
 ///       A(load) = A0 + load * A1 exactly.
 /// \note acceleration() must be a pure function of u (no state); the complex overload must be the same

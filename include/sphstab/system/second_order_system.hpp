@@ -4,7 +4,7 @@
 /// force function (momentum form, linear operator, pair loop) can drive it.
 ///
 /// Degrees of freedom: u, v and a hold the FREE particles only, interleaved dof = i * dofs_per_particle + c
-/// (DESIGN.md). Fixed particles are not unknowns: the acceleration callable applies their prescribed
+/// (docs/conventions.md §1). Fixed particles are not unknowns: the acceleration callable applies their prescribed
 /// displacement itself (clamped: zero; mirror ghosts: a copy of their partner's; time-dependent: through
 /// set_time, called with the time of u before every acceleration evaluation).
 #include <Eigen/Core>
