@@ -150,8 +150,8 @@ void run_tcrit_2d(const TcritArgs& a) {
   }
 
   std::string out =
-      "kernel,form,lattice,N,periodic,prestrain,direction,h_over_dx,quantity,method,backend,criterion,tcrit,tcrit_eig,"
-      "tcrit_bisect,rel_diff,mechanism,tcrit_infinite,tcrit_symbol,mode_kx_over_pi,mode_ky_over_pi,"
+      "kernel,form,lattice,N,periodic,prestrain,direction,h_over_dx,quantity,method,backend,criterion,ecrit,ecrit_eig,"
+      "ecrit_bisect,rel_diff,mechanism,ecrit_infinite,ecrit_symbol,mode_kx_over_pi,mode_ky_over_pi,"
       "mode_peak_fraction,infinite_kx_over_pi,infinite_ky_over_pi,status,reason\n";
   const std::string prestrain_name = kind == PreStrainKind::Isotropic ? "isotropic" : "uniaxial";
   for (KernelType kt : kernels) {
@@ -350,7 +350,7 @@ void register_tcrit_command(CLI::App& app) {
       "positive definite, Powell 3.40) with the estimates 3.42/3.49/3.43/3.51/Swegle; with "
       "--correction, of the corrected forms (criterion pd, or real-positive-spectrum and "
       "symmetric-part-pd when A is not symmetric); with --dim 2 the critical PRE-STRAIN e_crit of a 2D lattice (column "
-      "tcrit; signed: < 0 with --compression) from the analytic Jacobian A(e) = A0 + e A1; CSV");
+      "ecrit; signed: < 0 with --compression) from the analytic Jacobian A(e) = A0 + e A1; CSV");
   cmd->add_option("--dim", args->dim, "Dimension (1 or 2)");
   cmd->add_option("--lattice", args->lattice, "Lattice: line (1D); square, hex, face-centred (2D; default square)")
       ->each([args](const std::string&) { args->lattice_given = true; });

@@ -102,22 +102,6 @@ double relative_difference(double a, double b) {
   return std::abs(a - b) / std::max(std::abs(a), std::abs(b));
 }
 
-/// The 2D lattice of the free particles, from the geometry: square (rows dx apart, unshifted), hexagonal (rows
-/// dx sqrt(3)/2 apart, alternate rows shifted by dx/2) or face-centred (rows dx apart, shifted).
-BravaisLattice2d detect_lattice(const Eigen::MatrixX2d& x, double dx) {
-  double dy = kInf;
-  bool shifted = false;
-  for (Eigen::Index i = 1; i < x.rows(); ++i) {
-    const double d = std::abs(x(i, 1) - x(0, 1));
-    if (d > 1e-9 * dx) dy = std::min(dy, d);
-    const double fx = (x(i, 0) - x(0, 0)) / dx;
-    if (std::abs(fx - std::round(fx)) > 0.25) shifted = true;
-  }
-  if (!shifted) return bravais_lattice_2d(LatticeType::Square, dx);
-  if (std::abs(dy - dx * std::sqrt(3.0) / 2) < 1e-6 * dx) return bravais_lattice_2d(LatticeType::Hexagonal, dx);
-  return bravais_lattice_2d(LatticeType::FaceCentred, dx);
-}
-
 /// Basis (columns) of the complement of the translation (and, if `sawtooth`, of the sawtooth) on nf points ordered
 /// by `order`: e_i - e_{i+1} (or e_i - e_{i+2}).
 ColSparseMatrix deflation_basis(const std::vector<int>& order, bool sawtooth) {
@@ -551,7 +535,8 @@ void finish_mode(const Linearisation& lin, CriticalLoad& out) {
     out.mode_wavenumber = dominant_wavenumber(Eigen::VectorXd(out.mode.real()), lin.x.col(0), lin.periodic);
   } else if (lin.dofs_per_particle == 2) {
     const Eigen::MatrixX2d x = lin.x;
-    out.mode_wavevector = dominant_wavevector(out.mode, x, detect_lattice(x, lin.spacing > 0 ? lin.spacing : 1.0));
+    out.mode_wavevector =
+        dominant_wavevector(out.mode, x, detect_bravais_lattice_2d(x, lin.spacing > 0 ? lin.spacing : 1.0));
   }
 }
 

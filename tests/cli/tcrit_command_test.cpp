@@ -153,7 +153,7 @@ TEST(TcritCommand, TwoDimensionalCriticalPreStrain) {
   auto ls = lines(r.out);
   ASSERT_EQ(ls.size(), 1u + 2 * 2 * 2);
   auto header = fields(ls[0]);
-  for (const char* c : {"kernel", "form", "N", "h_over_dx", "tcrit", "quantity", "tcrit_infinite", "mode_kx_over_pi",
+  for (const char* c : {"kernel", "form", "N", "h_over_dx", "ecrit", "quantity", "ecrit_infinite", "mode_kx_over_pi",
                         "mode_ky_over_pi", "criterion", "mechanism", "reason"})
     EXPECT_NE(std::find(header.begin(), header.end(), c), header.end()) << c;
   auto col = [&](const char* name) { return std::find(header.begin(), header.end(), name) - header.begin(); };
@@ -173,25 +173,25 @@ TEST(TcritCommand, TwoDimensionalCriticalPreStrain) {
       critical_load(analytic_jacobian_2d(*d, nu03, MomentumForm::Conservative, PreStrainKind::UniaxialX),
                     LoadDirection::Compression, CriticalLoadOptions::strain_2d());
   ASSERT_TRUE(std::isfinite(ref.load));
-  EXPECT_NEAR(std::stod(row[col("tcrit")]) / ref.load, 1.0, 1e-11);  // 12 significant digits
-  EXPECT_LT(std::stod(row[col("tcrit")]), 0.0);                      // compression: signed
+  EXPECT_NEAR(std::stod(row[col("ecrit")]) / ref.load, 1.0, 1e-11);  // 12 significant digits
+  EXPECT_LT(std::stod(row[col("ecrit")]), 0.0);                      // compression: signed
   // The non-symmetric uniaxial plus form uses the dense eigenvalue criterion.
   auto plus = fields(ls[1 + 7]);
   EXPECT_EQ(plus[col("form")], "plus");
   EXPECT_EQ(plus[col("criterion")], "spectrum");
-  // Periodic: exact symbol route; tcrit equals tcrit_symbol.
+  // Periodic: exact symbol route; ecrit equals ecrit_symbol.
   CliRun p = run("tcrit --dim 2 --lattice square --n 9 --kernel cubic --h 1.3 --periodic");
   ASSERT_EQ(p.status, 0) << p.out;
   auto pl = lines(p.out);
   ASSERT_EQ(pl.size(), 2u);
   auto prow = fields(pl[1]);
   EXPECT_EQ(prow[col("method")], "symbol");
-  EXPECT_EQ(prow[col("tcrit")], prow[col("tcrit_symbol")]);
-  EXPECT_GT(std::stod(prow[col("tcrit")]), 0.0);
+  EXPECT_EQ(prow[col("ecrit")], prow[col("ecrit_symbol")]);
+  EXPECT_GT(std::stod(prow[col("ecrit")]), 0.0);
   // Minus form: inf.
   CliRun m = run("tcrit --dim 2 --n 6 --form minus --h 1.2");
   ASSERT_EQ(m.status, 0);
-  EXPECT_EQ(fields(lines(m.out)[1])[col("tcrit")], "inf");
+  EXPECT_EQ(fields(lines(m.out)[1])[col("ecrit")], "inf");
 }
 
 TEST(TcritCommand, TwoDimensionalBadInput) {
