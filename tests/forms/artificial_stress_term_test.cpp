@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "forms_fixture.hpp"
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
 #include "sphstab/particles/lattice.hpp"
 
@@ -12,19 +13,9 @@ namespace {
 
 const ElasticMaterial kMaterial{.lambda = 1.2, .mu = 0.8, .rho = 7.8};
 
-std::shared_ptr<const Discretisation<2>> block(int n) {
-  Kernel<2> k(KernelType::CubicSpline);
-  auto set = make_lattice<2>(LatticeType::Square, n, {.spacing = 1.0, .support_radius = k.support_radius(1.3)});
-  return make_discretisation(set, k, 1.3);
-}
+std::shared_ptr<const Discretisation<2>> block(int n) { return test::lattice_discretisation<2>({.n = n}); }
 
-Eigen::VectorXd random_vector(int n, double amplitude, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> d(-amplitude, amplitude);
-  Eigen::VectorXd v(n);
-  for (int i = 0; i < n; ++i) v[i] = d(rng);
-  return v;
-}
+using test::random_vector;
 
 TEST(ArtificialStressTerm, EquilibriumAndCompressionLimit) {
   auto d = block(7);

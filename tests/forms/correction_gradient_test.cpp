@@ -7,6 +7,7 @@
 
 #include <random>
 
+#include "forms_fixture.hpp"
 #include "sphstab/forms/wave_1d.hpp"
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
 #include "sphstab/linalg/cholmod_definiteness.hpp"
@@ -20,23 +21,16 @@ namespace {
 /// as tension_lattice_1d), optionally perturbed (free particles) or periodic.
 std::shared_ptr<const Discretisation<1>> line(int n, KernelType type, double h, int supports = 1,
                                               double perturbation = 0.0, bool periodic = false) {
-  Kernel<1> k(type);
-  auto set = make_lattice<1>(LatticeType::Line, n,
-                             {.spacing = 1.0,
-                              .support_radius = supports * k.support_radius(h) * (1 - 1e-9),
-                              .periodic = periodic,
-                              .perturbation = perturbation,
-                              .seed = 11});
-  return make_discretisation(set, k, h);
+  return test::lattice_discretisation<1>({.n = n,
+                                          .kernel = type,
+                                          .h = h,
+                                          .periodic = periodic,
+                                          .perturbation = perturbation,
+                                          .seed = 11,
+                                          .support_scale = supports * (1 - 1e-9)});
 }
 
-Eigen::VectorXd random_vector(int n, double amplitude, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> d(-amplitude, amplitude);
-  Eigen::VectorXd v(n);
-  for (int i = 0; i < n; ++i) v[i] = d(rng);
-  return v;
-}
+using test::random_vector;
 
 double max_abs(const Eigen::MatrixXd& m) { return m.size() ? m.cwiseAbs().maxCoeff() : 0.0; }
 

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <random>
 
+#include "forms_fixture.hpp"
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
 #include "sphstab/particles/lattice.hpp"
 
@@ -17,23 +18,16 @@ const ElasticMaterial kMaterial{.lambda = 1.3, .mu = 0.7, .rho = 1.9};
 std::shared_ptr<const Discretisation<2>> lattice(int n, KernelType type, double h, bool periodic = false,
                                                  double perturbation = 0.0,
                                                  LatticeType lattice_type = LatticeType::Square) {
-  Kernel<2> k(type);
-  auto set = make_lattice<2>(lattice_type, n,
-                             {.spacing = 1.0,
-                              .support_radius = k.support_radius(h),
-                              .periodic = periodic,
-                              .perturbation = perturbation,
-                              .seed = 3});
-  return make_discretisation(set, k, h);
+  return test::lattice_discretisation<2>({.n = n,
+                                          .kernel = type,
+                                          .h = h,
+                                          .type = lattice_type,
+                                          .periodic = periodic,
+                                          .perturbation = perturbation,
+                                          .seed = 3});
 }
 
-Eigen::VectorXd random_vector(int n, double amplitude, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> d(-amplitude, amplitude);
-  Eigen::VectorXd v(n);
-  for (int i = 0; i < n; ++i) v[i] = d(rng);
-  return v;
-}
+using test::random_vector;
 
 /// A w = -da/du w by one complex step (directional derivative).
 Eigen::VectorXd jacobian_action(const ForceFunction& f, const Eigen::VectorXd& u, const Eigen::VectorXd& w) {

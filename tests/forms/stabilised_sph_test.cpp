@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "forms_fixture.hpp"
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
 #include "sphstab/particles/lattice.hpp"
 
@@ -13,24 +14,10 @@ namespace {
 const ElasticMaterial kMaterial{.lambda = 1.2, .mu = 0.8, .rho = 7.8};
 
 std::shared_ptr<const Discretisation<2>> block(int n, bool periodic = false, double perturbation = 0) {
-  Kernel<2> k(KernelType::CubicSpline);
-  const double h = 1.3;
-  auto set = make_lattice<2>(LatticeType::Square, n,
-                             {.spacing = 1.0,
-                              .support_radius = k.support_radius(h),
-                              .periodic = periodic,
-                              .perturbation = perturbation,
-                              .seed = 7});
-  return make_discretisation(set, k, h);
+  return test::lattice_discretisation<2>({.n = n, .periodic = periodic, .perturbation = perturbation, .seed = 7});
 }
 
-Eigen::VectorXd random_vector(int n, double amplitude, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> d(-amplitude, amplitude);
-  Eigen::VectorXd v(n);
-  for (int i = 0; i < n; ++i) v[i] = d(rng);
-  return v;
-}
+using test::random_vector;
 
 double max_abs(const Eigen::VectorXd& v) { return v.cwiseAbs().maxCoeff(); }
 

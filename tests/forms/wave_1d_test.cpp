@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "forms_fixture.hpp"
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
 #include "sphstab/particles/lattice.hpp"
 
@@ -12,23 +13,11 @@ namespace {
 
 std::shared_ptr<const Discretisation<1>> line(int n, KernelType type, double h, bool periodic = false,
                                               double perturbation = 0.0) {
-  Kernel<1> k(type);
-  auto set = make_lattice<1>(LatticeType::Line, n,
-                             {.spacing = 1.0,
-                              .support_radius = k.support_radius(h),
-                              .periodic = periodic,
-                              .perturbation = perturbation,
-                              .seed = 7});
-  return make_discretisation(set, k, h);
+  return test::lattice_discretisation<1>(
+      {.n = n, .kernel = type, .h = h, .periodic = periodic, .perturbation = perturbation, .seed = 7});
 }
 
-Eigen::VectorXd random_vector(int n, double amplitude, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> d(-amplitude, amplitude);
-  Eigen::VectorXd v(n);
-  for (int i = 0; i < n; ++i) v[i] = d(rng);
-  return v;
-}
+using test::random_vector;
 
 /// Powell (3.40), written independently of the force code: A(T) = G_f G_f^T - n T L with
 /// L = diag(sum_{j != i} H_ij) - H on the free block (operators at the reference positions).
