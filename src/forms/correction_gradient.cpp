@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "sphstab/numerics/instantiation.hpp"
 #include "sphstab/operators/shepard.hpp"
 
 namespace sphstab {
@@ -92,9 +93,7 @@ std::shared_ptr<const GradientProvider<Dim>> make_gradient_provider(Correction c
   SPHSTAB_INSTANTIATE_SCALAR(D, std::complex<double>)                                                       \
   SPHSTAB_INSTANTIATE_SCALAR(D, Dual<double>)                                                               \
   SPHSTAB_INSTANTIATE_SCALAR(D, Dual<std::complex<double>>)
-SPHSTAB_INSTANTIATE(1)
-SPHSTAB_INSTANTIATE(2)
-SPHSTAB_INSTANTIATE(3)
+SPHSTAB_FOR_EACH_DIM(SPHSTAB_INSTANTIATE)
 #undef SPHSTAB_INSTANTIATE
 #undef SPHSTAB_INSTANTIATE_SCALAR
 

@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "sphstab/numerics/instantiation.hpp"
+
 namespace sphstab {
 
 template <int Dim>
@@ -27,11 +29,10 @@ std::shared_ptr<const Discretisation<Dim>> make_discretisation(ParticleSet<Dim> 
   return d;
 }
 
-template std::shared_ptr<const Discretisation<1>> make_discretisation<1>(ParticleSet<1>, const Kernel<1>&, double,
-                                                                         double);
-template std::shared_ptr<const Discretisation<2>> make_discretisation<2>(ParticleSet<2>, const Kernel<2>&, double,
-                                                                         double);
-template std::shared_ptr<const Discretisation<3>> make_discretisation<3>(ParticleSet<3>, const Kernel<3>&, double,
-                                                                         double);
+#define SPHSTAB_INSTANTIATE(D)                                                                                       \
+  template std::shared_ptr<const Discretisation<D>> make_discretisation<D>(ParticleSet<D>, const Kernel<D>&, double, \
+                                                                           double);
+SPHSTAB_FOR_EACH_DIM(SPHSTAB_INSTANTIATE)
+#undef SPHSTAB_INSTANTIATE
 
 }  // namespace sphstab

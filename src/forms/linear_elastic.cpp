@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "sphstab/numerics/instantiation.hpp"
+
 namespace sphstab {
 
 namespace {
@@ -405,8 +407,8 @@ SecondOrderSystem LinearElasticSph<Dim>::system(bool pair_loop) const {
   return s;
 }
 
-template class LinearElasticSph<1>;
-template class LinearElasticSph<2>;
-template class LinearElasticSph<3>;
+#define SPHSTAB_INSTANTIATE(D) template class LinearElasticSph<D>;
+SPHSTAB_FOR_EACH_DIM(SPHSTAB_INSTANTIATE)
+#undef SPHSTAB_INSTANTIATE
 
 }  // namespace sphstab

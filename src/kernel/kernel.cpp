@@ -4,6 +4,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "sphstab/numerics/instantiation.hpp"
 #include "sphstab/numerics/quadrature.hpp"
 
 namespace sphstab {
@@ -140,8 +141,8 @@ double Kernel<Dim>::inflection_q() const {
   return 0.0;
 }
 
-template class Kernel<1>;
-template class Kernel<2>;
-template class Kernel<3>;
+#define SPHSTAB_INSTANTIATE(D) template class Kernel<D>;
+SPHSTAB_FOR_EACH_DIM(SPHSTAB_INSTANTIATE)
+#undef SPHSTAB_INSTANTIATE
 
 }  // namespace sphstab

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "sphstab/numerics/instantiation.hpp"
+
 namespace sphstab {
 
 namespace {
@@ -144,11 +146,10 @@ NeighbourList find_neighbours_brute_force(const ParticleSet<Dim>& p, double radi
   return list;
 }
 
-template NeighbourList find_neighbours<1>(const ParticleSet<1>&, double);
-template NeighbourList find_neighbours<2>(const ParticleSet<2>&, double);
-template NeighbourList find_neighbours<3>(const ParticleSet<3>&, double);
-template NeighbourList find_neighbours_brute_force<1>(const ParticleSet<1>&, double);
-template NeighbourList find_neighbours_brute_force<2>(const ParticleSet<2>&, double);
-template NeighbourList find_neighbours_brute_force<3>(const ParticleSet<3>&, double);
+#define SPHSTAB_INSTANTIATE(D)                                              \
+  template NeighbourList find_neighbours<D>(const ParticleSet<D>&, double); \
+  template NeighbourList find_neighbours_brute_force<D>(const ParticleSet<D>&, double);
+SPHSTAB_FOR_EACH_DIM(SPHSTAB_INSTANTIATE)
+#undef SPHSTAB_INSTANTIATE
 
 }  // namespace sphstab

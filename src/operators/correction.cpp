@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "sphstab/numerics/dual.hpp"
+#include "sphstab/numerics/instantiation.hpp"
 #include "sphstab/operators/column_shepard.hpp"
 #include "sphstab/operators/mean_polish.hpp"
 #include "sphstab/operators/minus_gradient.hpp"
@@ -120,18 +121,7 @@ std::array<SparseMatrix<Scalar>, Dim> apply_correction(Correction c, const Parti
   template std::array<SparseMatrix<S>, D> apply_correction<D, S>(Correction, const ParticleSet<D>&,            \
                                                                  const NeighbourList&, const Operators<D, S>&, \
                                                                  const CorrectionOptions<D>&, const Positions<D, S>*);
-SPHSTAB_INSTANTIATE(1, double)
-SPHSTAB_INSTANTIATE(2, double)
-SPHSTAB_INSTANTIATE(3, double)
-SPHSTAB_INSTANTIATE(1, std::complex<double>)
-SPHSTAB_INSTANTIATE(2, std::complex<double>)
-SPHSTAB_INSTANTIATE(3, std::complex<double>)
-SPHSTAB_INSTANTIATE(1, Dual<double>)  // nested derivatives (numerics/dual.hpp)
-SPHSTAB_INSTANTIATE(2, Dual<double>)
-SPHSTAB_INSTANTIATE(3, Dual<double>)
-SPHSTAB_INSTANTIATE(1, Dual<std::complex<double>>)
-SPHSTAB_INSTANTIATE(2, Dual<std::complex<double>>)
-SPHSTAB_INSTANTIATE(3, Dual<std::complex<double>>)
+SPHSTAB_FOR_EACH_DIM_AND_SCALAR(SPHSTAB_INSTANTIATE)
 #undef SPHSTAB_INSTANTIATE
 
 }  // namespace sphstab

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "correction_detail.hpp"
+#include "sphstab/numerics/instantiation.hpp"
 
 namespace sphstab {
 
@@ -82,19 +83,17 @@ SparseMatrix<Scalar> local_polish(const SparseMatrix<Scalar>& G, const Eigen::Ve
   return local_polish<Scalar>(G, local_means<Scalar>(G, counts));
 }
 
-template Eigen::VectorXd neighbour_counts<1>(const ParticleSet<1>&, const NeighbourList&, NeighbourCounting);
-template Eigen::VectorXd neighbour_counts<2>(const ParticleSet<2>&, const NeighbourList&, NeighbourCounting);
-template Eigen::VectorXd neighbour_counts<3>(const ParticleSet<3>&, const NeighbourList&, NeighbourCounting);
+#define SPHSTAB_INSTANTIATE(D) \
+  template Eigen::VectorXd neighbour_counts<D>(const ParticleSet<D>&, const NeighbourList&, NeighbourCounting);
+SPHSTAB_FOR_EACH_DIM(SPHSTAB_INSTANTIATE)
+#undef SPHSTAB_INSTANTIATE
 
 #define SPHSTAB_INSTANTIATE(S)                                                            \
   template struct LocalMeans<S>;                                                          \
   template LocalMeans<S> local_means<S>(const SparseMatrix<S>&, const Eigen::VectorXd&);  \
   template SparseMatrix<S> local_polish<S>(const SparseMatrix<S>&, const LocalMeans<S>&); \
   template SparseMatrix<S> local_polish<S>(const SparseMatrix<S>&, const Eigen::VectorXd&);
-SPHSTAB_INSTANTIATE(double)
-SPHSTAB_INSTANTIATE(std::complex<double>)
-SPHSTAB_INSTANTIATE(Dual<double>)  // nested derivatives (numerics/dual.hpp)
-SPHSTAB_INSTANTIATE(Dual<std::complex<double>>)
+SPHSTAB_FOR_EACH_SCALAR(SPHSTAB_INSTANTIATE)
 #undef SPHSTAB_INSTANTIATE
 
 }  // namespace sphstab

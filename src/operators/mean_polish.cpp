@@ -1,6 +1,7 @@
 #include "sphstab/operators/mean_polish.hpp"
 
 #include "correction_detail.hpp"
+#include "sphstab/numerics/instantiation.hpp"
 #include "sphstab/operators/shepard.hpp"
 
 namespace sphstab {
@@ -131,10 +132,7 @@ SparseMatrix<Scalar> dense_to_sparse_all_entries(const DenseMatrix<Scalar>& A) {
   template DenseMatrix<S> shepard_column_polish<S>(const SparseMatrix<S>&, const SparseMatrix<S>&); \
   template PolishFill polish_fill<S>(const SparseMatrix<S>&, const DenseMatrix<S>&);                \
   template SparseMatrix<S> dense_to_sparse_all_entries<S>(const DenseMatrix<S>&);
-SPHSTAB_INSTANTIATE(double)
-SPHSTAB_INSTANTIATE(std::complex<double>)
-SPHSTAB_INSTANTIATE(Dual<double>)  // nested derivatives (numerics/dual.hpp)
-SPHSTAB_INSTANTIATE(Dual<std::complex<double>>)
+SPHSTAB_FOR_EACH_SCALAR(SPHSTAB_INSTANTIATE)
 #undef SPHSTAB_INSTANTIATE
 
 }  // namespace sphstab

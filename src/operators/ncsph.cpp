@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "correction_detail.hpp"
+#include "sphstab/numerics/instantiation.hpp"
 #include "sphstab/operators/shepard.hpp"
 
 namespace sphstab {
@@ -88,18 +89,7 @@ std::array<SparseMatrix<Scalar>, Dim> ncsph_gradient(const ParticleSet<Dim>& p, 
   template std::array<SparseMatrix<S>, D> ncsph_gradient<D, S>(const ParticleSet<D>&, const SparseMatrix<S>&, \
                                                                const std::array<SparseMatrix<S>, D>&,         \
                                                                const Positions<D, S>*, double);
-SPHSTAB_INSTANTIATE(1, double)
-SPHSTAB_INSTANTIATE(2, double)
-SPHSTAB_INSTANTIATE(3, double)
-SPHSTAB_INSTANTIATE(1, std::complex<double>)
-SPHSTAB_INSTANTIATE(2, std::complex<double>)
-SPHSTAB_INSTANTIATE(3, std::complex<double>)
-SPHSTAB_INSTANTIATE(1, Dual<double>)  // nested derivatives (numerics/dual.hpp)
-SPHSTAB_INSTANTIATE(2, Dual<double>)
-SPHSTAB_INSTANTIATE(3, Dual<double>)
-SPHSTAB_INSTANTIATE(1, Dual<std::complex<double>>)
-SPHSTAB_INSTANTIATE(2, Dual<std::complex<double>>)
-SPHSTAB_INSTANTIATE(3, Dual<std::complex<double>>)
+SPHSTAB_FOR_EACH_DIM_AND_SCALAR(SPHSTAB_INSTANTIATE)
 #undef SPHSTAB_INSTANTIATE
 
 }  // namespace sphstab

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "sphstab/numerics/dual.hpp"
+#include "sphstab/numerics/instantiation.hpp"
 
 namespace sphstab {
 
@@ -172,9 +173,7 @@ template SparseMatrix<std::complex<double>> pattern_matrix<std::complex<double>>
   template SparseMatrix<> kernel_matrix<D>(const ParticleSet<D>&, const NeighbourList&, const Kernel<D>&, double);  \
   template SparseMatrix<> gradient_matrix<D>(const ParticleSet<D>&, const NeighbourList&, const Kernel<D>&, double, \
                                              int);
-SPHSTAB_INSTANTIATE(1)
-SPHSTAB_INSTANTIATE(2)
-SPHSTAB_INSTANTIATE(3)
+SPHSTAB_FOR_EACH_DIM(SPHSTAB_INSTANTIATE)
 #undef SPHSTAB_INSTANTIATE
 
 // Dual numbers (numerics/dual.hpp): nested exact derivatives for the corrected conservative forms.

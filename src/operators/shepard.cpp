@@ -1,6 +1,7 @@
 #include "sphstab/operators/shepard.hpp"
 
 #include "correction_detail.hpp"
+#include "sphstab/numerics/instantiation.hpp"
 
 namespace sphstab {
 
@@ -67,10 +68,7 @@ SparseMatrix<Scalar> reference_shepard_gradient(const SparseMatrix<Scalar>& W, c
   template SparseMatrix<S> shepard_gradient<S>(const SparseMatrix<S>&, const SparseMatrix<S>&);          \
   template SparseMatrix<S> reference_shepard_gradient<S>(const SparseMatrix<S>&, const SparseMatrix<S>&, \
                                                          const ShepardReference&);
-SPHSTAB_INSTANTIATE(double)
-SPHSTAB_INSTANTIATE(std::complex<double>)
-SPHSTAB_INSTANTIATE(Dual<double>)  // nested derivatives (numerics/dual.hpp)
-SPHSTAB_INSTANTIATE(Dual<std::complex<double>>)
+SPHSTAB_FOR_EACH_SCALAR(SPHSTAB_INSTANTIATE)
 #undef SPHSTAB_INSTANTIATE
 
 }  // namespace sphstab

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "sphstab/numerics/instantiation.hpp"
+
 namespace sphstab {
 
 LatticeType parse_lattice_type(const std::string& name) {
@@ -152,8 +154,8 @@ ParticleSet<Dim> make_lattice(LatticeType type, int n, const LatticeOptions& opt
   return set;
 }
 
-template ParticleSet<1> make_lattice<1>(LatticeType, int, const LatticeOptions&);
-template ParticleSet<2> make_lattice<2>(LatticeType, int, const LatticeOptions&);
-template ParticleSet<3> make_lattice<3>(LatticeType, int, const LatticeOptions&);
+#define SPHSTAB_INSTANTIATE(D) template ParticleSet<D> make_lattice<D>(LatticeType, int, const LatticeOptions&);
+SPHSTAB_FOR_EACH_DIM(SPHSTAB_INSTANTIATE)
+#undef SPHSTAB_INSTANTIATE
 
 }  // namespace sphstab

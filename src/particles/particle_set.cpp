@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "sphstab/numerics/instantiation.hpp"
+
 namespace sphstab {
 
 template <int Dim>
@@ -45,8 +47,8 @@ void ParticleSet<Dim>::validate(const char* who) const {
     }
 }
 
-template struct ParticleSet<1>;
-template struct ParticleSet<2>;
-template struct ParticleSet<3>;
+#define SPHSTAB_INSTANTIATE(D) template struct ParticleSet<D>;
+SPHSTAB_FOR_EACH_DIM(SPHSTAB_INSTANTIATE)
+#undef SPHSTAB_INSTANTIATE
 
 }  // namespace sphstab

@@ -1,12 +1,11 @@
 // Study: critical artificial-stress coefficient and transverse-mode signs on the square and face-centred
-// lattices versus h/dp (Gray, Monaghan & Swift 2001, §5.3), from the lattice dispersion tool.
+// lattices versus h/dp [GMS2001, §5.3], from the lattice dispersion tool. See README.md; the prose of the
+// summary is summary.md.in.
 //
-// Writes to --out DIR: thresholds.csv, by_sign.csv, long_wave.csv, n_dependence.csv, summary.md.
+// Writes to --out DIR: thresholds.csv, by_sign.csv, long_wave.csv, n_dependence.csv, summary.json.
 // Units: rho0 = c0 = 1, dp = 1 (sums in 1/dp, 1/dp^2; stresses in rho0 c0^2; rates in c0/dp).
 #include <CLI/CLI.hpp>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -17,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "common/study.hpp"
 #include "sphstab/spectral/lattice_dispersion.hpp"
 
 using namespace sphstab;
@@ -24,7 +24,7 @@ using namespace sphstab;
 namespace {
 
 const double inf = std::numeric_limits<double>::infinity();
-const Eigen::Vector2d k_short(M_PI, 0);  // GMS §5.3: k = (pi/dp, 0)
+const Eigen::Vector2d k_short(M_PI, 0);  // [GMS2001, §5.3]: k = (pi/dp, 0)
 
 /// GMS coefficient of a mode rho omega^2/(1-beta) = 2B(P - S) - 2R rho^2 f (+ A^2 terms ignored, as in 5.22):
 /// B/f when the mode is tension-unstable (B > 0) and R can cure it (f > 0); 0 when B <= 0 (no tensile
@@ -33,6 +33,9 @@ double coefficient(double B, double f) {
   if (B <= 0) return 0;
   return f > 0 ? B / f : inf;
 }
+
+double kappa_long(const LatticeSums& s) { return coefficient(s.Bx, s.fxx); }
+double kappa_trans(const LatticeSums& s) { return coefficient(s.By, s.fyy); }
 
 /// Smallest epsilon with omega^2 >= 0 of mode `mode` (0 longitudinal, 1 transverse) for k = (pi/dp, 0), where
 /// R = R(epsilon) by the GMS rule. omega^2 is linear in epsilon (M diagonal, R and dR proportional to epsilon).
@@ -60,12 +63,10 @@ std::vector<double> roots(const std::function<double(double)>& g, double a, doub
       double lo = x0, hi = x1, glo = g0;
       for (int it = 0; it < 60; ++it) {
         const double mid = 0.5 * (lo + hi), gm = g(mid);
-        if ((gm < 0) == (glo < 0)) {
-          lo = mid;
-          glo = gm;
-        } else {
+        if ((gm < 0) == (glo < 0))
+          lo = mid, glo = gm;
+        else
           hi = mid;
-        }
       }
       out.push_back(0.5 * (lo + hi));
     }
@@ -75,13 +76,7 @@ std::vector<double> roots(const std::function<double(double)>& g, double a, doub
   return out;
 }
 
-std::string num(double x, int prec = 4) {
-  if (std::isinf(x)) return "inf";
-  std::ostringstream s;
-  s << std::setprecision(prec) << x;
-  return s.str();
-}
-
+/// Fixed-point format (std::fixed, `prec` decimals; "inf" for +-inf). Not in study.hpp, which has %g only.
 std::string fixed(double x, int prec = 3) {
   if (std::isinf(x)) return "inf";
   std::ostringstream s;
@@ -93,6 +88,38 @@ std::string list(const std::vector<double>& v) {
   std::string s;
   for (size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + fixed(v[i], 3);
   return s.empty() ? "none" : s;
+}
+
+/// Sign changes of B_x, B_y, f_yy on [h_min, h_max] and the range of f_yy (one lattice).
+struct Roots {
+  std::vector<double> Bx, By;
+  double min_fyy = inf, max_fyy = -inf;
+};
+
+/// f_xx(n) at h = dp on the face-centred lattice against GMS's "4n + 3.7".
+struct NFit {
+  double slope = 0, icpt = 0, dev_lo = inf, dev_hi = -inf, dev_n0 = 0;
+};
+
+NFit write_n_dependence(const std::string& path, const Kernel<2>& w) {
+  NFit r;
+  std::ofstream f(path);
+  f << std::setprecision(10) << "n,fxx_square,fxx_square_nearest,fxx_face_centred\n";
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;  // least squares f_xx(face-centred) = slope n + icpt over n = 1..8
+  for (int nn = 0; nn <= 8; ++nn) {
+    const auto sq = lattice_sums(LatticeType::Square, w, 1.0, k_short, {.exponent = double(nn)});
+    const auto sqn = lattice_sums(LatticeType::Square, w, 1.0, k_short, {.exponent = double(nn), .max_distance = 1.0});
+    const auto fc = lattice_sums(LatticeType::FaceCentred, w, 1.0, k_short, {.exponent = double(nn)});
+    f << nn << "," << sq.fxx << "," << sqn.fxx << "," << fc.fxx << "\n";
+    const double dev = fc.fxx - (4 * nn + 3.7);
+    if (nn == 0) r.dev_n0 = dev;
+    if (nn >= 3) r.dev_lo = std::min(r.dev_lo, dev), r.dev_hi = std::max(r.dev_hi, dev);
+    if (nn >= 1) sx += nn, sy += fc.fxx, sxx += double(nn) * nn, sxy += nn * fc.fxx;
+  }
+  const double m = 8;
+  r.slope = (m * sxy - sx * sy) / (m * sxx - sx * sx);
+  r.icpt = (sy - r.slope * sx) / m;
+  return r;
 }
 
 }  // namespace
@@ -109,7 +136,7 @@ int main(int argc, char** argv) {
   app.add_option("--n", n, "artificial stress exponent")->check(CLI::NonNegativeNumber);
   app.add_option("--mu", mu, "shear modulus (rho0 c0^2) of the material examples");
   CLI11_PARSE(app, argc, argv);
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = study::Clock::now();
   std::filesystem::create_directories(out);
   Kernel<2> w(KernelType::CubicSpline);
   const LatticeSumOptions opt{.exponent = n};
@@ -118,6 +145,9 @@ int main(int argc, char** argv) {
   const double tensions[2] = {0.01, 0.1};
   auto isotropic_tension = [&](double T) {
     return UniformState{.density = 1, .sound_speed = 1, .shear_modulus = mu, .pressure = -T};
+  };
+  auto eps_crit = [&](LatticeType t, double T, int mode, bool dR = false) {
+    return critical_epsilon(t, w, 1.0, isotropic_tension(T), mode, dR);
   };
 
   // 1. thresholds.csv: lattice sums, GMS coefficients and critical epsilon for isotropic tension.
@@ -132,13 +162,11 @@ int main(int argc, char** argv) {
       for (double h = h_min; h <= h_max + 1e-9; h += h_step) {
         const auto s = sums(t, h);
         f << lattice_name(t) << "," << h << "," << s.A[0] << "," << s.Bx << "," << s.By << "," << s.beta << "," << s.fxx
-          << "," << s.fyy << "," << num(coefficient(s.Bx, s.fxx), 10) << "," << num(coefficient(s.By, s.fyy), 10);
-        for (double T : tensions)
-          for (int mode = 0; mode < 2; ++mode)
-            f << "," << num(critical_epsilon(t, w, h, isotropic_tension(T), mode), 10);
-        for (double T : tensions)
-          for (int mode = 0; mode < 2; ++mode)
-            f << "," << num(critical_epsilon(t, w, h, isotropic_tension(T), mode, true), 10);
+          << "," << s.fyy << "," << format_number(kappa_long(s), 10) << "," << format_number(kappa_trans(s), 10);
+        for (bool dR : {false, true})
+          for (double T : tensions)
+            for (int mode = 0; mode < 2; ++mode)
+              f << "," << format_number(critical_epsilon(t, w, h, isotropic_tension(T), mode, dR), 10);
         f << "\n";
       }
       std::cout << "  " << lattice_name(t) << " done\n";
@@ -146,10 +174,7 @@ int main(int argc, char** argv) {
   }
 
   // 2. by_sign.csv + roots of B_y, B_x, f_yy (sign changes) on [h_min, h_max].
-  struct Roots {
-    std::vector<double> Bx, By, fyy;
-    double min_fyy = inf, max_fyy = -inf;
-  } r[2];
+  Roots r[2];
   {
     std::ofstream f(out + "/by_sign.csv");
     f << std::setprecision(10) << "lattice,h_over_dp,By,fyy\n";
@@ -157,7 +182,6 @@ int main(int argc, char** argv) {
       const auto t = types[l];
       r[l].Bx = roots([&](double h) { return sums(t, h).Bx; }, h_min, h_max, 0.01);
       r[l].By = roots([&](double h) { return sums(t, h).By; }, h_min, h_max, 0.01);
-      r[l].fyy = roots([&](double h) { return sums(t, h).fyy; }, h_min, h_max, 0.01);
       for (double h = h_min; h <= h_max + 1e-9; h += 0.001) {
         const auto s = sums(t, h);
         r[l].min_fyy = std::min(r[l].min_fyy, s.fyy);
@@ -180,64 +204,21 @@ int main(int argc, char** argv) {
   }
 
   // 4. n_dependence.csv: f_xx(n) at h = dp (GMS: square 30(3n+2)/(7 pi), face-centred "proportional to 4n + 3.7").
-  double fc_slope = 0, fc_icpt = 0, fc_dev_lo = inf, fc_dev_hi = -inf, fc_dev_n0 = 0;
-  {
-    std::ofstream f(out + "/n_dependence.csv");
-    f << std::setprecision(10) << "n,fxx_square,fxx_square_nearest,fxx_face_centred\n";
-    std::vector<double> ns, fs;
-    for (int nn = 0; nn <= 8; ++nn) {
-      const auto sq = lattice_sums(LatticeType::Square, w, 1.0, k_short, {.exponent = double(nn)});
-      const auto sqn =
-          lattice_sums(LatticeType::Square, w, 1.0, k_short, {.exponent = double(nn), .max_distance = 1.0});
-      const auto fc = lattice_sums(LatticeType::FaceCentred, w, 1.0, k_short, {.exponent = double(nn)});
-      f << nn << "," << sq.fxx << "," << sqn.fxx << "," << fc.fxx << "\n";
-      const double dev = fc.fxx - (4 * nn + 3.7);
-      if (nn == 0) fc_dev_n0 = dev;
-      if (nn >= 3) {
-        fc_dev_lo = std::min(fc_dev_lo, dev);
-        fc_dev_hi = std::max(fc_dev_hi, dev);
-      }
-      if (nn >= 1) {
-        ns.push_back(nn);
-        fs.push_back(fc.fxx);
-      }
-    }
-    auto fit = [&](const std::vector<double>& y, double& slope, double& icpt) {  // least squares y = slope n + icpt
-      const double m = ns.size();
-      double sx = 0, sy = 0, sxx = 0, sxy = 0;
-      for (size_t i = 0; i < ns.size(); ++i) {
-        sx += ns[i];
-        sy += y[i];
-        sxx += ns[i] * ns[i];
-        sxy += ns[i] * y[i];
-      }
-      slope = (m * sxy - sx * sy) / (m * sxx - sx * sx);
-      icpt = (sy - slope * sx) / m;
-    };
-    fit(fs, fc_slope, fc_icpt);
-  }
+  const NFit nf = write_n_dependence(out + "/n_dependence.csv", w);
 
   // 5. Key numbers.
-  const auto sq1 = sums(LatticeType::Square, 1.0), fc1 = sums(LatticeType::FaceCentred, 1.0);
-  const auto sq_nn = lattice_sums(LatticeType::Square, w, 1.0, k_short, {.exponent = n, .max_distance = 1.0});
-  auto kl = [&](LatticeType t, double h) {
-    const auto s = sums(t, h);
-    return coefficient(s.Bx, s.fxx);
-  };
-  auto kt = [&](LatticeType t, double h) {
-    const auto s = sums(t, h);
-    return coefficient(s.By, s.fyy);
-  };
+  const LatticeType sq = LatticeType::Square, fc = LatticeType::FaceCentred;
+  const auto sq1 = sums(sq, 1.0), fc1 = sums(fc, 1.0);
+  const auto sq_nn = lattice_sums(sq, w, 1.0, k_short, {.exponent = n, .max_distance = 1.0});
+  auto kl = [&](LatticeType t, double h) { return kappa_long(sums(t, h)); };
+  auto kt = [&](LatticeType t, double h) { return kappa_trans(sums(t, h)); };
   // Monotone decrease of the face-centred longitudinal coefficient on [1, 1.5]?
   bool fc_long_decreasing = true;
   double prev = inf, fc_long_min_h = 1.0, fc_long_min = inf;
   for (double h = 1.0; h <= 1.5 + 1e-9; h += 0.005) {
-    const double c = kl(LatticeType::FaceCentred, h);
+    const double c = kl(fc, h);
     if (c > prev) fc_long_decreasing = false;
-    if (c < fc_long_min) {
-      fc_long_min = c;
-      fc_long_min_h = h;
-    }
+    if (c < fc_long_min) fc_long_min = c, fc_long_min_h = h;
     prev = c;
   }
   // Where does epsilon clear each coefficient on [h_min, h_max]?
@@ -247,199 +228,115 @@ int main(int argc, char** argv) {
       if (kappa(h) > epsilon) hs.push_back(h);
     return hs;
   };
-  const auto fc_trans_exceed = exceed([&](double h) { return kt(LatticeType::FaceCentred, h); });
-  const auto sq_long_exceed = exceed([&](double h) { return kl(LatticeType::Square, h); });
-  const auto fc_long_exceed = exceed([&](double h) { return kl(LatticeType::FaceCentred, h); });
+  const auto fc_trans_exceed = exceed([&](double h) { return kt(fc, h); });
+  const auto sq_long_exceed = exceed([&](double h) { return kl(sq, h); });
+  const auto fc_long_exceed = exceed([&](double h) { return kl(fc, h); });
 
-  const auto half_h =
-      roots([&](double h) { return kl(LatticeType::Square, h) - 0.5 * kl(LatticeType::Square, 1.0); }, 1.0, 1.6, 0.01);
+  const auto half_h = roots([&](double h) { return kl(sq, h) - 0.5 * kl(sq, 1.0); }, 1.0, 1.6, 0.01);
   double sq_by_max = -inf, sq_by_max_h = 0;
   for (double h = h_min; h <= h_max + 1e-9; h += 0.001)
-    if (sums(LatticeType::Square, h).By > sq_by_max) {
-      sq_by_max = sums(LatticeType::Square, h).By;
-      sq_by_max_h = h;
-    }
+    if (sums(sq, h).By > sq_by_max) sq_by_max = sums(sq, h).By, sq_by_max_h = h;
   // (5.30): face-centred, h = 1.5 dp, transverse mode in compression (R = 0):
   // rho omega^2/(1-beta) = 2 B_y (P - Syy) + A_x^2 (mu + zeta).
-  const auto fc15 = sums(LatticeType::FaceCentred, 1.5);
+  const auto fc15 = sums(fc, 1.5);
   const double crit_ratio = fc15.A[0] * fc15.A[0] / (2 * std::abs(fc15.By));  // (P - Syy)/mu at omega^2 = 0, zeta = 0
   const double P_c = 0.01;                                                    // a mild compression
   const UniformState comp{.density = 1, .sound_speed = 1, .shear_modulus = mu, .pressure = P_c};
-  const auto d15 = lattice_dispersion(LatticeType::FaceCentred, w, 1.5, k_short, comp);
+  const auto d15 = lattice_dispersion(fc, w, 1.5, k_short, comp);
   const double growth15 = d15.omega2[1].real() < 0 ? std::sqrt(-d15.omega2[1].real()) : 0.0;
-  const double gms530 = -0.07 * P_c + 0.18 * mu;
-  const auto dsq1 = lattice_dispersion(LatticeType::Square, w, 1.0, k_short, comp);
+  const auto dsq1 = lattice_dispersion(sq, w, 1.0, k_short, comp);
   const double growth_sq1 = dsq1.omega2[1].real() < 0 ? std::sqrt(-dsq1.omega2[1].real()) : 0.0;
   // Long-wave moment errors at h = 1.5.
-  const auto lw_sq = lattice_sums(LatticeType::Square, w, 1.5, Eigen::Vector2d(1e-4, 0), opt);
-  const auto lw_fc = lattice_sums(LatticeType::FaceCentred, w, 1.5, Eigen::Vector2d(1e-4, 0), opt);
+  const auto lw_sq = lattice_sums(sq, w, 1.5, Eigen::Vector2d(1e-4, 0), opt);
+  const auto lw_fc = lattice_sums(fc, w, 1.5, Eigen::Vector2d(1e-4, 0), opt);
 
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double wall = study::seconds_since(t0);
   std::cout << "wall time " << fixed(wall, 2) << " s\n";
 
-  // 6. summary.md
-  std::ofstream md(out + "/summary.md");
-  auto yes = [](bool b) { return b ? "**confirmed**" : "**not confirmed**"; };
-  md << "# Artificial stress: critical coefficients versus h/dp (Gray, Monaghan & Swift 2001, §5.3)\n\n";
-  md << "Generated by `study_artificial_stress` (studies/artificial-stress/main.cpp); plot by plot.py.\n\n";
-  md << "## Parameters\n\n";
-  md << "- Cubic spline, support 2h (GMS's native); lattices square and face-centred (rows dp apart, odd rows "
-        "shifted dp/2); dp = 1, rho0 = c0 = 1.\n";
-  md << "- Wavevector k = (pi/dp, 0) (GMS §5.3); artificial-stress exponent n = " << n << "; epsilon = " << epsilon
-     << " for comparison; h/dp in [" << h_min << ", " << h_max << "] step " << h_step
-     << " (CSV), sign changes by bisection from a 0.01 grid.\n";
-  md << "- Coefficient kappa = B/f (GMS 5.22; the A_x^2 term ignored as GMS do): the mode is cured in tension when "
-        "|R| rho^2/|P - S| > kappa; with R = -epsilon sigma/rho^2 that is epsilon > kappa. kappa = 0 where B <= 0 (no "
-        "tensile instability from the B term), inf where B > 0 and f <= 0 (R cannot cure it).\n";
-  md << "- Critical epsilon (CSV columns eps_crit_*): smallest epsilon with omega^2 >= 0 of the full (5.8)/(5.9) "
-        "relation, A_x^2 terms included, for isotropic tension sigma = T I (P = -T, S = 0), T = 0.01 and 0.1, mu = "
-     << mu << ", K = rho c0^2 = 1.\n";
-  md << "- Wall time: " << fixed(wall, 2) << " s (2-core machine, single thread).\n\n";
-
-  md << "## Key numbers (h = dp, n = " << n << "; units 1/dp, 1/dp^2)\n\n";
-  md << "| lattice | A_x | B_x | B_y | beta | f_xx | f_yy | B_x/f_xx | B_y/f_yy "
-        "|\n|---|---|---|---|---|---|---|---|---|\n";
-  for (auto [name, s] : {std::pair{"square", sq1}, std::pair{"face-centred", fc1}})
-    md << "| " << name << " | " << fixed(s.A[0], 4) << " | " << fixed(s.Bx, 4) << " | " << fixed(s.By, 4) << " | "
-       << fixed(s.beta, 4) << " | " << fixed(s.fxx, 3) << " | " << fixed(s.fyy, 4) << " | " << fixed(s.Bx / s.fxx, 4)
-       << " | " << fixed(s.By / s.fyy, 4) << " |\n";
-  md << "\nSquare f_xx from the nearest neighbours (+-dp, 0) only: " << fixed(sq_nn.fxx, 3)
-     << " (= 30(3n+2)/(7 pi) = " << fixed(30 * (3 * n + 2) / (7 * M_PI), 3) << ").\n\n";
-  md << "| h/dp | square kappa_long | face-centred kappa_long | face-centred kappa_trans | square kappa_trans |\n"
-        "|---|---|---|---|---|\n";
-  for (double h : {1.0, 1.1, 1.2, 1.3, 1.4, 1.5, 1.6, 1.7, 1.8, 1.9, 2.0})
-    md << "| " << fixed(h, 1) << " | " << fixed(kl(LatticeType::Square, h), 4) << " | "
-       << fixed(kl(LatticeType::FaceCentred, h), 4) << " | " << fixed(kt(LatticeType::FaceCentred, h), 4) << " | "
-       << fixed(kt(LatticeType::Square, h), 4) << " |\n";
-  md << "\nSign changes on [" << h_min << ", " << h_max << "]: square B_y at h/dp = " << list(r[0].By)
-     << "; square B_x at " << list(r[0].Bx) << "; face-centred B_y at " << list(r[1].By) << "; face-centred B_x at "
-     << list(r[1].Bx) << ". f_yy range: square [" << fixed(r[0].min_fyy, 4) << ", " << fixed(r[0].max_fyy, 4)
-     << "], face-centred [" << fixed(r[1].min_fyy, 4) << ", " << fixed(r[1].max_fyy, 4) << "].\n\n";
-
-  md << "## GMS statements checked\n\n| # | GMS statement | our numbers | verdict |\n|---|---|---|---|\n";
-  int row = 0;
-  auto claim = [&](const std::string& s, const std::string& ours, const std::string& verdict) {
-    md << "| " << ++row << " | " << s << " | " << ours << " | " << verdict << " |\n";
+  // 6. summary.json; the prose and the GMS statements (numbered rows) are in summary.md.in.
+  study::Summary s;
+  auto put = [&](std::initializer_list<std::tuple<const char*, double, int>> values) {  // fixed-point numbers
+    for (const auto& [key, value, decimals] : values) s.set(key, fixed(value, decimals));
   };
-  claim("(5.21) square, h = dp: B_x = 150(2-sqrt2)/(7 pi) = 3.996, f_xx = 30(3n+2)/(7 pi)",
-        "B_x = " + fixed(sq1.Bx, 4) + "; f_xx = " + fixed(sq_nn.fxx, 3) + " nearest neighbours, " + fixed(sq1.fxx, 3) +
-            " full sum (diagonals add " + fixed(100 * (sq1.fxx / sq_nn.fxx - 1), 2) + " %)",
-        yes(std::abs(sq1.Bx - 3.996) < 5e-4));
-  claim("(5.21) beta ~ 10/(7 pi)(1 + (2-sqrt2)^3) = 0.546",
-        "beta = " + fixed(sq1.beta, 4) + " = 10/(7 pi)(1/2 + (2-sqrt2)^3) by definition (5.5)",
-        yes(std::abs(sq1.beta - 0.546) < 1e-3));
-  claim("(5.23) square threshold 3/(3n+2) = " + fixed(3 / (3 * n + 2), 3),
-        "B_x/f_xx = " + fixed(sq1.Bx / sq1.fxx, 4) + " (3/(3n+2) is the nearest-neighbour value)",
-        "approximately (" + fixed(100 * (1 - sq1.Bx / sq1.fxx / (3 / (3 * n + 2))), 1) + " % lower)");
-  claim("square coefficient 'reduced by a factor ~2' at h/dp = 1.4",
-        "kappa(1)/kappa(1.4) = " + fixed(kl(LatticeType::Square, 1.0) / kl(LatticeType::Square, 1.4), 2) +
-            " (kappa = " + fixed(kl(LatticeType::Square, 1.2), 3) + " / " + fixed(kl(LatticeType::Square, 1.4), 3) +
-            " / " + fixed(kl(LatticeType::Square, 1.5), 3) + " at 1.2 / 1.4 / 1.5)",
-        "**not confirmed** (factor " + fixed(kl(LatticeType::Square, 1.0) / kl(LatticeType::Square, 1.4), 2) +
-            "; factor 2 is reached at h/dp = " + list(half_h) + ")");
-  claim("square, h = dp: B_y = -0.096",
-        "B_y = " + fixed(sq1.By, 4) + ", f_yy = " + fixed(sq1.fyy, 3) + " < 0 (R^yy cannot stabilise it)",
-        yes(std::abs(sq1.By + 0.0965) < 1e-3));
-  {
-    const bool in = r[0].By.size() >= 2 && std::abs(r[0].By[0] - 1.2) < 0.02 && std::abs(r[0].By[1] - 1.7) < 0.02;
-    claim("square: B_y > 0 for 1.2 < h/dp < 1.7",
-          "B_y > 0 for " + fixed(r[0].By.size() > 0 ? r[0].By[0] : NAN, 3) + " < h/dp < " +
-              fixed(r[0].By.size() > 1 ? r[0].By[1] : NAN, 3) + " (max B_y = " + fixed(sq_by_max, 4) + " at h/dp = " +
-              fixed(sq_by_max_h, 3) + "; B_y(1.6) = " + fixed(sums(LatticeType::Square, 1.6).By, 4) + ")",
-          in ? "**confirmed**" : "**not confirmed**: the interval is narrower (upper end well below 1.7)");
-  }
-  claim("face-centred, h = dp: A_x = -0.43, B_x = 2.81, f_xx = 19.7, B_y = 0.52, f_yy = 1.6",
-        fixed(fc1.A[0], 4) + ", " + fixed(fc1.Bx, 4) + ", " + fixed(fc1.fxx, 3) + ", " + fixed(fc1.By, 4) + ", " +
-            fixed(fc1.fyy, 4),
+  auto yes = [](bool b) { return b ? "**confirmed**" : "**not confirmed**"; };
+  s.set("n", n, 6), s.set("epsilon", epsilon, 6), s.set("mu", mu, 6), s.set("h_min", h_min, 6);
+  s.set("h_max", h_max, 6), s.set("h_step", h_step, 6), s.set("wall_seconds", fixed(wall, 2));
+  std::string rows;
+  for (auto [name, x] : {std::pair{"square", sq1}, std::pair{"face-centred", fc1}})
+    rows += std::string(rows.empty() ? "" : "\n") + "| " + name + " | " + fixed(x.A[0], 4) + " | " + fixed(x.Bx, 4) +
+            " | " + fixed(x.By, 4) + " | " + fixed(x.beta, 4) + " | " + fixed(x.fxx, 3) + " | " + fixed(x.fyy, 4) +
+            " | " + fixed(x.Bx / x.fxx, 4) + " | " + fixed(x.By / x.fyy, 4) + " |";
+  s.set("sums_rows", rows);
+  rows.clear();
+  for (double h : {1.0, 1.1, 1.2, 1.3, 1.4, 1.5, 1.6, 1.7, 1.8, 1.9, 2.0})
+    rows += std::string(rows.empty() ? "" : "\n") + "| " + fixed(h, 1) + " | " + fixed(kl(sq, h), 4) + " | " +
+            fixed(kl(fc, h), 4) + " | " + fixed(kt(fc, h), 4) + " | " + fixed(kt(sq, h), 4) + " |";
+  s.set("kappa_rows", rows);
+  s.set("sq_By_roots", list(r[0].By)), s.set("sq_Bx_roots", list(r[0].Bx)), s.set("sq_half_h", list(half_h));
+  s.set("fc_By_roots", list(r[1].By)), s.set("fc_Bx_roots", list(r[1].Bx));
+  const double fc_By_lo = r[1].By.size() ? r[1].By[0] : NAN;
+  // clang-format off
+  put({{"sq_nn_fxx", sq_nn.fxx, 3}, {"sq_nn_formula", 30 * (3 * n + 2) / (7 * M_PI), 3},
+       {"sq_fyy_min", r[0].min_fyy, 4}, {"sq_fyy_max", r[0].max_fyy, 4}, {"fc_fyy_min", r[1].min_fyy, 4},
+       {"fc_fyy_max", r[1].max_fyy, 4}, {"sq_Bx", sq1.Bx, 4}, {"sq_fxx", sq1.fxx, 3},
+       {"sq_diagonal_percent", 100 * (sq1.fxx / sq_nn.fxx - 1), 2}, {"sq_beta", sq1.beta, 4},
+       {"nn_threshold", 3 / (3 * n + 2), 3}, {"sq_kappa_long", sq1.Bx / sq1.fxx, 4},
+       {"sq_threshold_lower_percent", 100 * (1 - sq1.Bx / sq1.fxx / (3 / (3 * n + 2))), 1},
+       {"sq_kappa_ratio", kl(sq, 1.0) / kl(sq, 1.4), 2}, {"sq_kappa_1.2", kl(sq, 1.2), 3},
+       {"sq_kappa_1.4", kl(sq, 1.4), 3}, {"sq_kappa_1.5", kl(sq, 1.5), 3}, {"sq_By", sq1.By, 4}, {"sq_fyy", sq1.fyy, 3},
+       {"sq_By_lo", r[0].By.size() > 0 ? r[0].By[0] : NAN, 3}, {"sq_By_hi", r[0].By.size() > 1 ? r[0].By[1] : NAN, 3},
+       {"sq_By_max", sq_by_max, 4}, {"sq_By_max_h", sq_by_max_h, 3}, {"sq_By_1.6", sums(sq, 1.6).By, 4},
+       {"fc_Ax", fc1.A[0], 4}, {"fc_Bx", fc1.Bx, 4}, {"fc_fxx", fc1.fxx, 3}, {"fc_By", fc1.By, 4},
+       {"fc_fyy", fc1.fyy, 4}, {"fc_kappa_long", fc1.Bx / fc1.fxx, 4}, {"fc_2kappa_long", 2 * fc1.Bx / fc1.fxx, 3},
+       {"fc_dev_lo", nf.dev_lo, 2}, {"fc_dev_hi", nf.dev_hi, 2}, {"fc_dev_n0", nf.dev_n0, 2},
+       {"fc_n_slope", nf.slope, 3}, {"fc_n_intercept", nf.icpt, 3}, {"fc_kappa_trans", fc1.By / fc1.fyy, 4},
+       {"h_min_1dp", h_min, 1}, {"h_max_1dp", h_max, 1}, {"fc_By_1.4", sums(fc, 1.4).By, 4},
+       {"fc15_2By", 2 * fc15.By, 4}, {"fc15_Ax2", fc15.A[0] * fc15.A[0], 5}, {"fc15_crit_ratio", crit_ratio, 4},
+       {"P_c", P_c, 2}, {"mu_2dp", mu, 2}, {"fc_Ax2", fc1.A[0] * fc1.A[0], 3}, {"fc_By_lo", fc_By_lo, 3},
+       {"fc_By_lo_2dp", fc_By_lo, 2}, {"fc_long_min", fc_long_min, 4}, {"fc_long_min_h", fc_long_min_h, 3},
+       {"fc_kappa_long_1.5", kl(fc, 1.5), 4}, {"epsilon_2dp", epsilon, 2}});
+  // clang-format on
+  s.set("fc15_omega2", d15.omega2[1].real()), s.set("fc15_growth", growth15), s.set("sq1_growth", growth_sq1);
+  s.set("gms530", -0.07 * P_c + 0.18 * mu);
+  s.set("lw_sq_A", -lw_sq.A[0] / 1e-4 - 1), s.set("lw_fc_A", -lw_fc.A[0] / 1e-4 - 1);
+  s.set("lw_sq_B", lw_sq.Bx / 1e-8 - 1), s.set("lw_fc_B", lw_fc.Bx / 1e-8 - 1);
+  s.set("fc_long_monotone", fc_long_decreasing ? "monotone" : "not monotone");
+  s.set("sq_long_exceeds", sq_long_exceed.empty() ? "never" : "somewhere");
+  s.set("fc_long_exceeds", fc_long_exceed.empty() ? "never" : "somewhere");
+  s.set("fc_trans_exceeds_lo", fc_trans_exceed.empty() ? std::string("-") : fixed(fc_trans_exceed.front(), 3));
+  s.set("fc_trans_exceeds_hi", fc_trans_exceed.empty() ? std::string("-") : fixed(fc_trans_exceed.back(), 3));
+  // Critical epsilon at h = dp for isotropic tension T (frozen R; _dR: with the perturbation of R).
+  // clang-format off
+  put({{"eps_sq_long_T0.01", eps_crit(sq, 0.01, 0), 4}, {"eps_sq_long_T0.1", eps_crit(sq, 0.1, 0), 4},
+       {"eps_fc_long_T0.01", eps_crit(fc, 0.01, 0), 4}, {"eps_fc_trans_T0.01", eps_crit(fc, 0.01, 1), 4},
+       {"eps_fc_long_T0.1", eps_crit(fc, 0.1, 0), 4}, {"eps_fc_trans_T0.1", eps_crit(fc, 0.1, 1), 4},
+       {"eps_fc_long_T0.1_dR", eps_crit(fc, 0.1, 0, true), 4},
+       {"eps_fc_trans_T0.1_dR", eps_crit(fc, 0.1, 1, true), 4}});
+  // clang-format on
+  // Verdicts of the GMS statements (row numbers of the template's table).
+  const bool sq_by_range =
+      r[0].By.size() >= 2 && std::abs(r[0].By[0] - 1.2) < 0.02 && std::abs(r[0].By[1] - 1.7) < 0.02;
+  s.set("verdict_1", yes(std::abs(sq1.Bx - 3.996) < 5e-4));
+  s.set("verdict_2", yes(std::abs(sq1.beta - 0.546) < 1e-3));
+  s.set("verdict_5", yes(std::abs(sq1.By + 0.0965) < 1e-3));
+  s.set("verdict_6",
+        sq_by_range ? "**confirmed**" : "**not confirmed**: the interval is narrower (upper end well below 1.7)");
+  s.set("verdict_7",
         yes(std::abs(fc1.A[0] + 0.43) < 5e-3 && std::abs(fc1.Bx - 2.81) < 5e-3 && std::abs(fc1.fyy - 1.6) < 0.05));
-  claim("(5.27) face-centred longitudinal coefficient 0.14; (5.26) prints 2B_x/f_xx",
-        "B_x/f_xx = " + fixed(fc1.Bx / fc1.fxx, 4) + "; 2B_x/f_xx would be " + fixed(2 * fc1.Bx / fc1.fxx, 3),
-        "0.14 **confirmed**; the factor 2 of (5.26) is a typo");
-  claim("face-centred f_xx proportional to 4n + 3.7 (h = dp)",
-        "f_xx - (4n + 3.7) = " + fixed(fc_dev_lo, 2) + " ... " + fixed(fc_dev_hi, 2) + " (1/dp^2) for n = 3..8, but " +
-            fixed(fc_dev_n0, 2) +
-            " at n = 0 (second-shell terms g^n are not linear in n); least squares over "
-            "n = 1..8: " +
-            fixed(fc_slope, 3) + " n + " + fixed(fc_icpt, 3),
-        std::abs(fc_dev_lo) < 0.1 && std::abs(fc_dev_hi) < 0.1 ? "**confirmed** near n = 4 (factor 1.00)"
-                                                               : "**not confirmed**");
-  claim("(5.29) face-centred transverse coefficient 0.32", "B_y/f_yy = " + fixed(fc1.By / fc1.fyy, 4), "**confirmed**");
-  claim("face-centred: f_yy > 0 for all h/dp",
-        "min f_yy on [" + fixed(h_min, 1) + ", " + fixed(h_max, 1) + "] = " + fixed(r[1].min_fyy, 4),
-        yes(r[1].min_fyy > 0));
-  claim("face-centred: B_y < 0 for h/dp >= 1.4 ('eventually negative')",
-        "B_y changes sign at h/dp = " + list(r[1].By) +
-            " (B_y(1.4) = " + fixed(sums(LatticeType::FaceCentred, 1.4).By, 4) + ")",
-        r[1].By.size() == 2 ? "**confirmed on [1.4, " + fixed(r[1].By[1], 2) + "]**; negative already from " +
-                                  fixed(r[1].By[0], 3) + ", positive again above " + fixed(r[1].By[1], 3)
-                            : "see sign changes");
-  claim("(5.30) h = 1.5 dp transverse: -0.07(P - Syy) + 0.18 mu > 0, 'stable since mu > |P|'",
-        "2B_y = " + fixed(2 * fc15.By, 4) + ", A_x^2 = " + fixed(fc15.A[0] * fc15.A[0], 5) +
-            ": stable only for (P - Syy)/mu < " + fixed(crit_ratio, 4) + " (GMS: 2.57). Example P = " + fixed(P_c, 2) +
-            ", mu = " + fixed(mu, 2) + ": omega^2 = " + num(d15.omega2[1].real(), 3) + ", growth rate " +
-            num(growth15, 3) + " c0/dp (GMS's expression: " + num(gms530, 3) + " > 0). 0.18 is A_x^2 at h = dp (" +
-            fixed(fc1.A[0] * fc1.A[0], 3) + "), -0.07 is B_y (not 2B_y) at 1.5",
-        "**not confirmed**");
-  claim("face-centred transverse modes stable for 1 < h/dp < 1.4 and slowly growing above",
-        "stable in compression while B_y > 0, i.e. h/dp < " + fixed(r[1].By.size() ? r[1].By[0] : NAN, 3) +
-            "; above, growth rate " + num(growth15, 3) +
-            " c0/dp at h = 1.5 dp, P = 0.01 (square, h = dp: " + num(growth_sq1, 3) + ")",
-        "**partly**: the stable range ends at " + fixed(r[1].By.size() ? r[1].By[0] : NAN, 2) + ", not 1.4");
-  claim("face-centred longitudinal coefficient decreases with h/dp on 1 < h/dp < 1.5",
-        std::string(fc_long_decreasing ? "monotone" : "not monotone") + "; minimum " + fixed(fc_long_min, 4) +
-            " at h/dp = " + fixed(fc_long_min_h, 3) + " (kappa(1.5) = " + fixed(kl(LatticeType::FaceCentred, 1.5), 4) +
-            ")",
-        fc_long_decreasing ? "**confirmed**" : "**mostly** (see plot)");
-  claim("square: B_x, f_xx variation with h/dp 'does not change the stability properties' (1 < h/dp < 1.5)",
-        "B_x > 0 on [1, 1.5]; B_x changes sign at h/dp = " + list(r[0].Bx),
-        r[0].Bx.empty() || r[0].Bx[0] > 1.5 ? "**confirmed** on [1, 1.5]" : "**not confirmed**");
-  claim("epsilon ~ 0.3 clears the thresholds 0.21 / 0.14 / 0.32",
-        "kappa > " + fixed(epsilon, 2) + ": square long. " + (sq_long_exceed.empty() ? "never" : "somewhere") +
-            ", face-centred long. " + (fc_long_exceed.empty() ? "never" : "somewhere") +
-            ", face-centred trans. for h/dp in [" +
-            (fc_trans_exceed.empty() ? std::string("-") : fixed(fc_trans_exceed.front(), 3)) + ", " +
-            (fc_trans_exceed.empty() ? std::string("-") : fixed(fc_trans_exceed.back(), 3)) + "]",
-        sq_long_exceed.empty() && fc_long_exceed.empty() && fc_trans_exceed.empty()
-            ? std::string("**confirmed**")
-            : "**not quite**: epsilon = " + fixed(epsilon, 2) + " < face-centred transverse kappa = " +
-                  fixed(kt(LatticeType::FaceCentred, h_min), 3) + " at h/dp = " + fixed(h_min, 2));
-  claim("(5.11) long waves: the SPH relation equals the continuum (4.9)/(4.10) (sums -> integrals)",
-        "with lattice sums at k -> 0, -A_x/k - 1 = " + num(-lw_sq.A[0] / 1e-4 - 1, 3) + " (square) / " +
-            num(-lw_fc.A[0] / 1e-4 - 1, 3) + " (face-centred) and B_x/k^2 - 1 = " + num(lw_sq.Bx / 1e-8 - 1, 3) +
-            " / " + num(lw_fc.Bx / 1e-8 - 1, 3) +
-            " at h = 1.5 dp: P does not cancel (residual 2(P - S)(B - A^2)/k^2); errors oscillate in h/dp and decay "
-            "(long_wave.csv)",
-        "only up to the lattice moment errors");
-  md << "\nIndependent check (tests/stability/lattice_dispersion_linearisation_test.cpp): the complex-step Jacobian of "
-        "the SPH equations on a periodic lattice reproduces (5.8)/(5.9) to 1e-10 on six cases, including oblique "
-        "k. It confirms the A_x^2 coefficient rho c0^2 + 4mu/3 - 2(P - Sxx) of (5.8), not \"- P + Sxx\" as printed "
-        "in (5.25). It also shows that GMS's frozen R (5.13) omits the perturbation of R through the stress and "
-        "density; the tool's option perturbed_artificial_stress includes it and matches the linearisation to 1e-10 "
-        "(five cases). On the square lattice at k = (pi/dp, 0) it vanishes; on the face-centred lattice it "
-        "lowers omega^2: critical epsilon at h = dp, T = 0.1 with dR: longitudinal "
-     << fixed(critical_epsilon(LatticeType::FaceCentred, w, 1.0, isotropic_tension(0.1), 0, true), 4) << ", transverse "
-     << fixed(critical_epsilon(LatticeType::FaceCentred, w, 1.0, isotropic_tension(0.1), 1, true), 4)
-     << " (frozen R: " << fixed(critical_epsilon(LatticeType::FaceCentred, w, 1.0, isotropic_tension(0.1), 0), 4)
-     << ", " << fixed(critical_epsilon(LatticeType::FaceCentred, w, 1.0, isotropic_tension(0.1), 1), 4)
-     << "); columns *_dR of thresholds.csv.\n\n";
-  md << "Critical epsilon for isotropic tension (full relation, A_x^2 terms included; thresholds.csv): at h = dp, T = "
-        "0.01: square long. "
-     << fixed(critical_epsilon(LatticeType::Square, w, 1.0, isotropic_tension(0.01), 0), 4) << ", face-centred long. "
-     << fixed(critical_epsilon(LatticeType::FaceCentred, w, 1.0, isotropic_tension(0.01), 0), 4)
-     << ", face-centred trans. "
-     << fixed(critical_epsilon(LatticeType::FaceCentred, w, 1.0, isotropic_tension(0.01), 1), 4)
-     << "; T = 0.1: " << fixed(critical_epsilon(LatticeType::Square, w, 1.0, isotropic_tension(0.1), 0), 4) << ", "
-     << fixed(critical_epsilon(LatticeType::FaceCentred, w, 1.0, isotropic_tension(0.1), 0), 4) << ", "
-     << fixed(critical_epsilon(LatticeType::FaceCentred, w, 1.0, isotropic_tension(0.1), 1), 4)
-     << ". The A_x^2 (rho c0^2 + 4mu/3) term stabilises the face-centred longitudinal mode at small tension, so B/f is "
-        "a conservative bound there; on the square lattice A = 0 and the two agree.\n";
-  md << "\nFurther observations (not GMS statements): on the square lattice the transverse mode has f_yy < 0 for "
-        "every h/dp in the scan, so where B_y > 0 (h/dp in "
-     << list(r[0].By)
-     << ") it is unstable in TENSION and R^yy makes it worse (kappa_trans = inf); beyond the B_x sign change at h/dp = "
-     << list(r[0].Bx)
-     << " the square longitudinal mode is stable in tension without R but unstable in compression, where the GMS "
-        "rule sets R = 0.\n";
-  std::cout << "wrote " << out << "/{thresholds,by_sign,long_wave,n_dependence}.csv and summary.md\n";
+  s.set("verdict_9", std::abs(nf.dev_lo) < 0.1 && std::abs(nf.dev_hi) < 0.1 ? "**confirmed** near n = 4 (factor 1.00)"
+                                                                            : "**not confirmed**");
+  s.set("verdict_11", yes(r[1].min_fyy > 0));
+  s.set("verdict_12", r[1].By.size() == 2
+                          ? "**confirmed on [1.4, " + fixed(r[1].By[1], 2) + "]**; negative already from " +
+                                fixed(r[1].By[0], 3) + ", positive again above " + fixed(r[1].By[1], 3)
+                          : "see sign changes");
+  s.set("verdict_15", fc_long_decreasing ? "**confirmed**" : "**mostly** (see plot)");
+  s.set("verdict_16", r[0].Bx.empty() || r[0].Bx[0] > 1.5 ? "**confirmed** on [1, 1.5]" : "**not confirmed**");
+  s.set("verdict_17", sq_long_exceed.empty() && fc_long_exceed.empty() && fc_trans_exceed.empty()
+                          ? std::string("**confirmed**")
+                          : "**not quite**: epsilon = " + fixed(epsilon, 2) + " < face-centred transverse kappa = " +
+                                fixed(kt(fc, h_min), 3) + " at h/dp = " + fixed(h_min, 2));
+  s.write(out);
+  std::cout << "wrote " << out << "/{thresholds,by_sign,long_wave,n_dependence}.csv and summary.json\n";
   return 0;
 }

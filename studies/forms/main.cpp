@@ -1,32 +1,22 @@
 // Study forms: the four SPH momentum forms (uncorrected, plus, minus, conservative) in 1D, in tension AND compression
-// (Powell 2012 ch. 3 §3-4, eq. 3.40, Theorem 3.8, Example 3.9, Theorem 3.10 and the conditions after it).
+// [Powell2012, ch. 3 §3-4, (3.40), Theorem 3.8, Example 3.9, Theorem 3.10 and the conditions after it].
 // Absorbs the former form_asymmetry study (Jacobian symmetry of each form, 1D and 2D, same configurations and code).
 //
-// Writes to --out DIR:
-//   tcrit.csv                   N = 30, every kernel, h/dx = 1.0..2.5 step 0.05: T_crit (tension, > 0) and T_crit^-
-//                               (compression, < 0) of each form; analytic route K - n T L (both eigen and bisection)
-//   crosscheck.csv              the same from the complex-step Jacobian of the force functions (general affine route)
-//                               at h/dx = 1.2, 1.6, 2.0, 2.4: relative difference
-//   compression_conditions.csv  per kernel x h: Fourier transform sign of W, Powell's conditions 1 and 3 after
-//                               Theorem 3.10, definiteness of L (free block and infinite lattice), T_crit^-
-//   asymmetry.csv               ||A - A^T||_F / ||A||_F at equilibrium / displaced / disordered states (1D and 2D)
-//   asymmetry_vs_amplitude.csv  1D: the same against the displacement amplitude, for T = -0.1, 0, 0.1
-//   summary.md
+// Writes tcrit.csv, crosscheck.csv, compression_conditions.csv, asymmetry.csv, asymmetry_vs_amplitude.csv and
+// summary.json to --out (see README.md); the prose of summary.md is in summary.md.in (scripts/render_summary.py).
 #include <CLI/CLI.hpp>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <iomanip>
 #include <iostream>
 #include <limits>
 #include <map>
 #include <numbers>
-#include <random>
 #include <string>
 #include <vector>
 
+#include "common/study.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/forms/elasticity_2d.hpp"
 #include "sphstab/forms/wave_1d.hpp"
@@ -42,21 +32,12 @@
 namespace {
 
 using namespace sphstab;
-using Clock = std::chrono::steady_clock;
+using study::Clock;
+using study::random_vector;
+using study::seconds_since;
+using study::sig;
 
 std::string num(double v) { return format_number(v, 10); }
-
-std::string sig(double v, int digits = 3) { return std::isnan(v) ? "-" : format_number(v, digits); }
-
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-Eigen::VectorXd random_vector(int n, double amplitude, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> d(-amplitude, amplitude);
-  Eigen::VectorXd v(n);
-  for (int i = 0; i < n; ++i) v[i] = d(rng);
-  return v;
-}
 
 /// min over 0 <= k h <= 60 of F(k) / F(0), F(k) = 2 int_0^{2h} W(r) cos(k r) dr (h = 1), as in
 /// tests/kernel/kernel_test.cpp.
@@ -308,75 +289,69 @@ int main(int argc, char** argv) {
   }
   const double seconds = seconds_since(start);
 
-  // 5. Summary.
+  // 5. Key numbers for summary.md.in.
+  study::Summary sum;
+  sum.set("n", n);
+  sum.set("kernels", static_cast<int>(all_kernel_types().size()));
+  sum.set("h_min", hs.front(), 6);
+  sum.set("h_max", hs.back(), 6);
+  sum.set("h_step", quick ? "0.25" : "0.05");
+  sum.set("cross_cases", cross_cases);
+  sum.set("cross_max", cross_max, 2);
+  sum.set("cross_mismatch", cross_class_mismatch);
+  sum.set("asym_h", ha, 6);
+  sum.set("asym_n1", n1);
+  sum.set("asym_n2", n2);
+  sum.set("wall_seconds", seconds);
+
   auto tc = [&](const std::string& kernel, double h, const std::string& form, const std::string& dir) {
     for (const TcritRow& r : tcrit)
       if (r.kernel == kernel && std::abs(r.h - h) < 1e-9 && r.form == form && r.direction == dir) return r.tcrit;
     return std::numeric_limits<double>::quiet_NaN();
   };
   double ratio_dev = 0;
-  for (const TcritRow& r : tcrit)
-    if (r.form == "conservative" && std::isfinite(r.tcrit)) {
-      ratio_dev = std::max(ratio_dev, std::abs(tc(r.kernel, r.h, "uncorrected", r.direction) / r.tcrit - 4));
-      ratio_dev = std::max(ratio_dev, std::abs(tc(r.kernel, r.h, "plus", r.direction) / r.tcrit - 2));
-    }
   bool minus_inf = true;
-  for (const TcritRow& r : tcrit)
+  for (const TcritRow& r : tcrit) {
     if (r.form == "minus") minus_inf = minus_inf && std::isinf(r.tcrit);
+    if (r.form != "conservative" || !std::isfinite(r.tcrit)) continue;
+    ratio_dev = std::max(ratio_dev, std::abs(tc(r.kernel, r.h, "uncorrected", r.direction) / r.tcrit - 4));
+    ratio_dev = std::max(ratio_dev, std::abs(tc(r.kernel, r.h, "plus", r.direction) / r.tcrit - 2));
+  }
+  sum.set("ratio_dev", ratio_dev, 2);
+  sum.set("minus_critical_load", minus_inf ? "no" : "SOME");
 
-  std::ofstream md(out + "/summary.md");
-  md << "# forms: the 1D SPH momentum forms in tension and compression\n\n"
-     << "Uncorrected, plus, minus and conservative forms of the 1D pre-stressed bar (Powell 2012 ch. 3, eq. 3.28, "
-        "3.27, 3.40): critical tension T_crit > 0 and critical compression T_crit^- < 0 (largest T < 0 at which "
-        "A(T) = K - n T L stops being positive definite), Powell's conditions for stability in compression "
-        "(after Theorem 3.10), and the symmetry of the exact Jacobians (Theorem 3.8, Example 3.9; this part "
-        "supersedes the former form_asymmetry study, same code and configurations). 1D only: the 2D counterpart "
-        "(critical pre-strain of plane-strain elasticity) is the critical-strain-2d work.\n\n"
-     << "## Parameters\n\n"
-     << "- dx = 1, N = " << n
-     << " free particles with fixed layers one support thick (tension_lattice_1d, as the "
-        "critical-tension study), all "
-     << all_kernel_types().size() << " kernels (support 2h), h/dx = " << hs.front() << " .. " << hs.back()
-     << (quick ? " step 0.25" : " step 0.05") << ".\n"
-     << "- T_crit: analytic Jacobian + critical_tension (CHOLMOD bisection and generalised eigenproblem, which agree "
-        "to 1e-8); compression with L -> -L. Cross-check with the complex-step Jacobians of the force functions and "
-        "the "
-        "general affine route (critical_load.hpp) at h/dx = 1.2, 1.6, 2.0, 2.4: "
-     << cross_cases << " cases, max relative difference " << sig(cross_max, 2) << ", " << cross_class_mismatch
-     << " finite/infinite mismatches.\n"
-     << "- Asymmetry: cubic, h = " << ha << " dx, 1D line of " << n1 << " free particles (load = T), 2D square " << n2
-     << " x " << n2
-     << " (plane strain lambda = mu = rho = 1, load = pre-strain e); displaced: random u in [-a, a] "
-        "dx (seed 9); disordered: reference lattice perturbed by 0.1 dx (seed 5).\n"
-     << "- Wall time " << sig(seconds, 3) << " s.\n\n";
-
-  md << "## Tension and compression (conservative form; uncorrected = 4x, plus = 2x, minus = no critical load)\n\n"
-     << "| kernel | Fourier transform min/F(0) | h/dx with T_crit^- = -inf | T_crit^- at 1.2 / 1.5 / 2.0 | T_crit at "
-        "1.2 / 1.5 / 2.0 |\n|---|---|---|---|---|\n";
+  // Conservative form per kernel: h/dx ranges stable in compression, T_crit^- and T_crit at h/dx = 1.2, 1.5, 2.
+  std::string table;
   for (KernelType type : all_kernel_types()) {
     const std::string k = kernel_name(type);
     int stable = 0;
     std::string ranges;
     double run_start = NAN, prev = NAN;
+    auto close_run = [&] {
+      if (std::isnan(run_start)) return;
+      ranges += (ranges.empty() ? "" : ", ") + sig(run_start) + (prev > run_start ? "-" + sig(prev) : "");
+      run_start = NAN;
+    };
     for (double h : hs) {
-      const bool s = std::isinf(tc(k, h, "conservative", "compression"));
-      if (s) {
+      if (std::isinf(tc(k, h, "conservative", "compression"))) {
         ++stable;
         if (std::isnan(run_start)) run_start = h;
         prev = h;
-      } else if (!std::isnan(run_start)) {
-        ranges += (ranges.empty() ? "" : ", ") + sig(run_start) + (prev > run_start ? "-" + sig(prev) : "");
-        run_start = NAN;
+      } else {
+        close_run();
       }
     }
-    if (!std::isnan(run_start))
-      ranges += (ranges.empty() ? "" : ", ") + sig(run_start) + (prev > run_start ? "-" + sig(prev) : "");
-    md << "| " << k << " | " << sig(ft_min[k], 2) << " | " << (ranges.empty() ? "none" : ranges) << " (" << stable
-       << "/" << hs.size() << ") | " << sig(tc(k, 1.2, "conservative", "compression")) << " / "
-       << sig(tc(k, 1.5, "conservative", "compression")) << " / " << sig(tc(k, 2.0, "conservative", "compression"))
-       << " | " << sig(tc(k, 1.2, "conservative", "tension")) << " / " << sig(tc(k, 1.5, "conservative", "tension"))
-       << " / " << sig(tc(k, 2.0, "conservative", "tension")) << " |\n";
+    close_run();
+    auto at = [&](const std::string& dir) {
+      return sig(tc(k, 1.2, "conservative", dir)) + " / " + sig(tc(k, 1.5, "conservative", dir)) + " / " +
+             sig(tc(k, 2.0, "conservative", dir));
+    };
+    table += (table.empty() ? "| " : "\n| ") + k + " | " + sig(ft_min[k], 2) + " | " +
+             (ranges.empty() ? "none" : ranges) + " (" + std::to_string(stable) + "/" + std::to_string(hs.size()) +
+             ") | " + at("compression") + " | " + at("tension") + " |";
   }
+  sum.set("tension_compression_table", table);
+
   int cond1 = 0, cond3 = 0, both = 0, lpsd = 0, lpsd_stable = 0, total = 0, ft_pos_unstable = 0, ft_pos = 0;
   int cond1_inf = 0, both_inf = 0, unstable = 0, l_symbol_psd = 0, l_symbol_psd_stable = 0;
   std::string unstable_cases, both_cases;
@@ -404,53 +379,32 @@ int main(int argc, char** argv) {
       ft_pos_unstable += std::isfinite(r.tcrit_minus);
     }
   }
-  md << "\nForm scaling: T_crit(uncorrected) / T_crit(conservative) = 4 and T_crit(plus) / T_crit(conservative) = 2 to "
-     << sig(ratio_dev, 2) << " (tension and compression); minus form: " << (minus_inf ? "no" : "SOME")
-     << " critical load in every case (Powell 3.38).\n\n";
+  sum.set("cases", total);
+  sum.set("cond1", cond1);
+  sum.set("cond3", cond3);
+  sum.set("both", both);
+  sum.set("both_list", both_cases.empty() ? "" : " (" + both_cases + ")");
+  sum.set("cond1_infinite", cond1_inf);
+  sum.set("both_infinite", both_inf);
+  sum.set("l_psd", lpsd);
+  sum.set("l_psd_matching", lpsd_stable);
+  sum.set("l_symbol_psd", l_symbol_psd);
+  sum.set("l_symbol_psd_matching", l_symbol_psd_stable);
+  sum.set("unstable", unstable);
+  sum.set("unstable_list", unstable_cases.empty() ? "" : ": " + unstable_cases);
+  sum.set("ft_positive_unstable", ft_pos_unstable);
+  sum.set("ft_positive_stable", ft_pos - ft_pos_unstable);
+  sum.set("ft_positive_cases", ft_pos);
+  for (const char* k : {"gaussian", "cubic", "quintic", "quartic", "mollifier"})
+    sum.set(std::string("ft_min_") + k, ft_min[k], 2);
 
-  md << "## Powell's conditions for stability in compression (after Theorem 3.10)\n\n"
-     << "(3.40) is positive definite for T < 0 if (1) the matrix W''_km (diagonal W''(0) included) is negative "
-        "definite (Bochner: W has a positive Fourier transform), (2) T < 0, (3) sum_m W''_km > 0. Over the "
-     << total << " kernel x h cases (free block of " << n << " particles):\n\n"
-     << "- condition 1 holds in " << cond1 << ", condition 3 in " << cond3 << ", both in " << both
-     << (both_cases.empty() ? "" : " (" + both_cases + ")") << ".\n"
-     << "- On the infinite lattice conditions 1 and 3 exclude each other: the matrix W''_km is Toeplitz with symbol "
-        "S(k) = sum_m W''(m dx) cos(k m dx); condition 1 means S(k) <= 0 for all k, condition 3 means S(0) > 0. "
-        "Condition 1 for the infinite lattice holds in "
-     << cond1_inf << ", both in " << both_inf
-     << ". Where both hold on the 30-particle block it is a finite-size effect (the block's largest eigenvalue is "
-        "still below sup S > 0). So Powell's sufficient condition is not a usable criterion.\n"
-     << "- What decides compression is L = diag(sum_{m != k} W''_km) - W''_off (a weighted Laplacian; A(T) = K + n|T| "
-        "L "
-        "for T < 0): T_crit^- = -inf iff L is positive semi-definite (then A > 0 for every T < 0; otherwise a "
-        "negative eigenvalue of L wins for large |T|). L positive semi-definite in "
-     << lpsd << "/" << total << " cases, and that matches T_crit^- = -inf in " << lpsd_stable << "/" << total
-     << "; on the infinite lattice L^(k) >= 0 for all k in " << l_symbol_psd << "/" << total << " (matching in "
-     << l_symbol_psd_stable << "/" << total << ").\n"
-     << "- Cases with a finite critical compression (conservative T_crit^-): " << unstable << "/" << total
-     << (unstable_cases.empty() ? "" : ": " + unstable_cases)
-     << ". Every other kernel x h is stable in compression at the lattice equilibrium.\n"
-     << "- Positive Fourier transform (Wendland C2/C4/C6 and Lucy, analytically) and compression: " << ft_pos_unstable
-     << " of the " << ft_pos
-     << " positive-transform kernel x h cases have a finite T_crit^-. On the infinite lattice the symbol "
-        "L^(k) = S(0) - S(k) with S(k) = sum_m W''(m dx) cos(k m dx) = -sum_n (k + 2 pi n)^2 F(k + 2 pi n) (Poisson): "
-        "a positive transform F makes S(k) < 0 for all k but L^ >= 0 needs S(k) <= S(0) (aliasing of the n != 0 "
-        "terms), which Bochner's theorem alone does not give.\n"
-     << "- The truncated Gaussian's transform is not positive (min F/F(0) = " << sig(ft_min["gaussian"], 2)
-     << ", tests/kernel/kernel_test.cpp), so Powell's citation of the Gaussian does not cover the kernel as used. The "
-        "cubic and quintic B-splines have transforms sinc^4 and sinc^6 >= 0 with zeros (min F/F(0) = "
-     << sig(ft_min["cubic"], 2) << ", " << sig(ft_min["quintic"], 2)
-     << "): non-negative, not positive (the hat, sinc^2, likewise); the quartic (sinc^5) changes sign ("
-     << sig(ft_min["quartic"], 2) << "), and so does the mollifier (" << sig(ft_min["mollifier"], 2)
-     << "). Sampled minima of F/F(0) on 0 <= k h <= 60 are in compression_conditions.csv.\n\n";
-
-  md << "## Jacobian symmetry (Theorem 3.8, Example 3.9)\n\n"
-     << "| dim | configuration | load | uncorrected | plus | minus | conservative |\n|---|---|---|---|---|---|---|\n";
+  table.clear();
   for (size_t i = 0; i < asym.size(); i += 4) {
-    md << "| " << asym[i].dim << " | " << asym[i].config << " | " << asym[i].load << " |";
-    for (int f = 0; f < 4; ++f) md << " " << sig(asym[i + f].asymmetry, 2) << " |";
-    md << "\n";
+    table += (table.empty() ? "| " : "\n| ") + std::to_string(asym[i].dim) + " | " + asym[i].config + " | " +
+             format_number(asym[i].load, 6) + " |";
+    for (int f = 0; f < 4; ++f) table += " " + sig(asym[i + f].asymmetry, 2) + " |";
   }
+  sum.set("asymmetry_table", table);
   double slope_max = 0, cons_max = 0;
   for (const AmpRow& r : amp) {
     if (r.form == "conservative") {
@@ -462,29 +416,9 @@ int main(int argc, char** argv) {
           r.amplitude <= 1e-3 && r.asymmetry > 0)
         slope_max = std::max(slope_max, std::abs(std::log10(s.asymmetry / r.asymmetry) - 1));
   }
-  md << "\nAgainst the displacement amplitude a (asymmetry_vs_amplitude.csv, cubic and wendland-c2, T = -0.1, 0, "
-        "0.1): the non-conservative forms grow linearly in a for small a (log-log slope 1 within "
-     << sig(slope_max, 2) << " between a = 1e-4, 1e-3, 1e-2), the conservative form stays at round-off (max "
-     << sig(cons_max, 2) << ").\n\n"
-     << "## Comparison with Powell (2012)\n\n"
-     << "- (3.40) forms differ only by n = 1, 2, 4 (uncorrected, plus, conservative), minus n = 0: **agrees** exactly "
-        "(ratios 4 : 2 : 1 to "
-     << sig(ratio_dev, 2) << ", in tension and in compression).\n"
-     << "- Theorem 3.8 (a force derives from a potential iff its Jacobian is symmetric): **agrees**; conservative "
-        "symmetric to round-off everywhere, 1D and 2D, loaded in tension or compression.\n"
-     << "- Example 3.9 (plus form not integrable): **agrees**; plus, uncorrected and minus are asymmetric as soon as "
-        "the particles are displaced (linear in the amplitude), even without load. At the 1D lattice equilibrium all "
-        "forms are symmetric; in 2D only under isotropic pre-stress (uniaxial: sigma0 H_ij does not commute).\n"
-     << "- \"Wendland kernels are inherently more stable in compression\" (conditions 1-3): the conclusion holds for "
-        "the Wendland kernels ("
-     << ft_pos - ft_pos_unstable << "/" << ft_pos
-     << " cases stable in compression), but it does not single them out: the B-splines and the truncated Gaussian, "
-        "whose transforms are not positive, are just as stable in compression here, and only the mollifier at large h "
-        "loses it. The stated sufficient condition cannot hold on a regular lattice (conditions 1 and 3 contradict "
-        "each other, above): **disagrees** as an argument, **agrees** as an observation for Wendland. The decisive "
-        "quantity is the definiteness of L.\n"
-     << "- The hat kernel (3.60): W'' = 0 off the origin, so L = 0 and A = K for every T: no critical load in tension "
-        "or compression (rows 'hat' in tcrit.csv), as Powell's item 1 states.\n";
+  sum.set("slope_deviation_max", slope_max, 2);
+  sum.set("conservative_asymmetry_max", cons_max, 2);
+  sum.write(out);
   std::cout << "wrote " << out << " (" << sig(seconds, 3) << " s)\n";
   return 0;
 }
