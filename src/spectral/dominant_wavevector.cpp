@@ -63,6 +63,20 @@ WavevectorEstimate dominant_wavevector(const Eigen::VectorXcd& mode, const Eigen
 
   double best = -1;
   Eigen::Vector2d u_best(0, 0);
+  // Refines the coarse maximiser on ever finer 9 x 9 stencils.
+  auto refine = [&](int g) {
+    double step = 1.0 / g;
+    for (int level = 0; level < 9; ++level) {
+      step /= 4;
+      const Eigen::Vector2d centre = u_best;
+      for (int i = -4; i <= 4; ++i)
+        for (int j = -4; j <= 4; ++j) {
+          const Eigen::Vector2d u = centre + step * Eigen::Vector2d(i, j);
+          const double s = structure_factor(mode, x, b * u);
+          if (s > best) best = s, u_best = u;
+        }
+    }
+  };
   if (on_lattice) {
     const int extent = std::max(pmax - pmin, qmax - qmin) + 1;
     const int g = std::min(1024, std::max(16, 4 * extent));
@@ -96,18 +110,7 @@ WavevectorEstimate dominant_wavevector(const Eigen::VectorXcd& mode, const Eigen
           u_best = {double(j1) / g, double(j2) / g};
         }
       }
-    // refine from the coarse step
-    double step = 1.0 / g;
-    for (int level = 0; level < 9; ++level) {
-      step /= 4;
-      const Eigen::Vector2d centre = u_best;
-      for (int i = -4; i <= 4; ++i)
-        for (int j = -4; j <= 4; ++j) {
-          const Eigen::Vector2d u = centre + step * Eigen::Vector2d(i, j);
-          const double s = structure_factor(mode, x, b * u);
-          if (s > best) best = s, u_best = u;
-        }
-    }
+    refine(g);
   } else {
     const int g = 64;
     for (int j2 = 0; j2 < g; ++j2)
@@ -116,17 +119,7 @@ WavevectorEstimate dominant_wavevector(const Eigen::VectorXcd& mode, const Eigen
         const double s = structure_factor(mode, x, b * u);
         if (s > best) best = s, u_best = u;
       }
-    double step = 1.0 / g;
-    for (int level = 0; level < 9; ++level) {
-      step /= 4;
-      const Eigen::Vector2d centre = u_best;
-      for (int i = -4; i <= 4; ++i)
-        for (int j = -4; j <= 4; ++j) {
-          const Eigen::Vector2d u = centre + step * Eigen::Vector2d(i, j);
-          const double s = structure_factor(mode, x, b * u);
-          if (s > best) best = s, u_best = u;
-        }
-    }
+    refine(g);
   }
   const Eigen::Vector2d k = lattice.fold(b * u_best) * lattice.dx / M_PI;
   out.kx_over_pi = k[0];

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "sphstab/core/format.hpp"
+#include "sphstab/numerics/random_vector.hpp"
 
 namespace sphstab::study {
 
@@ -41,14 +42,7 @@ inline double loglog_slope(const std::vector<double>& x, const std::vector<doubl
   return (m * sxy - sx * sy) / (m * sxx - sx * sx);
 }
 
-/// n values uniform in [-amplitude, amplitude] from std::mt19937(seed) (reproducible across runs and machines).
-inline Eigen::VectorXd random_vector(int n, double amplitude, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> d(-amplitude, amplitude);
-  Eigen::VectorXd v(n);
-  for (int i = 0; i < n; ++i) v[i] = d(rng);
-  return v;
-}
+using sphstab::random_vector;
 
 /// v with `digits` significant digits for prose and tables: "-" for NaN, "inf"/"-inf".
 inline std::string sig(double v, int digits = 3) { return std::isnan(v) ? "-" : format_number(v, digits); }
@@ -68,7 +62,8 @@ class Summary {
     if (!f) throw std::runtime_error("cannot write " + dir + "/summary.json");
     f << "{\n";
     std::size_t k = 0;
-    for (const auto& [key, value] : m_values) f << "  " << quote(key) << ": " << quote(value) << (++k < m_values.size() ? ",\n" : "\n");
+    for (const auto& [key, value] : m_values)
+      f << "  " << quote(key) << ": " << quote(value) << (++k < m_values.size() ? ",\n" : "\n");
     f << "}\n";
   }
 
@@ -76,13 +71,16 @@ class Summary {
   static std::string quote(const std::string& s) {
     std::string q = "\"";
     for (char c : s) {
-      if (c == '"' || c == '\\') q += '\\', q += c;
-      else if (c == '\n') q += "\\n";
+      if (c == '"' || c == '\\')
+        q += '\\', q += c;
+      else if (c == '\n')
+        q += "\\n";
       else if (static_cast<unsigned char>(c) < 0x20) {
         char buf[8];
         std::snprintf(buf, sizeof buf, "\\u%04x", c);
         q += buf;
-      } else q += c;
+      } else
+        q += c;
     }
     return q + "\"";
   }

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "sphstab/forms/discretisation.hpp"
+#include "sphstab/numerics/random_vector.hpp"
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab::test {
@@ -35,13 +36,6 @@ std::shared_ptr<const Discretisation<Dim>> lattice_discretisation(const LatticeS
   return make_discretisation(set, k, s.h);
 }
 
-/// n values uniform in [-amplitude, amplitude] from std::mt19937(seed).
-inline Eigen::VectorXd random_vector(int n, double amplitude, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> d(-amplitude, amplitude);
-  Eigen::VectorXd v(n);
-  for (int i = 0; i < n; ++i) v[i] = d(rng);
-  return v;
-}
+using sphstab::random_vector;
 
 }  // namespace sphstab::test

@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "sphstab/numerics/random_vector.hpp"
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
@@ -19,14 +20,6 @@ std::shared_ptr<const Discretisation<Dim>> lattice(int n, bool periodic, double 
                                 .perturbation = perturbation,
                                 .seed = 4});
   return make_discretisation(set, k, 1.3);
-}
-
-Eigen::VectorXd random_vector(int n, double amplitude, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> d(-amplitude, amplitude);
-  Eigen::VectorXd v(n);
-  for (int i = 0; i < n; ++i) v[i] = d(rng);
-  return v;
 }
 
 TEST(Xsph, ConservesMomentumWithoutFixedNeighbours) {

@@ -7,18 +7,11 @@
 
 #include "sphstab/forms/elasticity_2d.hpp"
 #include "sphstab/forms/wave_1d.hpp"
+#include "sphstab/numerics/random_vector.hpp"
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
 namespace {
-
-Eigen::VectorXd random_vector(int n, double amplitude, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> d(-amplitude, amplitude);
-  Eigen::VectorXd v(n);
-  for (int i = 0; i < n; ++i) v[i] = d(rng);
-  return v;
-}
 
 /// A toy force with a known Jacobian, independent of SPH: a nonlinear spring chain with fixed ends,
 /// a_i = (u_{i+1} - 2 u_i + u_{i-1}) + c (u_{i+1} - u_i)^3 - c (u_i - u_{i-1})^3 + load * u_i.
