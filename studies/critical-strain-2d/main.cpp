@@ -1,4 +1,6 @@
-// Study: critical pre-strain of 2D SPH lattices (square, hexagonal; elastic forms, plane strain), GitHub issue 3.
+// Study critical-strain-2d: critical pre-strain of 2D SPH lattices (square, hexagonal; elastic forms, plane strain),
+// GitHub issue 3; comparison with [GMS2001, §5]. What the study asks: README.md; the prose of the summary:
+// summary.md.in (rendered from summary.json by scripts/render_summary.py).
 //
 // Writes to --out DIR:
 //   sweep.csv         n = 16 free particles per side, fixed layers; 4 kernels x h/dx = 1.0..2.5 (0.1); isotropic and
@@ -12,10 +14,9 @@
 //   infinite.csv      infinite-lattice e_crit (Fourier symbols) for square, hex, face-centred, every kernel and h
 //   gms.csv           Gray, Monaghan & Swift (2001) lattice sums at k = (pi/dp, 0) (cubic spline) and the stability
 //                     of that single mode against the whole Brillouin zone
-//   summary.md        parameters, key numbers, wall time, comparison with GMS
+//   summary.json      key numbers and tables for summary.md.in
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -28,6 +29,7 @@
 #include <tuple>
 #include <vector>
 
+#include "common/study.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/jacobian/analytic_jacobian_2d.hpp"
 #include "sphstab/particles/lattice_presets.hpp"
@@ -37,7 +39,8 @@
 namespace {
 
 using namespace sphstab;
-using Clock = std::chrono::steady_clock;
+using study::Clock;
+using study::seconds_since;
 
 // Plane strain, E = 2.1, nu = 0.3, rho = 7.8 (Powell's Swegle test); e_crit depends on nu only.
 const double kE = 2.1, kNu = 0.3, kRho = 7.8;
@@ -48,25 +51,15 @@ const std::vector<KernelType> kKernels{KernelType::CubicSpline, KernelType::Quin
 const std::vector<LatticeType> kLattices{LatticeType::Square, LatticeType::Hexagonal};
 
 std::string num(double v) { return format_number(v, 12); }
+// Not study::sig: NaN is printed "nan" here (gms.csv infinite_k_* columns, and the GMS table of the summary).
 std::string sig(double v, int digits = 3) { return format_number(v, digits); }
 std::string csv_field(const std::string& s) { return s.find(',') == std::string::npos ? s : "\"" + s + "\""; }
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 std::string kind_name(PreStrainKind k) { return k == PreStrainKind::Isotropic ? "isotropic" : "uniaxial"; }
 
 std::vector<double> h_grid(double step_tenths) {
   std::vector<double> hs;
   for (int i = 10; i <= 25; i += static_cast<int>(step_tenths)) hs.push_back(i / 10.0);
   return hs;
-}
-
-double loglog_slope(const std::vector<double>& x, const std::vector<double>& y) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const int n = static_cast<int>(x.size());
-  for (int i = 0; i < n; ++i) {
-    const double lx = std::log(x[i]), ly = std::log(std::abs(y[i]));
-    sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
-  }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
 struct SweepRow {
@@ -111,10 +104,10 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   std::filesystem::create_directories(out_dir);
   const auto t_start = Clock::now();
-  const int n_main = quick ? 8 : 16;
+  const int n_main = quick ? 8 : 16, n_nonsym = quick ? 6 : 12;
   const std::vector<double> hs = quick ? std::vector<double>{1.0, 1.3, 2.0} : h_grid(1);
 
-  // ---------------- A. main sweep, n = 20 ----------------
+  // ---------------- A. main sweep, n = n_main ----------------
   std::vector<SweepRow> sweep;
   std::ofstream sweep_csv(out_dir + "/sweep.csv");
   sweep_csv << sweep_header();
@@ -169,47 +162,32 @@ int main(int argc, char** argv) {
     const auto t0 = Clock::now();
     std::ofstream csv(out_dir + "/nonsymmetric.csv");
     csv << sweep_header();
-    struct Job {
-      LatticeType lt;
-      KernelType kt;
-      double h;
-      int n;
-    };
-    std::vector<Job> jobs;
     const std::vector<double> hs_ns = quick ? std::vector<double>{1.3} : h_grid(3);
+    const std::size_t total = kLattices.size() * kKernels.size() * hs_ns.size();
+    int done = 0;
     for (LatticeType lt : kLattices)
       for (KernelType kt : kKernels)
-        for (double h : hs_ns) jobs.push_back({lt, kt, h, quick ? 6 : 12});
-
-    int done = 0;
-    for (const Job& j : jobs) {
-      const Kernel<2> kernel(j.kt);
-      auto disc = make_discretisation(strain_lattice_2d(j.lt, kernel, j.h, j.n), kernel, j.h);
-      const Linearisation jac = analytic_jacobian_2d(*disc, kMaterial, MomentumForm::Plus, PreStrainKind::UniaxialX);
-      const ElasticSymbol2d symbol(j.lt, kernel, j.h, 1.0, kMaterial, MomentumForm::Plus, PreStrainKind::UniaxialX);
-      for (LoadDirection sign : {LoadDirection::Tension, LoadDirection::Compression}) {
-        const auto tc = Clock::now();
-        CriticalLoadOptions opt = CriticalLoadOptions::strain_2d();
-        opt.criterion = Criterion::Spectrum;
-        SweepRow row{j.lt,
-                     j.kt,
-                     j.h,
-                     MomentumForm::Plus,
-                     PreStrainKind::UniaxialX,
-                     sign,
-                     j.n,
-                     critical_load(jac, sign, opt),
-                     critical_strain_infinite_2d(symbol, sign, 128),
-                     0};
-        row.seconds = seconds_since(tc);
-        csv << sweep_line(row);
-        nonsym.push_back(std::move(row));
-      }
-      ++done;
-      if (done % 8 == 0 || done == static_cast<int>(jobs.size()))
-        std::cout << "critical-strain-2d: non-symmetric " << done << "/" << jobs.size() << " ("
-                  << sig(seconds_since(t0), 3) << " s)" << std::endl;
-    }
+        for (double h : hs_ns) {
+          const Kernel<2> kernel(kt);
+          auto disc = make_discretisation(strain_lattice_2d(lt, kernel, h, n_nonsym), kernel, h);
+          const Linearisation jac =
+              analytic_jacobian_2d(*disc, kMaterial, MomentumForm::Plus, PreStrainKind::UniaxialX);
+          const ElasticSymbol2d symbol(lt, kernel, h, 1.0, kMaterial, MomentumForm::Plus, PreStrainKind::UniaxialX);
+          for (LoadDirection sign : {LoadDirection::Tension, LoadDirection::Compression}) {
+            const auto tc = Clock::now();
+            CriticalLoadOptions opt = CriticalLoadOptions::strain_2d();
+            opt.criterion = Criterion::Spectrum;
+            SweepRow row{lt, kt, h, MomentumForm::Plus, PreStrainKind::UniaxialX, sign, n_nonsym, {}, {}, 0};
+            row.r = critical_load(jac, sign, opt);
+            row.inf = critical_strain_infinite_2d(symbol, sign, 128);
+            row.seconds = seconds_since(tc);
+            csv << sweep_line(row);
+            nonsym.push_back(std::move(row));
+          }
+          if (++done % 8 == 0 || done == static_cast<int>(total))
+            std::cout << "critical-strain-2d: non-symmetric " << done << "/" << total << " ("
+                      << sig(seconds_since(t0), 3) << " s)" << std::endl;
+        }
     t_nonsym = seconds_since(t0);
   }
 
@@ -249,16 +227,9 @@ int main(int argc, char** argv) {
               CriticalLoadOptions opt = CriticalLoadOptions::strain_2d();
               // Bisection (~40 factorisations) up to n = 20; the eigen route alone above (benchmark.md: timing).
               opt.method = n <= 20 ? CriticalLoadMethod::Both : CriticalLoadMethod::Eigen;
-              NRow row{lt,
-                       kt,
-                       h,
-                       sign,
-                       n,
-                       critical_load(jac, sign, opt),
-                       critical_strain_periodic_symbol_2d(symbol, n, sign),
-                       critical_strain_infinite_2d(symbol, sign),
-                       0,
-                       n <= 20 ? "both" : "eig"};
+              NRow row{lt, kt, h, sign, n, critical_load(jac, sign, opt), {}, {}, 0, n <= 20 ? "both" : "eig"};
+              row.periodic = critical_strain_periodic_symbol_2d(symbol, n, sign);
+              row.inf = critical_strain_infinite_2d(symbol, sign);
               row.seconds = seconds_since(tc);
               csv << lattice_name(lt) << "," << kernel_name(kt) << "," << num(h) << ",conservative,isotropic,"
                   << load_direction_name(sign) << "," << n << "," << row.method << "," << num(row.r.load) << ","
@@ -355,7 +326,18 @@ int main(int argc, char** argv) {
   }
   const double t_total = seconds_since(t_start);
 
-  // ---------------- summary ----------------
+  // ---------------- key numbers and tables for summary.md.in ----------------
+  study::Summary sum;
+  auto table = [](const std::vector<std::string>& rows) {  // Markdown rows, without the final newline
+    std::string t;
+    for (const std::string& r : rows) t += (t.empty() ? "" : "\n") + r;
+    return t;
+  };
+  auto cells = [](const std::vector<std::string>& v) {  // one Markdown row "| a | b |"
+    std::string r = "|";
+    for (const std::string& c : v) r += " " + c + " |";
+    return r;
+  };
   auto find = [&](const std::vector<SweepRow>& rows, LatticeType lt, KernelType kt, double h, MomentumForm f,
                   PreStrainKind kind, LoadDirection s) -> const SweepRow* {
     for (const auto& r : rows)
@@ -363,6 +345,18 @@ int main(int argc, char** argv) {
         return &r;
     return nullptr;
   };
+  sum.set("lambda", kMaterial.lambda, 6);
+  sum.set("mu", kMaterial.mu, 6);
+  sum.set("n_main", n_main);
+  sum.set("n_nonsymmetric", n_nonsym);
+  sum.set("sweep_rows", static_cast<int>(sweep.size()));
+  sum.set("sweep_seconds", t_sweep);
+  sum.set("nonsymmetric_rows", static_cast<int>(nonsym.size()));
+  sum.set("nonsymmetric_seconds", t_nonsym);
+  sum.set("versus_n_rows", static_cast<int>(nrows.size()));
+  sum.set("versus_n_seconds", t_versus_n);
+  sum.set("total_seconds", t_total);
+
   // Route agreement, status, ratios.
   double max_rd = 0, max_ratio_dev_plus = 0, max_ratio_dev_unc = 0;
   int n_rows_both = 0, n_bad_status = 0, n_over = 0;
@@ -386,66 +380,16 @@ int main(int argc, char** argv) {
       if (u) max_ratio_dev_unc = std::max(max_ratio_dev_unc, std::abs(u->r.load / r.r.load / 4 - 1));
     }
   }
+  sum.set("route_max_rel_diff", sig(max_rd, 2));
+  sum.set("route_worst", worst_rd);
+  sum.set("route_over_1e-8", n_over);
+  sum.set("route_rows", n_rows_both);
+  sum.set("rows_not_successful", n_bad_status);
+  sum.set("ratio_dev_plus", sig(max_ratio_dev_plus, 2));
+  sum.set("ratio_dev_uncorrected", sig(max_ratio_dev_unc, 2));
 
-  std::ostringstream md;
-  md << "# Critical pre-strain of 2D SPH lattices\n\n"
-     << "Generated by `studies/critical-strain-2d/main.cpp` (`scripts/main.sh critical-strain-2d`); plots by "
-        "`plot.py`. GitHub issue 3 (2D parts).\n\n"
-     << "## Parameters\n\n"
-     << "- Plane strain, E = 2.1, nu = 0.3, rho = 7.8 (Powell's Swegle test; lambda = " << sig(kMaterial.lambda, 6)
-     << ", mu = " << sig(kMaterial.mu, 6)
-     << "). The critical pre-strain e_crit is dimensionless and depends on nu only (A(e) is linear in lambda, mu and "
-        "scales with 1/rho).\n"
-     << "- Pre-strain e (the load): isotropic sigma0 = 2 (lambda + mu) e I, uniaxial sigma0 = lambda e I + 2 mu e "
-        "e_x e_x (plane strain); tension e > 0, compression e < 0 (signed in every CSV).\n"
-     << "- Lattices: square and hexagonal (face-centred for the GMS comparison), spacing dx = 1, n free particles per "
-        "side plus fixed layers completing every neighbourhood (support 2h). Kernels: cubic, quintic, Wendland C2, "
-        "Wendland C4 (all with support 2h). h/dx = 1.0..2.5 step 0.1.\n"
-     << "- A(e) = A0 + e A1 = -da/du from the analytic sparse Jacobian (include/sphstab/jacobian/"
-        "analytic_jacobian_2d.hpp; equal to the complex-step Jacobian to 3e-15, tests). e_crit = smallest |e| at "
-        "which A(e) leaves the stable set: positive definiteness for symmetric A (conservative; plus and uncorrected "
-        "under isotropic pre-strain), by CHOLMOD bisection (rtol 1e-12) and by the generalised eigenproblem (Spectra, "
-        "Cholesky mode with a spectral shift); for the non-symmetric uniaxial plus/uncorrected forms the dense "
-        "eigenvalue criterion (all eigenvalues real and positive; nonsymmetric.csv) and, in sweep.csv, the cheaper "
-        "symmetric-part criterion (labelled `symmetric-part`; NOT the stability criterion). Budget on the shared "
-        "machine: the conservative form at every h by the eigen route; on the subset h/dx = 1.0, 1.3, ..., 2.5 also "
-        "the bisection route and the plus, uncorrected and minus forms; only isotropic pre-strain at the other h. "
-        "n = 16 per side (the brief asks for 20: reduced for the same reason; n = 20 is used in the GMS check and in "
-        "versus_n.csv).\n"
-     << "- Infinite lattice: 2 x 2 Fourier symbols, exact per wavevector, minimised over the Brillouin zone "
-        "(include/sphstab/stability/fourier_symbol_2d.hpp; 128 x 128 grid of the reciprocal cell, then patch "
-        "refinement). The hexagon's corners K = (4/3, 0) and (2/3, 2/sqrt 3) (units pi/dx) are equivalent by rotation, "
-        "the M points (1, 1/sqrt 3) and (0, 2/sqrt 3) likewise. Critical-mode wavevector: peak of the structure factor "
-        "sum_a |sum_i u_i^a exp(-i k.x_i)|^2 (dominant_wavevector.hpp), folded into the first zone, kx, ky >= 0, in "
-        "units of pi/dx.\n\n"
-     << "## Wall time\n\n"
-     << "| part | seconds |\n|---|---|\n"
-     << "| sweep, n = " << n_main << " (" << sweep.size() << " rows) | " << sig(t_sweep, 3) << " |\n"
-     << "| non-symmetric spectrum criterion (" << nonsym.size() << " rows, dense dgeev) | " << sig(t_nonsym, 3)
-     << " |\n"
-     << "| e_crit versus n (" << nrows.size() << " rows) | " << sig(t_versus_n, 3) << " |\n"
-     << "| whole study (before plotting) | " << sig(t_total, 3) << " |\n\n"
-     << "Shared 2-core machine, reference BLAS. Scaling and speed: benchmarks/critical_strain_benchmark.cpp and "
-        "benchmark.md.\n\n";
-
-  // Key numbers: route agreement
-  md << "## Key numbers\n\n"
-     << "- Bisection versus eigen route (sweep, rows with a finite e_crit computed by both): largest relative "
-        "difference "
-     << sig(max_rd, 2) << " (" << worst_rd << "); " << n_over << " of " << n_rows_both
-     << " rows differ by more than 1e-8. Rows with a status other than successful: " << n_bad_status << ".\n"
-     << "- Form ratios under isotropic pre-strain (one A0 for every form on a complete lattice; A1 in the ratio "
-        "4 : 2 : 1): e_crit(plus)/e_crit(conservative) = 2 and e_crit(uncorrected)/e_crit(conservative) = 4 with "
-        "largest relative deviations "
-     << sig(max_ratio_dev_plus, 2) << " and " << sig(max_ratio_dev_unc, 2)
-     << ". Minus form: A1 = 0, e_crit = inf everywhere (A0 positive definite).\n\n";
-
-  // Table: conservative, n = 20, per lattice/kernel: e_crit at a few h, tension/compression, iso.
-  md << "### Conservative form, n = " << n_main
-     << ", isotropic pre-strain: e_crit (tension / compression) and the infinite-lattice limit\n\n"
-     << "| lattice | kernel | h/dx | e_crit tension | mode k dx/pi | e_inf tension | e_crit compression | mode k dx/pi "
-        "| "
-        "e_inf compression |\n|---|---|---|---|---|---|---|---|---|\n";
+  // Conservative form, isotropic: e_crit at a few h per lattice and kernel.
+  std::vector<std::string> lines;
   for (LatticeType lt : kLattices)
     for (KernelType kt : kKernels)
       for (double h : {1.0, 1.3, 1.6, 2.0, 2.5}) {
@@ -459,17 +403,16 @@ int main(int argc, char** argv) {
                                                 sig(r->r.mode_wavevector.ky_over_pi, 2) + ")"
                                           : std::string("-");
         };
-        md << "| " << lattice_name(lt) << " | " << kernel_name(kt) << " | " << sig(h) << " | " << sig(t->r.load)
-           << " | " << k(t) << " | " << sig(t->inf.e) << " | " << sig(c->r.load) << " | " << k(c) << " | "
-           << sig(c->inf.e) << " |\n";
+        lines.push_back(cells({lattice_name(lt), kernel_name(kt), sig(h), sig(t->r.load), k(t), sig(t->inf.e),
+                               sig(c->r.load), k(c), sig(c->inf.e)}));
       }
+  sum.set("table_conservative", table(lines));
 
-  // Infinite-lattice classification
-  int inf_total = 0, inf_zero_t = 0, inf_zero_c = 0, inf_tiny_t = 0, inf_pos_t = 0, inf_stable_c = 0, inf_fin_c = 0,
-      inf_tiny_c = 0, nt = 0, nc = 0;
+  // Infinite-lattice classification (conservative form, square and hex).
+  int inf_zero_t = 0, inf_zero_c = 0, inf_tiny_t = 0, inf_pos_t = 0, inf_stable_c = 0, inf_fin_c = 0, inf_tiny_c = 0,
+      nt = 0, nc = 0;
   for (const auto& r : infrows) {
     if (r.lt == LatticeType::FaceCentred || r.form != MomentumForm::Conservative) continue;
-    ++inf_total;
     if (r.sign == LoadDirection::Tension) {
       ++nt;
       if (r.s.e == 0)
@@ -490,52 +433,44 @@ int main(int argc, char** argv) {
         ++inf_fin_c;
     }
   }
-  md << "\n## Infinite lattice (von Neumann) limit\n\n"
-     << "At the zone-boundary zeros (2k a reciprocal lattice vector: square (pi,0), (0,pi), (pi,pi); the three M "
-        "points of hex) every SPH gradient symbol vanishes (sin k.r = 0 for all lattice vectors), so A0^ = 0 and "
-        "A^ = e A1^: if -sign(e) A1^ has a positive eigenvalue there, the infinite lattice is unstable for every "
-        "|e| > 0 (the 2D sawtooth, as in 1D). Conservative form, square and hex, 4 kernels x 16 h x 2 pre-strains "
-        "(infinite.csv):\n\n"
-     << "- tension: e_inf = 0 exactly (zone-boundary zero unstable) in " << inf_zero_t << " of " << nt << "; 0 < e_inf "
-     << "< 1e-6 (neutral zero, limit from its neighbourhood) in " << inf_tiny_t << "; e_inf >= 1e-6 in " << inf_pos_t
-     << ".\n"
-     << "- compression: e_inf = 0 exactly in " << inf_zero_c << " of " << nc << "; 0 < |e_inf| < 1e-6 in " << inf_tiny_c
-     << "; finite |e_inf| >= 1e-6 in " << inf_fin_c << "; stable for every e < 0 in " << inf_stable_c << ".\n\n"
-     << "Tension is therefore unstable on the infinite lattice for essentially every kernel and h (as in 1D, where "
-        "the sawtooth has g^ = 0): a finite n x n block only survives a tension of order n^-2 (next section). "
-        "Compression windows with e_inf = -inf or a finite e_inf exist (table in infinite.csv).\n\n";
+  sum.set("infinite_tension_cases", nt);
+  sum.set("infinite_tension_zero", inf_zero_t);
+  sum.set("infinite_tension_tiny", inf_tiny_t);
+  sum.set("infinite_tension_positive", inf_pos_t);
+  sum.set("infinite_compression_cases", nc);
+  sum.set("infinite_compression_zero", inf_zero_c);
+  sum.set("infinite_compression_tiny", inf_tiny_c);
+  sum.set("infinite_compression_finite", inf_fin_c);
+  sum.set("infinite_compression_stable", inf_stable_c);
 
-  // versus n
-  md << "## e_crit versus n (conservative, isotropic)\n\n"
-     << "| lattice | kernel | h/dx | direction | e(10) | e(20) | e(40) | e(80) | slope p (40-80) | "
-        "periodic e(80) | e_inf | mode k at largest n |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  {
-    std::map<std::tuple<int, int, double, int>, std::vector<const NRow*>> groups;
-    for (const auto& r : nrows)
-      groups[{static_cast<int>(r.lt), static_cast<int>(r.kt), r.h, static_cast<int>(r.sign)}].push_back(&r);
-    for (const auto& [key, rows] : groups) {
-      std::vector<double> x, y;
+  // e_crit versus n: the observed exponent p of |e_crit| ~ n^-p over n >= 40.
+  lines.clear();
+  std::map<std::tuple<int, int, double, int>, std::vector<const NRow*>> groups;
+  for (const auto& r : nrows)
+    groups[{static_cast<int>(r.lt), static_cast<int>(r.kt), r.h, static_cast<int>(r.sign)}].push_back(&r);
+  for (const auto& [key, rows] : groups) {
+    std::vector<double> x, y;
+    for (const NRow* r : rows)
+      if (r->n >= 40 && std::isfinite(r->r.load) && r->r.load != 0) x.push_back(r->n), y.push_back(r->r.load);
+    const NRow* last = rows.back();
+    std::vector<std::string> row{lattice_name(last->lt), kernel_name(last->kt), sig(last->h),
+                                 load_direction_name(last->sign)};
+    for (int n : {10, 20, 40, 80}) {
+      const NRow* f = nullptr;
       for (const NRow* r : rows)
-        if (r->n >= 40 && std::isfinite(r->r.load) && r->r.load != 0) x.push_back(r->n), y.push_back(r->r.load);
-      const NRow* last = rows.back();
-      md << "| " << lattice_name(last->lt) << " | " << kernel_name(last->kt) << " | " << sig(last->h) << " | "
-         << load_direction_name(last->sign);
-      for (int n : {10, 20, 40, 80}) {
-        const NRow* f = nullptr;
-        for (const NRow* r : rows)
-          if (r->n == n) f = r;
-        md << " | " << (f ? sig(f->r.load) : "-");
-      }
-      md << " | " << (x.size() >= 2 ? sig(-loglog_slope(x, y), 3) : "-") << " | " << sig(last->periodic.e) << " | "
-         << sig(last->inf.e) << " | (" << sig(last->r.mode_wavevector.kx_over_pi, 2) << ", "
-         << sig(last->r.mode_wavevector.ky_over_pi, 2) << ") |\n";
+        if (r->n == n) f = r;
+      row.push_back(f ? sig(f->r.load) : "-");
     }
+    row.push_back(study::sig(-study::loglog_slope(x, y), 3));  // "-" with fewer than two points (NaN slope)
+    row.push_back(sig(last->periodic.e));
+    row.push_back(sig(last->inf.e));
+    row.push_back("(" + sig(last->r.mode_wavevector.kx_over_pi, 2) + ", " + sig(last->r.mode_wavevector.ky_over_pi, 2) +
+                  ")");
+    lines.push_back(cells(row));
   }
-  md << "\nWhere e_inf = 0, |e_crit| ~ n^-p with p from the table (the critical mode is a zone-boundary zero "
-        "modulated by the lowest envelope, as in 1D where p = 2); the periodic lattice with even n contains the zero "
-        "itself and has e = 0.\n\n";
+  sum.set("table_versus_n", table(lines));
 
-  // Non-symmetric
+  // Non-symmetric forms: flutter (complex pair) versus real crossing.
   int ns_total = 0, ns_flutter = 0;
   double ns_ratio_min = 1e300, ns_ratio_max = 0;
   for (const auto& r : nonsym) {
@@ -549,87 +484,56 @@ int main(int argc, char** argv) {
       }
     }
   }
-  md << "## Non-symmetric forms (uniaxial plus; uncorrected = exactly 2 x plus)\n\n"
-     << "With the stability criterion proper (every eigenvalue of A real and positive; dense dgeev), " << ns_flutter
-     << " of " << ns_total
-     << " finite cases lose stability by a complex pair (flutter: two real eigenvalues merge) BEFORE any eigenvalue "
-        "crosses zero; there e_crit(flutter)/e(real crossing) = "
-     << sig(ns_ratio_min, 3) << "-" << sig(ns_ratio_max, 3)
-     << ". The symmetric-part criterion of sweep.csv is not a substitute for it. At h/dx = 1.3 (n = 12; the "
-        "symmetric-part column is from sweep.csv, n = 16, where computed):\n\n"
-     << "| lattice | kernel | direction | n | e_crit (spectrum) | mechanism | real crossing | symmetric part "
-        "|\n|---|---|---|---|---|---|---|---|\n";
+  sum.set("flutter_cases", ns_flutter);
+  sum.set("nonsymmetric_finite_cases", ns_total);
+  sum.set("flutter_ratio_min", sig(ns_ratio_min, 3));
+  sum.set("flutter_ratio_max", sig(ns_ratio_max, 3));
+  lines.clear();
   for (const auto& r : nonsym)
     if (std::abs(r.h - 1.3) < 1e-9 && (r.kernel == KernelType::CubicSpline || r.kernel == KernelType::WendlandC2)) {
       const auto* sp = find(sweep, r.lattice, r.kernel, r.h, MomentumForm::Plus, PreStrainKind::UniaxialX, r.sign);
-      md << "| " << lattice_name(r.lattice) << " | " << kernel_name(r.kernel) << " | " << load_direction_name(r.sign)
-         << " | " << r.n << " | " << sig(r.r.load) << " | " << mechanism_name(r.r.mechanism) << " | "
-         << sig(r.r.load_eigen) << " | " << (sp ? sig(sp->r.load) : "-") << " |\n";
+      lines.push_back(
+          cells({lattice_name(r.lattice), kernel_name(r.kernel), load_direction_name(r.sign), std::to_string(r.n),
+                 sig(r.r.load), mechanism_name(r.r.mechanism), sig(r.r.load_eigen), sp ? sig(sp->r.load) : "-"}));
     }
+  sum.set("table_nonsymmetric", table(lines));
 
-  // GMS
+  // Gray, Monaghan & Swift (2001) §5.
   auto gms_at = [&](LatticeType lt, double h) -> const GmsRow* {
     for (const auto& g : gms)
       if (g.lt == lt && std::abs(g.h - h) < 1e-9) return &g;
     return nullptr;
   };
-  md << "\n## Comparison with Gray, Monaghan & Swift (2001), §5\n\n"
-     << "GMS analyse one wavevector, k = (pi/dp, 0), of the plus form (sum_b m_b (sigma_a/rho_a^2 + sigma_b/rho_b^2) "
-        "grad W) under a uniform stress, cubic spline. Their lattice sums are our symbols at that k: B_x = l^xx, "
-        "B_y = l^yy, A_x = -s_x (gms.csv; asserted in tests/stability/fourier_symbol_2d_test.cpp).\n\n"
-     << "| lattice | h/dp | B_x | B_y | A_x | e_crit at k = (pi,0): tension / compression | e_inf whole zone: tension "
-        "/ "
-        "compression (k) | n = 20: tension / compression |\n|---|---|---|---|---|---|---|---|\n";
+  lines.clear();
   for (LatticeType lt : {LatticeType::Square, LatticeType::FaceCentred})
-    for (double h : {1.0, 1.1, 1.2, 1.3, 1.4, 1.5, 1.6, 1.7}) {
-      const GmsRow* g = gms_at(lt, h);
-      if (!g) continue;
-      md << "| " << lattice_name(lt) << " | " << sig(h) << " | " << sig(g->bx, 4) << " | " << sig(g->by, 3) << " | "
-         << sig(g->ax, 3) << " | " << sig(g->ek_t) << " / " << sig(g->ek_c) << " | " << sig(g->einf_t) << " "
-         << g->kinf_t << " / " << sig(g->einf_c) << " " << g->kinf_c << " | " << sig(g->en_t) << " / " << sig(g->en_c)
-         << " |\n";
-    }
-  const GmsRow* sq1 = gms_at(LatticeType::Square, 1.0);
-  const GmsRow* fc1 = gms_at(LatticeType::FaceCentred, 1.0);
-  std::string by_pos_sq, fc_comp_stable;
-  {
+    for (double h : {1.0, 1.1, 1.2, 1.3, 1.4, 1.5, 1.6, 1.7})
+      if (const GmsRow* g = gms_at(lt, h))
+        lines.push_back(cells({lattice_name(lt), sig(h), sig(g->bx, 4), sig(g->by, 3), sig(g->ax, 3),
+                               sig(g->ek_t) + " / " + sig(g->ek_c),
+                               sig(g->einf_t) + " " + g->kinf_t + " / " + sig(g->einf_c) + " " + g->kinf_c,
+                               sig(g->en_t) + " / " + sig(g->en_c)}));
+  sum.set("table_gms", table(lines));
+  // The h/dp range (first to last value on the 0.05 grid) where a GMS row satisfies `pred`, or "none".
+  auto h_range = [&](LatticeType lt, auto pred) {
     double lo = 0, hi = 0;
     for (const auto& g : gms)
-      if (g.lt == LatticeType::Square && g.by > 0) {
+      if (g.lt == lt && pred(g)) {
         if (lo == 0) lo = g.h;
         hi = g.h;
       }
-    by_pos_sq = lo > 0 ? sig(lo) + "-" + sig(hi) : "none";
-    lo = hi = 0;
-    for (const auto& g : gms)
-      if (g.lt == LatticeType::FaceCentred && std::isinf(g.ek_c)) {
-        if (lo == 0) lo = g.h;
-        hi = g.h;
-      }
-    fc_comp_stable = lo > 0 ? sig(lo) + "-" + sig(hi) : "none";
-  }
-  md << "\n1. **Square lattice, h = dp: the longitudinal mode k = (pi/dp, 0) is unstable in tension (B_x > 0).** "
-        "Agrees: B_x = "
-     << sig(sq1 ? sq1->bx : std::nan(""), 5) << " (GMS 3.996 = 150(2 - sqrt 2)/(7 pi)), A0^ = 0 there, so e_crit = 0 "
-     << "at that k in tension.\n"
-     << "2. **Square lattice, h = dp: transverse modes are unstable in compression (B_y < 0).** Agrees: B_y = "
-     << sig(sq1 ? sq1->by : std::nan(""), 3)
-     << " (GMS -0.096, [RC] -0.0969): e_crit = 0 in compression at k = (pi, 0). "
-     << "B_y > 0 (the transverse (pi,0) mode stable in compression) for h/dp = " << by_pos_sq
-     << " on our 0.05 grid (GMS: 1.2 < h/dp < 1.7; the notes' recomputation: about 1.2-1.55).\n"
-     << "3. **Face-centred lattice: stable in compression for 1 < h/dp < 1.4.** At the single wavevector GMS analyse, "
-        "k = (pi/dp, 0), the 2 x 2 symbol is stable for every compression for h/dp = "
-     << fc_comp_stable << " (B_x = " << sig(fc1 ? fc1->bx : std::nan(""), 4)
-     << ", B_y = " << sig(fc1 ? fc1->by : std::nan(""), 3) << ", A_x = " << sig(fc1 ? fc1->ax : std::nan(""), 3)
-     << " at h = dp, all as GMS print). Over the whole Brillouin zone, however, the face-centred lattice has its own "
-        "zone-boundary zeros (M points, e.g. k = (0, pi/dp): alternate rows moving together), and these are unstable "
-        "in compression for part of that range (e_inf = 0 in the table), so 'stable in compression' holds for the "
-        "mode GMS examined, not for the lattice; see the e_inf and n = 20 columns.\n"
-     << "4. GMS's conclusion that an artificial stress is needed in tension for every lattice agrees with e_inf = 0 "
-        "in tension throughout (zone-boundary zeros), and extends it: even compression is unstable at some "
-        "zone-boundary zeros for most (kernel, h).\n";
-
-  std::ofstream(out_dir + "/summary.md") << md.str();
+    return lo > 0 ? sig(lo) + "-" + sig(hi) : std::string("none");
+  };
+  const GmsRow* sq1 = gms_at(LatticeType::Square, 1.0);
+  const GmsRow* fc1 = gms_at(LatticeType::FaceCentred, 1.0);
+  sum.set("gms_square_bx", sig(sq1 ? sq1->bx : std::nan(""), 5));
+  sum.set("gms_square_by", sig(sq1 ? sq1->by : std::nan(""), 3));
+  sum.set("gms_square_by_positive_h", h_range(LatticeType::Square, [](const GmsRow& g) { return g.by > 0; }));
+  sum.set("gms_fc_compression_stable_h",
+          h_range(LatticeType::FaceCentred, [](const GmsRow& g) { return std::isinf(g.ek_c); }));
+  sum.set("gms_fc_bx", sig(fc1 ? fc1->bx : std::nan(""), 4));
+  sum.set("gms_fc_by", sig(fc1 ? fc1->by : std::nan(""), 3));
+  sum.set("gms_fc_ax", sig(fc1 ? fc1->ax : std::nan(""), 3));
+  sum.write(out_dir);
   std::cout << "critical-strain-2d: wrote " << out_dir << " in " << sig(seconds_since(t_start), 3) << " s\n";
   return 0;
 }

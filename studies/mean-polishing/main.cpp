@@ -1,33 +1,29 @@
-// Study mean-polishing: kernel corrections in the 1D momentum forms (Powell 2012, ch. 3 §4-4.1.1 and ch. 4 §2).
+// Study mean-polishing: kernel corrections in the 1D momentum forms ([Powell2012, ch. 3 §4-4.1.1, ch. 4 §2]).
+// What the study asks and what the sources claim: README.md; the prose of the summary: summary.md.in.
 //
-// For every correction x momentum form (x corrected operator) on the 1D pre-tensioned bar, at the lattice equilibrium
-// u = 0, the exact Jacobian A(T) = A0 + T A1 (complex step through the correction; dual numbers inside for the
-// corrected conservative forms) and its critical loads in tension (T_crit > 0) and compression (T_crit^- < 0):
-// criterion pd for symmetric A (Cholesky bisection + generalised eigenproblem), real-positive-spectrum and
-// symmetric-part-pd otherwise (critical_load.hpp). Plus momentum conservation and locality at displaced
-// states.
+// For every correction x momentum form (x corrected operator) on the 1D pre-tensioned bar at u = 0: the exact
+// A(T) = A0 + T A1 (complex step through the correction) and its critical loads in tension and compression
+// (critical_load.hpp); momentum conservation and locality at displaced states.
 //
 // Writes to --out DIR:
-//   tcrit.csv      N = 30 sweep (kernels cubic, wendland-c2, quintic; h/dx = 1.0..2.5 step 0.1) and the N = 120 check
-//   momentum.csv   periodic lattice, displaced state: total force sum_i V_i a_i / sum_i V_i |a_i|, row and column sums
-//                  of Ghat
-//   locality.csv   stored/non-zero entries of G and Ghat, and of the Jacobian, per correction
-//   thin_layers.csv the same critical loads with fixed layers only one support thick (boundary sensitivity)
-//   summary.md     parameters, key numbers, wall time, comparison with Powell's claims
+//   tcrit.csv        N = n sweep (kernels cubic, wendland-c2, quintic; h/dx = 1.0..2.5) and the N = n_check check
+//   momentum.csv     periodic lattice, displaced state: total force sum_i V_i a_i / sum_i V_i |a_i|, row and column
+//                    sums of Ghat
+//   locality.csv     stored/non-zero entries of G and Ghat, and of the Jacobian, per correction
+//   thin_layers.csv  the same critical loads with fixed layers only one support thick (boundary sensitivity)
+//   summary.json     key numbers and tables for summary.md.in (scripts/render_summary.py)
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
-#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "common/study.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/forms/correction_gradient.hpp"
 #include "sphstab/forms/wave_1d.hpp"
@@ -39,15 +35,14 @@
 namespace {
 
 using namespace sphstab;
-using Clock = std::chrono::steady_clock;
+using study::Clock;
+using study::random_vector;
+using study::seconds_since;
+using study::sig;
 
 constexpr int kLayerSupports = 3;  // fixed layers: see tension_lattice_1d
 
 std::string num(double v) { return format_number(v, 10); }
-
-std::string sig(double v, int digits = 3) { return std::isnan(v) ? "-" : format_number(v, digits); }
-
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 struct Variant {
   std::string name;
@@ -124,14 +119,6 @@ void run_case(int n, KernelType type, double h, const Variant& v, const FormCase
                       tension.residual_relative, status_name(r.status), r.reason, seconds});
 }
 
-Eigen::VectorXd random_vector(int n, double amplitude, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> d(-amplitude, amplitude);
-  Eigen::VectorXd v(n);
-  for (int i = 0; i < n; ++i) v[i] = d(rng);
-  return v;
-}
-
 /// Ghat of a provider at the displaced positions x0 + u (u on the free particles).
 Eigen::MatrixXd corrected_gradient_at(const Discretisation<1>& d, const GradientProvider<1>& p,
                                       const Eigen::VectorXd& u) {
@@ -147,6 +134,40 @@ Eigen::MatrixXd corrected_gradient_at(const Discretisation<1>& d, const Gradient
 long count_nonzero(const Eigen::MatrixXd& m, double relative) {
   const double tol = relative * m.cwiseAbs().maxCoeff();
   return (m.array().abs() > tol).count();
+}
+
+/// A CSV cell: a number with 10 significant digits (num), an integer or text as it is.
+template <class T>
+std::string cell(const T& v) {
+  if constexpr (std::is_floating_point_v<T>)
+    return num(v);
+  else if constexpr (std::is_integral_v<T>)
+    return std::to_string(v);
+  else
+    return std::string(v);
+}
+
+template <class... T>
+void csv_line(std::ostream& o, const T&... v) {
+  const char* sep = "";
+  ((o << sep << cell(v), sep = ","), ...);
+  o << "\n";
+}
+
+/// A Markdown table row "| a | b |" of texts and integers (numbers are formatted by the caller with sig()).
+template <class... T>
+std::string md_row(const T&... v) {
+  static_assert(!(std::is_floating_point_v<T> || ...), "format numbers with sig()");
+  std::string r = "|";
+  ((r += " " + cell(v) + " |"), ...);
+  return r;
+}
+
+/// The rows of a Markdown table, without the final newline (the template holds the header).
+std::string table(const std::vector<std::string>& rows) {
+  std::string t;
+  for (const std::string& r : rows) t += (t.empty() ? "" : "\n") + r;
+  return t;
 }
 
 }  // namespace
@@ -169,46 +190,31 @@ int main(int argc, char** argv) {
 
   // 1. Critical loads, N = n sweep and N = n_check check.
   std::vector<Row> rows;
-  for (KernelType type : kernels)
-    for (double h : hs) {
-      const auto t0 = Clock::now();
-      for (const Variant& v : variants())
-        for (size_t c = 0; c < form_cases().size(); ++c) {
-          const FormCase& fc = form_cases()[c];
-          if (v.correction == Correction::None && fc.target == CorrectedOperator::Both) continue;
-          run_case(n, type, h, v, fc, rows);
-        }
-      std::cout << "N=" << n << " " << kernel_name(type) << " h=" << h << " (" << sig(seconds_since(t0), 2) << " s)"
-                << std::endl;
-    }
-  const std::vector<double> check_h{1.3, 2.0};
   double dense_conservative_seconds = 0;
-  for (KernelType type : kernels)
-    for (double h : check_h) {
-      const auto t0 = Clock::now();
-      for (const Variant& v : variants())
-        for (const FormCase& fc : form_cases()) {
-          if (v.correction == Correction::None && fc.target == CorrectedOperator::Both) continue;
-          // The dense corrected conservative forms cost O(N^4) through the nested derivatives (dual passes inside
-          // complex steps): about 10-30 s each at N = 120.
-          const bool dense_cons = correction_is_dense(v.correction) && fc.form == MomentumForm::Conservative;
-          const auto tc = Clock::now();
-          run_case(n_check, type, h, v, fc, rows);
-          if (dense_cons) dense_conservative_seconds += seconds_since(tc);
-        }
-      std::cout << "N=" << n_check << " " << kernel_name(type) << " h=" << h << " (" << sig(seconds_since(t0), 2)
-                << " s)" << std::endl;
-    }
-  {
-    std::ofstream csv(out + "/tcrit.csv");
-    csv << "N,kernel,h_over_dx,correction,form,corrected_operator,strain_sum,direction,criterion,tcrit,growth_2tcrit,"
-           "mode_k_over_pi,a1_relative,asymmetry_T0,asymmetry_T1,equilibrium_residual,status,seconds,reason\n";
-    for (const Row& r : rows)
-      csv << r.n << "," << r.kernel << "," << num(r.h) << "," << r.correction << "," << r.form << "," << r.target << ","
-          << r.strain_sum << "," << r.direction << "," << r.criterion << "," << num(r.tcrit) << "," << num(r.growth)
-          << "," << num(r.mode_k) << "," << num(r.a1_rel) << "," << num(r.asym0) << "," << num(r.asym1) << ","
-          << num(r.residual) << "," << r.status << "," << num(r.seconds) << ",\"" << r.reason << "\"\n";
-  }
+  for (const auto& [size, h_list] : {std::pair{n, hs}, std::pair{n_check, std::vector<double>{1.3, 2.0}}})
+    for (KernelType type : kernels)
+      for (double h : h_list) {
+        const auto t0 = Clock::now();
+        for (const Variant& v : variants())
+          for (const FormCase& fc : form_cases()) {
+            if (v.correction == Correction::None && fc.target == CorrectedOperator::Both) continue;
+            // The dense corrected conservative forms cost O(N^4) through the nested derivatives (dual passes inside
+            // complex steps): about 10-30 s each at N = 120.
+            const bool dense_cons = correction_is_dense(v.correction) && fc.form == MomentumForm::Conservative;
+            const auto tc = Clock::now();
+            run_case(size, type, h, v, fc, rows);
+            if (size == n_check && dense_cons) dense_conservative_seconds += seconds_since(tc);
+          }
+        std::cout << "N=" << size << " " << kernel_name(type) << " h=" << h << " (" << sig(seconds_since(t0), 2)
+                  << " s)" << std::endl;
+      }
+  std::ofstream csv(out + "/tcrit.csv");
+  csv << "N,kernel,h_over_dx,correction,form,corrected_operator,strain_sum,direction,criterion,tcrit,growth_2tcrit,"
+         "mode_k_over_pi,a1_relative,asymmetry_T0,asymmetry_T1,equilibrium_residual,status,seconds,reason\n";
+  for (const Row& r : rows)
+    csv_line(csv, r.n, r.kernel, r.h, r.correction, r.form, r.target, r.strain_sum, r.direction, r.criterion, r.tcrit,
+             r.growth, r.mode_k, r.a1_rel, r.asym0, r.asym1, r.residual, r.status, r.seconds, "\"" + r.reason + "\"");
+  csv.close();
 
   // 2. Momentum conservation on a periodic displaced lattice, row and column sums of Ghat there.
   struct MomentumRow {
@@ -240,14 +246,12 @@ int main(int argc, char** argv) {
       }
     }
   }
-  {
-    std::ofstream csv(out + "/momentum.csv");
-    csv << "kernel,correction,form,corrected_operator,total_force_relative,max_row_sum_relative,"
-           "max_column_sum_relative\n";
-    for (const MomentumRow& r : momentum)
-      csv << r.kernel << "," << r.correction << "," << r.form << "," << r.target << "," << num(r.total) << ","
-          << num(r.rowsum) << "," << num(r.colsum) << "\n";
-  }
+  csv.open(out + "/momentum.csv");
+  csv << "kernel,correction,form,corrected_operator,total_force_relative,max_row_sum_relative,"
+         "max_column_sum_relative\n";
+  for (const MomentumRow& r : momentum)
+    csv_line(csv, r.kernel, r.correction, r.form, r.target, r.total, r.rowsum, r.colsum);
+  csv.close();
   std::cout << "momentum done" << std::endl;
 
   // 3. Locality: entries of Ghat and of the Jacobian at a displaced state (N = n, cubic, h = 1.3).
@@ -280,15 +284,14 @@ int main(int argc, char** argv) {
                           count_nonzero(Eigen::MatrixXd(jc.compute(u)), 1e-14), jp.colours(), jc.colours()});
     }
   }
-  {
-    std::ofstream csv(out + "/locality.csv");
-    csv << "correction,G_stored,G_nonzero,Ghat_stored,Ghat_nonzero,jacobian_pattern_plus,jacobian_nonzero_plus,"
-           "colours_plus,jacobian_pattern_conservative,jacobian_nonzero_conservative,colours_conservative\n";
-    for (const LocalityRow& r : locality)
-      csv << r.correction << "," << r.g_stored << "," << r.g_nonzero << "," << r.gh_stored << "," << r.gh_nonzero << ","
-          << r.pattern_plus << "," << r.jac_plus << "," << r.colours_plus << "," << r.pattern_cons << "," << r.jac_cons
-          << "," << r.colours_cons << "\n";
-  }
+  csv.open(out + "/locality.csv");
+  csv << "correction,G_stored,G_nonzero,Ghat_stored,Ghat_nonzero,jacobian_pattern_plus,jacobian_nonzero_plus,"
+         "colours_plus,jacobian_pattern_conservative,jacobian_nonzero_conservative,colours_conservative\n";
+  for (const LocalityRow& r : locality)
+    csv_line(csv, r.correction, r.g_stored, r.g_nonzero, r.gh_stored, r.gh_nonzero, r.pattern_plus, r.jac_plus,
+             r.colours_plus, r.pattern_cons, r.jac_cons, r.colours_cons);
+  csv.close();
+
   // 4. Boundary sensitivity: the same at N = n, cubic, h = 1.3, with fixed layers only ONE support thick.
   struct ThinRow {
     std::string correction, form, target;
@@ -314,22 +317,21 @@ int main(int argc, char** argv) {
                         t.results.size() > 1 ? t.results[1].load : NAN, c.front().load, criterion_name(r0.criterion),
                         t.results.size() > 1 ? criterion_name(t.results[1].criterion) : "-"});
       }
-    std::ofstream csv(out + "/thin_layers.csv");
-    csv << "correction,form,corrected_operator,equilibrium_residual,asymmetry,criterion,tcrit,second_criterion,"
-           "tcrit_second,tcrit_compression\n";
-    for (const ThinRow& r : thin)
-      csv << r.correction << "," << r.form << "," << r.target << "," << num(r.residual) << "," << num(r.asymmetry)
-          << "," << r.first << "," << num(r.t_first) << "," << r.second << "," << num(r.t_second) << ","
-          << num(r.t_compression) << "\n";
   }
+  csv.open(out + "/thin_layers.csv");
+  csv << "correction,form,corrected_operator,equilibrium_residual,asymmetry,criterion,tcrit,second_criterion,"
+         "tcrit_second,tcrit_compression\n";
+  for (const ThinRow& r : thin)
+    csv_line(csv, r.correction, r.form, r.target, r.residual, r.asymmetry, r.first, r.t_first, r.second, r.t_second,
+             r.t_compression);
+  csv.close();
   const double seconds = seconds_since(start);
 
-  // 4. Summary.
+  // 5. Key numbers. Per correction|form|target over the N = n sweep, first criterion of each direction.
   struct Agg {
-    int cases = 0, tension_inf = 0, compression_inf = 0, tension_zero = 0, nonsymmetric = 0;
+    int cases = 0, tension_inf = 0, compression_inf = 0, nonsymmetric = 0;
     double min_tension = INFINITY, max_compression = -INFINITY, max_a1 = 0, max_asym = 0, max_residual = 0;
   };
-  // key: correction|form|target, over the N = n sweep, first criterion of each direction (pd or spectrum)
   std::map<std::string, Agg> agg;
   std::vector<std::string> order;
   for (size_t k = 0; k < rows.size(); ++k) {
@@ -339,13 +341,12 @@ int main(int argc, char** argv) {
         rows[k - 1].correction == r.correction && rows[k - 1].form == r.form && rows[k - 1].target == r.target &&
         rows[k - 1].direction == r.direction)
       continue;  // second criterion (symmetric part) of a nonsymmetric case
-    const std::string key = r.correction + "|" + r.form + "|" + r.target;
+    const std::string key = r.correction + " | " + r.form + " | " + r.target;
     if (!agg.count(key)) order.push_back(key);
     Agg& a = agg[key];
     if (r.direction == "tension") {
       ++a.cases;
       if (std::isinf(r.tcrit)) ++a.tension_inf;
-      if (r.tcrit == 0.0) ++a.tension_zero;
       if (std::isfinite(r.tcrit)) a.min_tension = std::min(a.min_tension, r.tcrit);
       if (r.criterion != "pd") ++a.nonsymmetric;
     } else {
@@ -357,9 +358,8 @@ int main(int argc, char** argv) {
     a.max_residual = std::max(a.max_residual, r.residual);
   }
   auto find = [&](const std::string& c, const std::string& f, const std::string& t) -> const Agg& {
-    return agg.at(c + "|" + f + "|" + t);
+    return agg.at(c + " | " + f + " | " + t);
   };
-  auto all_inf = [&](const Agg& a) { return a.tension_inf == a.cases && a.compression_inf == a.cases; };
   // N = n_check rows vs the same case at N = n (T_crit = inf agreement, finite values relative change)
   int check_cases = 0, check_same_class = 0;
   double check_max_rel = 0;
@@ -383,6 +383,11 @@ int main(int argc, char** argv) {
         }
       }
   }
+  double check_median = 0;
+  if (!check_rel.empty()) {
+    std::nth_element(check_rel.begin(), check_rel.begin() + check_rel.size() / 2, check_rel.end());
+    check_median = check_rel[check_rel.size() / 2];
+  }
   auto momentum_of = [&](const std::string& c, const std::string& f, const std::string& t) {
     double m = 0;
     for (const MomentumRow& r : momentum)
@@ -390,200 +395,116 @@ int main(int argc, char** argv) {
     return m;
   };
 
-  std::ofstream md(out + "/summary.md");
-  md << "# mean-polishing: kernel corrections in the 1D momentum forms\n\n"
-     << "Powell (2012) ch. 3 §4-4.1.1 and ch. 4 §2: does a corrected kernel gradient make the linearised 1D "
-        "pre-tensioned bar stable for every tension T (T_crit = inf)?\n\n"
-     << "## Parameters\n\n"
-     << "- 1D bar u_tt = (u_x + T)_x (c = rho = E = 1), dx = 1, N = " << n
-     << " free particles (check at N = " << n_check << "), fixed layers " << kLayerSupports
-     << " kernel supports thick on each side (every particle the free ones see, through the corrections' neighbours "
-        "of neighbours, has a complete neighbourhood: Powell's regular grid, footnote h; with one support the "
-        "column sums at the fixed particles break the equilibrium of several corrected forms).\n"
-     << "- Kernels cubic, wendland-c2, quintic (support 2h); h/dx = " << hs.front() << " .. " << hs.back()
-     << (quick ? " step 0.5" : " step 0.1") << ". Check N = " << n_check
-     << ": h/dx = 1.3, 2.0, every kernel, correction and form (the dense "
-     << "corrected conservative forms took " << sig(dense_conservative_seconds, 3) << " s of it).\n"
-     << "- Corrections (gradient providers, correction_gradient.hpp): none, minus (1.15), shepard (3.61), "
-        "column-shepard (3.62, strain sum_j u_j Ghat_ij as Powell's item 2), ncsph (1.19), local-polish C_ij (4.9, "
-        "algorithm 4.1; also with Fig. 4.3 counting and the (4.18) first-step Shepard means), mean-polish (3.64, "
-        "dense), shepard-column-polish (item 4, dense).\n"
-     << "- Which operator is corrected: uncorrected/plus/minus with the corrected DIVERGENCE (Powell 3.28 with H_ij "
-        "the "
-        "corrected kernel, the default) and with BOTH strain and divergence corrected; conservative with the corrected "
-        "STRAIN (3.55, the energy U = 1/2 sum V s^2 of the corrected strain; its divergence follows).\n"
-     << "- A(T) = A0 + T A1 = -da/du at u = 0 by complex step (exact); criterion pd when A is symmetric (relative "
-        "asymmetry <= 1e-12), else real-positive-spectrum / symmetric-part-pd (the table counts the first). T_crit = "
-        "inf: A(T) positive definite for "
-        "all T > 0 (A1 = 0 to 1e-12 relative, or positive definite up to the search limit 1e8). Compression: the "
-        "largest T < 0 at which the criterion fails (-inf: never).\n"
-     << "- Wall time " << sig(seconds, 3) << " s.\n\n";
-
-  md << "## Critical loads at N = " << n << " (" << kernels.size() * hs.size() << " kernel x h cases per row)\n\n"
-     << "| correction | form | corrected | T_crit = inf | min T_crit | T_crit^- = -inf | max T_crit^- | max "
-        "‖A1‖/‖A0‖ | max asym. | max residual |\n|---|---|---|---|---|---|---|---|---|---|\n";
+  study::Summary s;
+  s.set("n", n);
+  s.set("n_check", n_check);
+  s.set("layer_supports", kLayerSupports);
+  s.set("h_first", hs.front(), 6);
+  s.set("h_last", hs.back(), 6);
+  s.set("h_step", quick ? "0.5" : "0.1");
+  s.set("dense_conservative_seconds", dense_conservative_seconds);
+  s.set("wall_seconds", seconds);
+  s.set("cases_per_row", static_cast<int>(kernels.size() * hs.size()));
+  std::vector<std::string> lines;
+  int nonsym = 0;
   for (const std::string& key : order) {
     const Agg& a = agg[key];
-    std::stringstream ks(key);
-    std::string c, f, t;
-    std::getline(ks, c, '|');
-    std::getline(ks, f, '|');
-    std::getline(ks, t, '|');
-    md << "| " << c << " | " << f << " | " << t << " | " << a.tension_inf << "/" << a.cases << " | "
-       << sig(a.min_tension) << " | " << a.compression_inf << "/" << a.cases << " | " << sig(a.max_compression) << " | "
-       << sig(a.max_a1, 2) << " | " << sig(a.max_asym, 2) << " | " << sig(a.max_residual, 2) << " |\n";
+    nonsym += a.nonsymmetric;
+    const std::string cases = "/" + std::to_string(a.cases);
+    lines.push_back(md_row(key, std::to_string(a.tension_inf) + cases, sig(a.min_tension),
+                           std::to_string(a.compression_inf) + cases, sig(a.max_compression), sig(a.max_a1, 2),
+                           sig(a.max_asym, 2), sig(a.max_residual, 2)));
   }
-  int nonsym = 0;
-  for (const auto& [k, a] : agg) nonsym += a.nonsymmetric;
-  md << "\n"
-     << nonsym << " of the N = " << n
-     << " cases had a nonsymmetric A (then the spectrum criterion was used). The residual column is max|a(u = 0)| / "
-        "max|A0| over T = 0, 1: zero means u = 0 is an equilibrium.\n\n"
-     << "N = " << n_check << " check: " << check_same_class << "/" << check_cases
-     << " (case, criterion) pairs have the same T_crit class (finite / infinite) as at N = " << n << "; the "
-     << check_rel.size() << " finite values change by a median "
-     << sig(100 * (check_rel.empty() ? 0.0
-                                     : (std::nth_element(check_rel.begin(), check_rel.begin() + check_rel.size() / 2,
-                                                         check_rel.end()),
-                                        check_rel[check_rel.size() / 2])),
-            2)
-     << " % and at most " << sig(100 * check_max_rel, 2) << " % (" << check_worst
-     << "; T_crit itself depends on N: ~N^-2 where the infinite-lattice limit is 0, e.g. cubic at h = 1.2-1.3 and 2.0, "
-        "see results/critical-tension/versus_n.csv).\n\n";
-
-  md << "## Momentum conservation (periodic lattice, 31 particles, h = 1.3 dx, random u in [-0.1, 0.1] dx, T = 0.1)\n\n"
-     << "|sum_i V_i a_i| / sum_i V_i |a_i| (max over the 3 kernels), and the largest row / column sum of Ghat "
-        "(relative to max|Ghat|) at the displaced positions:\n\n"
-     << "| correction | max row sum | max column sum | uncorrected | plus | minus | conservative |\n"
-        "|---|---|---|---|---|---|---|\n";
+  s.set("table_critical_loads", table(lines));
+  s.set("nonsymmetric_cases", nonsym);
+  s.set("check_same_class", check_same_class);
+  s.set("check_cases", check_cases);
+  s.set("check_finite", static_cast<int>(check_rel.size()));
+  s.set("check_median_percent", 100 * check_median, 2);
+  s.set("check_max_percent", 100 * check_max_rel, 2);
+  s.set("check_worst", check_worst);
+  lines.clear();
   for (const Variant& v : variants()) {
     double rs = 0, cs = 0;
     for (const MomentumRow& r : momentum)
-      if (r.correction == v.name) {
-        rs = std::max(rs, r.rowsum);
-        cs = std::max(cs, r.colsum);
-      }
+      if (r.correction == v.name) rs = std::max(rs, r.rowsum), cs = std::max(cs, r.colsum);
     const std::string t = v.correction == Correction::None ? "-" : "divergence";
-    md << "| " << v.name << " | " << sig(rs, 2) << " | " << sig(cs, 2) << " | "
-       << sig(momentum_of(v.name, "uncorrected", t), 2) << " | " << sig(momentum_of(v.name, "plus", t), 2) << " | "
-       << sig(momentum_of(v.name, "minus", t), 2) << " | "
-       << sig(momentum_of(v.name, "conservative", v.correction == Correction::None ? "-" : "strain"), 2) << " |\n";
+    lines.push_back(md_row(v.name, sig(rs, 2), sig(cs, 2), sig(momentum_of(v.name, "uncorrected", t), 2),
+                           sig(momentum_of(v.name, "plus", t), 2), sig(momentum_of(v.name, "minus", t), 2),
+                           sig(momentum_of(v.name, "conservative", t == "-" ? "-" : "strain"), 2)));
   }
-  md << "\n(corrected operator: divergence for uncorrected/plus/minus, strain for conservative; momentum.csv also has "
-        "the 'both' rows.)\n\n";
-
+  s.set("table_momentum", table(lines));
+  lines.clear();
   int thin_nonsym = 0, thin_noneq = 0;
-  md << "## Boundary sensitivity: fixed layers one support thick (N = " << n << ", cubic, h = 1.3 dx)\n\n"
-     << "With the thin layers of tension_lattice_1d (the plain `sphstab tcrit` lattice) the corrections read "
-        "incomplete neighbourhoods of fixed particles: u = 0 may stop being an equilibrium (residual) and A(T) may "
-        "be nonsymmetric; then the spectrum criterion (necessary, Theorem 3.1) and the symmetric-part criterion "
-        "apply. Only the rows that differ from the thick-layer results in kind are listed (thin_layers.csv has "
-        "all):\n\n"
-     << "| correction | form | residual | asymmetry | criterion: T_crit | symmetric part: T_crit | T_crit^- |\n"
-        "|---|---|---|---|---|---|---|\n";
   for (const ThinRow& r : thin) {
-    const bool nonsym = r.first != "pd", noneq = r.residual > 1e-10;
-    thin_nonsym += nonsym;
+    const bool nonsym_r = r.first != "pd", noneq = r.residual > 1e-10;
+    thin_nonsym += nonsym_r;
     thin_noneq += noneq;
-    if (!nonsym && !noneq) continue;
-    md << "| " << r.correction << " | " << r.form << " (" << r.target << ") | " << sig(r.residual, 2) << " | "
-       << sig(r.asymmetry, 2) << " | " << r.first << ": " << sig(r.t_first) << " | " << sig(r.t_second) << " | "
-       << sig(r.t_compression) << " |\n";
+    if (nonsym_r || noneq)
+      lines.push_back(md_row(r.correction, r.form + " (" + r.target + ")", sig(r.residual, 2), sig(r.asymmetry, 2),
+                             r.first + ": " + sig(r.t_first), sig(r.t_second), sig(r.t_compression)));
   }
-  md << "\n"
-     << thin_nonsym << " of " << thin.size() << " nonsymmetric, " << thin_noneq
-     << " not in equilibrium at u = 0 (residual > 1e-10): the corrected forms are sensitive to the boundary "
-        "treatment, which is why the main sweep uses thick layers (and why Powell adds the Fig. 4.3 counts and the "
-        "(4.18) normalisation near boundaries).\n\n";
-  md << "## Locality (N = " << n << ", cubic, h = 1.3 dx, displaced state)\n\n"
-     << "| correction | Ghat stored (G: " << locality.front().g_stored
-     << ") | Ghat non-zero | Jacobian non-zero, plus | colours | Jacobian non-zero, conservative | colours |\n"
-        "|---|---|---|---|---|---|---|\n";
+  s.set("table_thin_layers", table(lines));
+  s.set("thin_nonsymmetric", thin_nonsym);
+  s.set("thin_not_equilibrium", thin_noneq);
+  s.set("thin_cases", static_cast<int>(thin.size()));
+  lines.clear();
   for (const LocalityRow& r : locality)
-    md << "| " << r.correction << " | " << r.gh_stored << " | " << r.gh_nonzero << " | " << r.jac_plus << " | "
-       << r.colours_plus << " | " << r.jac_cons << " | " << r.colours_cons << " |\n";
-
-  const Agg& mp = find("mean-polish", "conservative", "strain");
-  const Agg& scp = find("shepard-column-polish", "conservative", "strain");
-  const Agg& cs = find("column-shepard", "conservative", "strain");
-  const Agg& sh = find("shepard", "conservative", "strain");
-  const Agg& lp4 = find("local-polish", "uncorrected", "divergence");
-  const Agg& lpc = find("local-polish", "conservative", "strain");
-  const Agg& plain = find("none", "conservative", "-");
-  const Agg& minus = find("none", "minus", "-");
+    lines.push_back(
+        md_row(r.correction, r.gh_stored, r.gh_nonzero, r.jac_plus, r.colours_plus, r.jac_cons, r.colours_cons));
+  s.set("table_locality", table(lines));
+  s.set("locality_g_stored", locality.front().g_stored);
+  // Comparison with Powell: key "<correction>.<form>.<field>" of the aggregated N = n sweep.
+  auto put = [&](const std::string& c, const std::string& f, const std::string& t, const std::string& fields) {
+    const Agg& a = find(c, f, t);
+    std::string p = c + "." + f + ".";
+    std::replace(p.begin(), p.end(), '+', '_');
+    std::istringstream is(fields);
+    for (std::string w; is >> w;) {
+      if (w == "cases") s.set(p + w, a.cases);
+      if (w == "tension_inf") s.set(p + w, a.tension_inf);
+      if (w == "compression_inf") s.set(p + w, a.compression_inf);
+      if (w == "tension_finite") s.set(p + w, a.cases - a.tension_inf);
+      if (w == "min_tension") s.set(p + w, a.min_tension);
+      if (w == "max_compression") s.set(p + w, a.max_compression);
+      if (w == "max_a1") s.set(p + w, a.max_a1, 2);
+      if (w == "max_residual") s.set(p + w, a.max_residual, 2);
+    }
+  };
+  put("mean-polish", "conservative", "strain", "cases tension_inf compression_inf max_a1");
+  put("shepard-column-polish", "conservative", "strain", "cases tension_inf compression_inf max_a1");
+  put("column-shepard", "conservative", "strain", "cases tension_inf compression_inf");
+  put("column-shepard", "plus", "divergence", "min_tension");
+  put("shepard", "conservative", "strain", "cases tension_finite min_tension");
+  put("none", "conservative", "-", "min_tension");
+  put("none", "minus", "-", "cases tension_inf");
+  put("local-polish", "uncorrected", "divergence", "cases tension_inf compression_inf");
+  put("local-polish", "conservative", "strain", "min_tension max_compression");
+  put("local-polish+fig4.3", "uncorrected", "divergence", "cases tension_inf");
+  put("local-polish+eq4.18", "uncorrected", "divergence", "cases tension_inf min_tension max_a1");
+  put("local-polish+eq4.18", "conservative", "strain", "max_residual");
   bool normalised_no_t = true;
   for (const char* c : {"shepard", "ncsph", "local-polish", "mean-polish", "shepard-column-polish"})
-    for (const char* f : {"uncorrected", "plus", "minus"})
-      normalised_no_t = normalised_no_t && all_inf(find(c, f, "divergence"));
-  md << "\n## Comparison with Powell (2012)\n\n"
-     << "- Claim 3 (mean polish 3.64, conservative form stable for all T): **agrees**. " << mp.tension_inf << "/"
-     << mp.cases << " tension and " << mp.compression_inf << "/" << mp.cases
-     << " compression cases have no critical load; ‖A1‖/‖A0‖ <= " << sig(mp.max_a1, 2)
-     << " (round-off): A(T) = J^T J for every T. The price is a dense Ghat (locality table) and every force depends "
-        "on every particle.\n"
-     << "- Claim 4 (Shepard + column polish, conservative, stable for all T): **agrees**, " << scp.tension_inf << "/"
-     << scp.cases << " and " << scp.compression_inf << "/" << scp.cases << ", ‖A1‖/‖A0‖ <= " << sig(scp.max_a1, 2)
-     << ". Also dense. (Powell prints the column mean of the UNcorrected W'; with it the rows would not sum to zero: "
-        "implemented with the mean of the Shepard gradient, see mean_polish.hpp.)\n"
-     << "- Item 2 (column Shepard 3.62 with <u_x>_i = sum_j u_j W~'_ij, alpha = 0: stable but not momentum "
-        "conserving): **agrees**. Conservative form: "
-     << cs.tension_inf << "/" << cs.cases << " and " << cs.compression_inf << "/" << cs.cases
-     << " without critical load; total force on the displaced periodic "
-     << "lattice " << sig(momentum_of("column-shepard", "conservative", "strain"), 2)
-     << " of sum |V a| (every difference-strain correction: <= "
-     << sig(std::max({momentum_of("mean-polish", "conservative", "strain"),
-                      momentum_of("shepard", "conservative", "strain"),
-                      momentum_of("shepard-column-polish", "conservative", "strain")}),
-            2)
-     << "). As a divergence correction (uncorrected/plus forms) column Shepard does depend on T (its rows do not sum "
-        "to zero): min T_crit "
-     << sig(find("column-shepard", "plus", "divergence").min_tension) << ".\n"
-     << "- (3.59) Shepard alone is not sufficient for the conservative form: **agrees**, T_crit is finite in "
-     << sh.cases - sh.tension_inf << "/" << sh.cases << " cases (min " << sig(sh.min_tension)
-     << "; plain conservative min " << sig(plain.min_tension) << ").\n"
-     << "- (3.33) Minus form and normalised kernels have no T dependence at the lattice equilibrium: **agrees** for "
-        "the divergence-corrected forms: minus form "
-     << minus.tension_inf << "/" << minus.cases
-     << " infinite; Shepard, NCSPH, C_ij, mean polish, Shepard + column polish with the uncorrected/plus/minus forms: "
-     << (normalised_no_t ? "all" : "NOT all")
-     << " cases without critical load in tension and compression. "
-        "(The same corrections put into the energy of the conservative form do depend on T, except the polishes and "
-        "column Shepard: Shepard (3.59), NCSPH and C_ij have finite T_crit there.)\n"
-     << "- (4.11) C_ij with the uncorrected form has no T dependence: **agrees**, " << lp4.tension_inf << "/"
-     << lp4.cases << " (tension) and " << lp4.compression_inf << "/" << lp4.cases
-     << " (compression) without critical load. In the conservative form C_ij is NOT stabilising: min T_crit "
-     << sig(lpc.min_tension) << ", and it becomes unstable in compression (max T_crit^- " << sig(lpc.max_compression)
-     << ") — its column sums do not vanish. Powell's Swegle test (Fig. 4.2) found the C_ij method unstable in "
-        "compression in practice; the linearised (4.11) form cannot show that (no T dependence), the energy form "
-        "does.\n"
-     << "- Powell's implementation details of C_ij (ch. 4 §3): the Fig. 4.3 neighbour counts change nothing here "
-        "(they only touch incomplete neighbourhoods, far from the free particles: "
-     << find("local-polish+fig4.3", "uncorrected", "divergence").tension_inf << "/"
-     << find("local-polish+fig4.3", "uncorrected", "divergence").cases
-     << " without critical load), but the first-step Shepard means (4.18) break property 2 (sum_j C_ij = sum_j "
-        "(G_ij - G~0_ij) != 0 once S^0_i != 1) and bring back a weak T dependence: uncorrected form "
-     << find("local-polish+eq4.18", "uncorrected", "divergence").tension_inf << "/"
-     << find("local-polish+eq4.18", "uncorrected", "divergence").cases << " without critical load, min T_crit "
-     << sig(find("local-polish+eq4.18", "uncorrected", "divergence").min_tension) << ", max ‖A1‖/‖A0‖ "
-     << sig(find("local-polish+eq4.18", "uncorrected", "divergence").max_a1, 2)
-     << "; with (4.18) in the strain of the conservative form u = 0 is not even an equilibrium (residual "
-     << sig(find("local-polish+eq4.18", "conservative", "strain").max_residual, 2) << ").\n"
-     << "- Momentum (ch. 4 §2.3: 'no guarantee that the method will conserve linear momentum'): **agrees** for "
-        "C_ij in the divergence (4.10): total force "
-     << sig(momentum_of("local-polish", "uncorrected", "divergence"), 2)
-     << " of sum |V a| on the displaced periodic lattice, as for Shepard ("
-     << sig(momentum_of("shepard", "uncorrected", "divergence"), 2) << ") and NCSPH ("
-     << sig(momentum_of("ncsph", "uncorrected", "divergence"), 2)
-     << "); only the polishes (rows and columns summing to zero) conserve momentum in every form.\n"
-     << "- Non-locality: Powell warns that (3.64) is fully populated; measured: " << locality.back().gh_nonzero
-     << " non-zero entries of Ghat vs " << locality.front().g_nonzero
-     << " for G (shepard-column-polish), the "
-        "Jacobian of the plus form goes from "
-     << locality.front().jac_plus << " to " << locality[8].jac_plus << " non-zeros (mean polish).\n"
-     << "\nAll statements are about the linearisation at u = 0 on a regular lattice (Theorem 3.1: positive "
-        "definiteness is necessary; for the conservative forms it is also sufficient). For the non-conservative forms "
-        "a positive definite A does not prove stability (Powell's NCSPH/C_ij Swegle tests); see studies/forms for the "
-        "plain forms and compression, and the 2D counterpart in critical-strain-2d (this study is 1D only).\n";
-  std::cout << "wrote " << out << "/tcrit.csv, momentum.csv, locality.csv, summary.md (" << sig(seconds, 3) << " s)\n";
+    for (const char* f : {"uncorrected", "plus", "minus"}) {
+      const Agg& a = find(c, f, "divergence");
+      normalised_no_t = normalised_no_t && a.tension_inf == a.cases && a.compression_inf == a.cases;
+    }
+  s.set("normalised_no_t", normalised_no_t ? "all" : "NOT all");
+  s.set("momentum.column-shepard.conservative", momentum_of("column-shepard", "conservative", "strain"), 2);
+  s.set(
+      "momentum.difference_strain_max",
+      std::max({momentum_of("mean-polish", "conservative", "strain"), momentum_of("shepard", "conservative", "strain"),
+                momentum_of("shepard-column-polish", "conservative", "strain")}),
+      2);
+  for (const char* c : {"local-polish", "shepard", "ncsph"})
+    s.set(std::string("momentum.") + c + ".uncorrected", momentum_of(c, "uncorrected", "divergence"), 2);
+  s.set("nonlocal.ghat_nonzero", locality.back().gh_nonzero);
+  s.set("nonlocal.g_nonzero", locality.front().g_nonzero);
+  s.set("nonlocal.jacobian_plus_none", locality.front().jac_plus);
+  for (const LocalityRow& r : locality)
+    if (r.correction == "mean-polish") s.set("nonlocal.jacobian_plus_mean_polish", r.jac_plus);
+  s.write(out);
+  std::cout << "wrote " << out << "/tcrit.csv, momentum.csv, locality.csv, thin_layers.csv, summary.json ("
+            << sig(seconds, 3) << " s)\n";
   return 0;
 }
