@@ -140,7 +140,7 @@ void BM_Eigen(benchmark::State& s) { critical(s, CriticalLoadMethod::Eigen); }
 
 void BM_SymbolPeriodic(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
-  const ElasticSymbol2d sym(LatticeType::Square, Kernel<2>(KernelType::CubicSpline), kH, 1.0, kMaterial,
+  const ElasticSymbol2D sym(LatticeType::Square, Kernel<2>(KernelType::CubicSpline), kH, 1.0, kMaterial,
                             MomentumForm::Conservative, PreStrainKind::Isotropic);
   volatile double sink = 0;
   SymbolCriticalStrain r;

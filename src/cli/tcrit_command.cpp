@@ -160,7 +160,7 @@ void run_tcrit_2d(const TcritArgs& a) {
       std::shared_ptr<const Discretisation<2>> disc;
       if (!a.periodic) disc = make_discretisation(strain_lattice_2d(type, kernel, h, n), kernel, h);
       for (MomentumForm form : forms) {
-        const ElasticSymbol2d symbol(type, kernel, h, 1.0, material, form, kind);
+        const ElasticSymbol2D symbol(type, kernel, h, 1.0, material, form, kind);
         const SymbolCriticalStrain inf = critical_strain_infinite_2d(symbol, sign);
         CriticalLoad r;
         std::string method = a.method, backend, criterion;
@@ -265,7 +265,7 @@ void run_tcrit(const TcritArgs& a) {
           const int n = initial_stress_multiplier(form);
           const CriticalLoad r =
               critical_tension_1d(set, kernel, h, form, with_routes(CriticalLoadOptions::tension_1d()), direction);
-          const TensionEstimates1d e = tension_estimates_1d(kernel, h, 1.0, n);
+          const TensionEstimates1D e = tension_estimates_1d(kernel, h, 1.0, n);
           const SymbolCriticalTension inf = critical_tension_infinite_1d(kernel, h, 1.0, n);
           const double symbol =
               a.periodic && !a.compression ? critical_tension_periodic_symbol_1d(kernel, h, 1.0, nfree, n).tcrit : nan;

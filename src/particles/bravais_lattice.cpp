@@ -10,7 +10,7 @@
 
 namespace sphstab {
 
-Eigen::Matrix2d BravaisLattice2d::reciprocal() const {
+Eigen::Matrix2d BravaisLattice2D::reciprocal() const {
   Eigen::Matrix2d a;
   a.col(0) = a1;
   a.col(1) = a2;
@@ -18,7 +18,7 @@ Eigen::Matrix2d BravaisLattice2d::reciprocal() const {
   return 2 * M_PI * a.inverse().transpose();
 }
 
-Eigen::Vector2d BravaisLattice2d::fold(const Eigen::Vector2d& k) const {
+Eigen::Vector2d BravaisLattice2D::fold(const Eigen::Vector2d& k) const {
   const Eigen::Matrix2d b = reciprocal();
   const Eigen::Vector2d u = b.inverse() * k;
   Eigen::Vector2d best = k;
@@ -31,11 +31,11 @@ Eigen::Vector2d BravaisLattice2d::fold(const Eigen::Vector2d& k) const {
   return best.cwiseAbs();
 }
 
-BravaisLattice2d bravais_lattice_2d(LatticeType type, double dx) {
+BravaisLattice2D bravais_lattice_2d(LatticeType type, double dx) {
   if (!(dx > 0) || !std::isfinite(dx))
     throw std::invalid_argument("bravais_lattice_2d: spacing dx must be finite and > 0 (got " + format_number(dx) +
                                 ")");
-  BravaisLattice2d l;
+  BravaisLattice2D l;
   l.type = type;
   l.dx = dx;
   l.a1 = {dx, 0};
@@ -56,7 +56,7 @@ BravaisLattice2d bravais_lattice_2d(LatticeType type, double dx) {
   return l;
 }
 
-BravaisLattice2d detect_bravais_lattice_2d(const Eigen::MatrixX2d& x, double dx) {
+BravaisLattice2D detect_bravais_lattice_2d(const Eigen::MatrixX2d& x, double dx) {
   double dy = std::numeric_limits<double>::infinity();
   bool shifted = false;
   for (Eigen::Index i = 1; i < x.rows(); ++i) {

@@ -28,12 +28,12 @@ double structure_factor(const Eigen::VectorXcd& mode, const Eigen::MatrixX2d& x,
 }  // namespace
 
 WavevectorEstimate dominant_wavevector(const Eigen::VectorXd& mode, const Eigen::MatrixX2d& x,
-                                       const BravaisLattice2d& lattice) {
+                                       const BravaisLattice2D& lattice) {
   return dominant_wavevector(Eigen::VectorXcd(mode.cast<Cd>()), x, lattice);
 }
 
 WavevectorEstimate dominant_wavevector(const Eigen::VectorXcd& mode, const Eigen::MatrixX2d& x,
-                                       const BravaisLattice2d& lattice) {
+                                       const BravaisLattice2D& lattice) {
   const Eigen::Index n = x.rows();
   if (n == 0 || mode.size() != 2 * n)
     throw std::invalid_argument("dominant_wavevector: mode must have 2 x " + std::to_string(n) +

@@ -32,7 +32,7 @@ LatticeSums lattice_sums(const Kernel<1>& kernel, double h, double dx, const cha
   return s;
 }
 
-FourierSymbol1d symbol(const LatticeSums& s, double kdx) {
+FourierSymbol1D symbol(const LatticeSums& s, double kdx) {
   double g = 0, l = 0;
   for (size_t i = 0; i < s.w1.size(); ++i) {
     const double m = double(i + 1);
@@ -44,7 +44,7 @@ FourierSymbol1d symbol(const LatticeSums& s, double kdx) {
 
 }  // namespace
 
-FourierSymbol1d fourier_symbol_1d(const Kernel<1>& kernel, double h, double dx, double k) {
+FourierSymbol1D fourier_symbol_1d(const Kernel<1>& kernel, double h, double dx, double k) {
   return symbol(lattice_sums(kernel, h, dx, "fourier_symbol_1d"), k * dx);
 }
 
@@ -77,7 +77,7 @@ SymbolCriticalTension critical_tension_infinite_1d(const Kernel<1>& kernel, doub
     return r;
   }
   auto ratio = [&](double q) {  // q = k dx / pi
-    const FourierSymbol1d f = symbol(s, q * M_PI);
+    const FourierSymbol1D f = symbol(s, q * M_PI);
     return f.l_hat > tol ? f.g_abs2 / (n * f.l_hat) : kInf;
   };
   double best = kInf;
@@ -140,7 +140,7 @@ SymbolCriticalTension critical_tension_periodic_symbol_1d(const Kernel<1>& kerne
   const double tol = 1e-12 * s.h_scale;
   for (int m = 1; 2 * m <= particles; ++m) {
     const double q = 2.0 * m / particles;
-    const FourierSymbol1d f = symbol(s, q * M_PI);
+    const FourierSymbol1D f = symbol(s, q * M_PI);
     if (!(f.l_hat > tol)) continue;
     // At the sawtooth (2m = N) g^ vanishes exactly; the rounding residue is dropped.
     const double g2 = (2 * m == particles) ? 0.0 : f.g_abs2;

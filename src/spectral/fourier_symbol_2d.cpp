@@ -47,12 +47,12 @@ bool stable(const Eigen::Matrix2d& a) {
 
 }  // namespace
 
-ElasticSymbol2d::ElasticSymbol2d(LatticeType type, const Kernel<2>& kernel, double h, double dx,
+ElasticSymbol2D::ElasticSymbol2D(LatticeType type, const Kernel<2>& kernel, double h, double dx,
                                  const ElasticMaterial& material, MomentumForm form, PreStrainKind kind)
     : m_lattice(bravais_lattice_2d(type, dx)), m_material(material), m_form(form), m_kind(kind) {
-  material.validate("ElasticSymbol2d");
+  material.validate("ElasticSymbol2D");
   if (!(h > 0) || !std::isfinite(h))
-    throw std::invalid_argument("ElasticSymbol2d: h must be finite and > 0 (got " + format_number(h) + ")");
+    throw std::invalid_argument("ElasticSymbol2D: h must be finite and > 0 (got " + format_number(h) + ")");
   m_s0 = PreStrain{kind, 1.0}.stress(material);
   const double support = kernel.support_radius(h), vol = m_lattice.cell_area();
   const int reach = static_cast<int>(std::ceil(2 * support / m_lattice.a2.y())) + 2;
@@ -73,7 +73,7 @@ ElasticSymbol2d::ElasticSymbol2d(LatticeType type, const Kernel<2>& kernel, doub
     }
 }
 
-ElasticSymbol2d::Value ElasticSymbol2d::operator()(const Eigen::Vector2d& k) const {
+ElasticSymbol2D::Value ElasticSymbol2D::operator()(const Eigen::Vector2d& k) const {
   Value v;
   v.s.setZero();
   v.l.setZero();
@@ -166,13 +166,13 @@ struct PointResult {
   bool zone_zero = false;
 };
 
-bool is_zone_boundary_zero(const BravaisLattice2d& lat, const Eigen::Vector2d& k) {
+bool is_zone_boundary_zero(const BravaisLattice2D& lat, const Eigen::Vector2d& k) {
   const Eigen::Vector2d u = 2 * (lat.reciprocal().inverse() * k);  // 2k in reciprocal coordinates
   return std::abs(u[0] - std::round(u[0])) < 1e-9 && std::abs(u[1] - std::round(u[1])) < 1e-9;
 }
 
-PointResult evaluate(const ElasticSymbol2d& sym, const Eigen::Vector2d& k, LoadDirection sign, bool zone_zero) {
-  const ElasticSymbol2d::Value v = sym(k);
+PointResult evaluate(const ElasticSymbol2D& sym, const Eigen::Vector2d& k, LoadDirection sign, bool zone_zero) {
+  const ElasticSymbol2D::Value v = sym(k);
   PointResult p;
   p.zone_zero = zone_zero;
   if (zone_zero) {
@@ -187,10 +187,10 @@ PointResult evaluate(const ElasticSymbol2d& sym, const Eigen::Vector2d& k, LoadD
 
 }  // namespace
 
-SymbolCriticalStrain critical_strain_infinite_2d(const ElasticSymbol2d& sym, LoadDirection sign, int grid) {
+SymbolCriticalStrain critical_strain_infinite_2d(const ElasticSymbol2D& sym, LoadDirection sign, int grid) {
   if (grid < 16)
     throw std::invalid_argument("critical_strain_infinite_2d: grid must be >= 16 (got " + std::to_string(grid) + ")");
-  const BravaisLattice2d& lat = sym.lattice();
+  const BravaisLattice2D& lat = sym.lattice();
   const Eigen::Matrix2d b = lat.reciprocal();
   const double sgn = sign == LoadDirection::Tension ? 1.0 : -1.0;
   SymbolCriticalStrain out;
@@ -287,7 +287,7 @@ SymbolCriticalStrain critical_strain_infinite_2d(const ElasticSymbol2d& sym, Loa
   return out;
 }
 
-std::vector<Eigen::Vector2d> periodic_wavevectors(const BravaisLattice2d& lat, int n) {
+std::vector<Eigen::Vector2d> periodic_wavevectors(const BravaisLattice2D& lat, int n) {
   if (n < 2) throw std::invalid_argument("periodic_wavevectors: n must be >= 2 (got " + std::to_string(n) + ")");
   if (lat.type != LatticeType::Square && n % 2 != 0)
     throw std::invalid_argument("periodic_wavevectors: periodic hex/face-centred lattices need an even n (got " +
@@ -300,7 +300,7 @@ std::vector<Eigen::Vector2d> periodic_wavevectors(const BravaisLattice2d& lat, i
   return ks;
 }
 
-SymbolCriticalStrain critical_strain_periodic_symbol_2d(const ElasticSymbol2d& sym, int n, LoadDirection sign) {
+SymbolCriticalStrain critical_strain_periodic_symbol_2d(const ElasticSymbol2D& sym, int n, LoadDirection sign) {
   const std::vector<Eigen::Vector2d> ks = periodic_wavevectors(sym.lattice(), n);
   const double sgn = sign == LoadDirection::Tension ? 1.0 : -1.0;
   SymbolCriticalStrain out;

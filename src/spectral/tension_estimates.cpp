@@ -23,7 +23,7 @@ double second_minor_tension(double k_ii, double l_ii, double k_next, double l_ne
   return std::min(root(k_ii - k_next, l_ii - l_next, n), root(k_ii + k_next, l_ii + l_next, n));
 }
 
-TensionEstimates1d tension_estimates_1d(const Kernel<1>& kernel, double h, double dx, int n) {
+TensionEstimates1D tension_estimates_1d(const Kernel<1>& kernel, double h, double dx, int n) {
   if (!(h > 0) || !std::isfinite(h))
     throw std::invalid_argument("tension_estimates_1d: h must be finite and > 0 (got " + std::to_string(h) + ")");
   if (!(dx > 0) || !std::isfinite(dx))
@@ -33,7 +33,7 @@ TensionEstimates1d tension_estimates_1d(const Kernel<1>& kernel, double h, doubl
   // g[m] = G_{i,i+m} for m = -M..M stored at offset M; H_m for m >= 1.
   int mmax = 0;
   while ((mmax + 1) * dx < support) ++mmax;  // strict, like find_neighbours
-  TensionEstimates1d e;
+  TensionEstimates1D e;
   if (mmax == 0) {  // no neighbour inside the support: A = 0, every estimate is undefined (not infinite)
     const double nan = std::numeric_limits<double>::quiet_NaN();
     e.first_minor = e.second_minor = e.nearest_neighbour = e.nearest_neighbour_minor = e.swegle = nan;
@@ -61,12 +61,12 @@ TensionEstimates1d tension_estimates_1d(const Kernel<1>& kernel, double h, doubl
   return e;
 }
 
-TensionEstimates1d tension_estimates_1d(const Linearisation& jac, int row, int n) {
+TensionEstimates1D tension_estimates_1d(const Linearisation& jac, int row, int n) {
   if (row < 0 || row + 1 >= jac.dofs())
     throw std::invalid_argument("tension_estimates_1d: row " + std::to_string(row) + " needs row + 1 < " +
                                 std::to_string(jac.dofs()));
   if (n < 0) throw std::invalid_argument("tension_estimates_1d: n must be >= 0 (got " + std::to_string(n) + ")");
-  TensionEstimates1d e;
+  TensionEstimates1D e;
   e.k_ii = jac.A0.coeff(row, row);
   e.l_ii = -jac.A1.coeff(row, row);
   e.k_next = jac.A0.coeff(row, row + 1);

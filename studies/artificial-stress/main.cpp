@@ -76,13 +76,7 @@ std::vector<double> roots(const std::function<double(double)>& g, double a, doub
   return out;
 }
 
-/// Fixed-point format (std::fixed, `prec` decimals; "inf" for +-inf). Not in study.hpp, which has %g only.
-std::string fixed(double x, int prec = 3) {
-  if (std::isinf(x)) return "inf";
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(prec) << x;
-  return s.str();
-}
+std::string fixed(double x, int prec = 3) { return study::fixed(x, prec); }
 
 std::string list(const std::vector<double>& v) {
   std::string s;

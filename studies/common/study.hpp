@@ -47,6 +47,22 @@ using sphstab::random_vector;
 /// v with `digits` significant digits for prose and tables: "-" for NaN, "inf"/"-inf".
 inline std::string sig(double v, int digits = 3) { return std::isnan(v) ? "-" : format_number(v, digits); }
 
+/// v with `decimals` digits after the point (%.*f, or %+.*f with `sign`): "-" for NaN, "inf"/"-inf".
+inline std::string fixed(double v, int decimals, bool sign = false) {
+  if (std::isnan(v)) return "-";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), sign ? "%+.*f" : "%.*f", decimals, v);
+  return buf;
+}
+
+/// Appends the Markdown row "| c1 | c2 | ... |" to `table` (rows separated by newlines; the template holds the
+/// header). Cells are text: format numbers with sig() or fixed() first.
+inline void md_row(std::string& table, const std::vector<std::string>& cells) {
+  table += table.empty() ? "|" : "\n|";
+  for (const std::string& c : cells) table += " " + c + " |";
+}
+
 /// Key numbers of a study for its summary template: summary.json, one flat object of strings.
 class Summary {
  public:

@@ -131,7 +131,7 @@ int main(int argc, char** argv) {
             for (MomentumForm form : all_momentum_forms()) {
               if (!subset && (form != MomentumForm::Conservative || kind != PreStrainKind::Isotropic)) continue;
               const Linearisation jac = analytic_jacobian_2d(*disc, ops, kMaterial, form, kind);
-              const ElasticSymbol2d symbol(lt, kernel, h, 1.0, kMaterial, form, kind);
+              const ElasticSymbol2D symbol(lt, kernel, h, 1.0, kMaterial, form, kind);
               for (LoadDirection sign : {LoadDirection::Tension, LoadDirection::Compression}) {
                 const auto tc = Clock::now();
                 CriticalLoadOptions opt = CriticalLoadOptions::strain_2d();
@@ -172,7 +172,7 @@ int main(int argc, char** argv) {
           auto disc = make_discretisation(strain_lattice_2d(lt, kernel, h, n_nonsym), kernel, h);
           const Linearisation jac =
               analytic_jacobian_2d(*disc, kMaterial, MomentumForm::Plus, PreStrainKind::UniaxialX);
-          const ElasticSymbol2d symbol(lt, kernel, h, 1.0, kMaterial, MomentumForm::Plus, PreStrainKind::UniaxialX);
+          const ElasticSymbol2D symbol(lt, kernel, h, 1.0, kMaterial, MomentumForm::Plus, PreStrainKind::UniaxialX);
           for (LoadDirection sign : {LoadDirection::Tension, LoadDirection::Compression}) {
             const auto tc = Clock::now();
             CriticalLoadOptions opt = CriticalLoadOptions::strain_2d();
@@ -216,7 +216,7 @@ int main(int argc, char** argv) {
       for (KernelType kt : {KernelType::CubicSpline})
         for (double h : {1.3}) {
           const Kernel<2> kernel(kt);
-          const ElasticSymbol2d symbol(lt, kernel, h, 1.0, kMaterial, MomentumForm::Conservative,
+          const ElasticSymbol2D symbol(lt, kernel, h, 1.0, kMaterial, MomentumForm::Conservative,
                                        PreStrainKind::Isotropic);
           for (int n : sizes) {
             auto disc = make_discretisation(strain_lattice_2d(lt, kernel, h, n), kernel, h);
@@ -267,7 +267,7 @@ int main(int argc, char** argv) {
         for (double h : h_grid(1))
           for (MomentumForm form : {MomentumForm::Conservative, MomentumForm::Plus})
             for (PreStrainKind kind : {PreStrainKind::Isotropic, PreStrainKind::UniaxialX}) {
-              const ElasticSymbol2d symbol(lt, Kernel<2>(kt), h, 1.0, kMaterial, form, kind);
+              const ElasticSymbol2D symbol(lt, Kernel<2>(kt), h, 1.0, kMaterial, form, kind);
               for (LoadDirection sign : {LoadDirection::Tension, LoadDirection::Compression}) {
                 InfRow row{lt, kt, h, form, kind, sign, critical_strain_infinite_2d(symbol, sign, 128)};
                 csv << lattice_name(lt) << "," << kernel_name(kt) << "," << num(h) << "," << momentum_form_name(form)
@@ -298,7 +298,7 @@ int main(int argc, char** argv) {
         const bool finite_n = i % 2 == 0;  // n = 20 lattice at h/dp = 1.0, 1.1, ..., 1.7
         // GMS's momentum equation sum_b m_b (sigma_a/rho_a^2 + sigma_b/rho_b^2) grad W is the plus form;
         // a uniform pressure is the isotropic pre-stress (tension = -P).
-        const ElasticSymbol2d sym(lt, cubic, h, 1.0, kMaterial, MomentumForm::Plus, PreStrainKind::Isotropic);
+        const ElasticSymbol2D sym(lt, cubic, h, 1.0, kMaterial, MomentumForm::Plus, PreStrainKind::Isotropic);
         const auto v = sym({M_PI, 0});
         GmsRow g{lt, h, v.l(0, 0), v.l(1, 1), -v.s[0], 0, 0, 0, 0, std::nan(""), std::nan(""), "", ""};
         g.ek_t = critical_strain_2x2(v.a0, v.a1, LoadDirection::Tension, 1e-12 * v.a1.cwiseAbs().maxCoeff()).e;

@@ -61,7 +61,7 @@ struct SweepRow {
   KernelType kernel;
   double h;
   CriticalLoad r;
-  TensionEstimates1d est;
+  TensionEstimates1D est;
   SymbolCriticalTension inf;
   double t_uncorrected = 0, t_plus = 0;
 };
@@ -92,11 +92,10 @@ double median(std::vector<double> v) {
 
 bool near(double a, double b) { return std::abs(a - b) < 1e-12; }
 
-/// Appends a Markdown table row to `table` (rows separated by newlines; the template holds the header).
+/// Appends a Markdown table row to `table` (study::md_row).
 template <class... T>
 void md_row(std::string& table, const T&... v) {
-  table += table.empty() ? "|" : "\n|";
-  ((table += " " + std::string(v) + " |"), ...);
+  study::md_row(table, {std::string(v)...});
 }
 
 }  // namespace

@@ -178,7 +178,7 @@ int main(int argc, char** argv) {
         const double k = std::numbers::pi * g / 4096;
         sym_max = std::max(sym_max, w2_symbol(kernel, h, k));
         if (g == 0) continue;
-        const FourierSymbol1d s = fourier_symbol_1d(kernel, h, 1.0, k);
+        const FourierSymbol1D s = fourier_symbol_1d(kernel, h, 1.0, k);
         l_sym_min = std::min(l_sym_min, s.l_hat);
         // conservative (n = 4); |L^| below 1e-12 is round-off of a vanishing symbol
         if (s.l_hat < -1e-12) t_inf = std::max(t_inf, -s.g_abs2 / (4 * -s.l_hat));

@@ -22,6 +22,8 @@
 
 using namespace sphstab;
 using study::Clock;
+using study::fixed;
+using study::md_row;
 using study::seconds_since;
 using study::sig;
 
@@ -72,20 +74,6 @@ std::pair<double, double> velocity_errors(const ElasticBar1D& bar, const BarJump
     l2 += e * e * bar.volumes()[i];
   }
   return {l1 / (v0 * L), std::sqrt(l2 / L) / v0};
-}
-
-/// v with `decimals` digits after the point (printf %.*f, or %+.*f with `sign`); "-" for NaN, as study::sig.
-std::string fixed(double v, int decimals, bool sign = false) {
-  if (std::isnan(v)) return "-";
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), sign ? "%+.*f" : "%.*f", decimals, v);
-  return buf;
-}
-
-/// Appends a Markdown table row (cells joined by " | ") to `table`; rows are separated by newlines.
-void md_row(std::string& table, const std::vector<std::string>& cells) {
-  table += table.empty() ? "|" : "\n|";
-  for (const auto& c : cells) table += " " + c + " |";
 }
 
 }  // namespace

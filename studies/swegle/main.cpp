@@ -456,7 +456,7 @@ std::vector<EnergyRow> energy_conservation(const Config& c, double dt) {
 // ------------------------------------------------------------------------------------------------------------ 1D
 // WaveForm1D (u_tt = (u_x + T)_x, c = E = rho = 1, dx = 1), pre-strain T = xi - 1, centre particle kicked.
 
-struct Row1d {
+struct Row1D {
   std::string form;
   double T = 0;
   double gamma_cs = kNaN, gamma_analytic = kNaN, gamma_exc = kNaN;
@@ -468,9 +468,9 @@ struct Row1d {
 
 /// The 1D version: every momentum form and the corrected kernels of the 2D study, 21 free particles, T = xi - 1;
 /// writes onedim_ke.csv and onedim_runs.csv.
-std::vector<Row1d> run_1d(const Config& c) {
+std::vector<Row1D> run_1d(const Config& c) {
   std::cout << "1D: WaveForm1D, 21 free particles, T = xi - 1\n";
-  std::vector<Row1d> rows1;
+  std::vector<Row1D> rows1;
   Kernel<1> k(KernelType::CubicSpline);
   const double h = 1.3;
   auto set = make_lattice<1>(LatticeType::Line, 21, {.spacing = 1.0, .support_radius = k.support_radius(h)});
@@ -489,13 +489,13 @@ std::vector<Row1d> run_1d(const Config& c) {
   CsvWriter ke1(c.out + "/onedim_ke.csv", {"form", "T", "t", "kinetic"});
   const double detect1 = std::log(c.onset) / (2 * c.t_end_1d);
   // The four momentum forms (analytic Jacobian of Powell 3.40 available) and the corrected kernels of the 2D study.
-  struct Form1d {
+  struct Form1D {
     std::string name;
     MomentumForm form;
     std::shared_ptr<const GradientProvider<1>> provider;
     CorrectedOperator corrected;
   };
-  std::vector<Form1d> forms1;
+  std::vector<Form1D> forms1;
   for (MomentumForm form : all_momentum_forms())
     forms1.push_back({momentum_form_name(form), form, nullptr, CorrectedOperator::Auto});
   forms1.push_back(
@@ -504,9 +504,9 @@ std::vector<Row1d> run_1d(const Config& c) {
                     make_gradient_provider<1>(Correction::LocalPolish, {.counting = NeighbourCounting::BoundaryLevel,
                                                                         .first_step_shepard = true}),
                     CorrectedOperator::Divergence});
-  for (const Form1d& f1 : forms1)
+  for (const Form1D& f1 : forms1)
     for (double xi : c.xis) {
-      Row1d r{.form = f1.name, .T = xi - 1};
+      Row1D r{.form = f1.name, .T = xi - 1};
       auto force =
           std::make_shared<WaveForm1D>(disc, f1.form, r.T, f1.provider, WaveForm1DOptions{.corrected = f1.corrected});
       const Eigen::VectorXd zero = Eigen::VectorXd::Zero(force->dofs());
@@ -537,7 +537,7 @@ std::vector<Row1d> run_1d(const Config& c) {
   CsvWriter csv(c.out + "/onedim_runs.csv", {"form", "T", "status", "t_stop", "grew", "gamma_measured", "fit_r2",
                                              "gamma_linear_all_cs", "gamma_linear_all_analytic", "gamma_linear_excited",
                                              "ratio", "linear_verdict", "run_verdict", "mode_k_dx_over_pi"});
-  for (const Row1d& r : rows1)
+  for (const Row1D& r : rows1)
     csv.row({r.form, r.T, run_status_name(r.run.status), r.run.t_stop, r.run.fit.grew ? 1 : 0, r.run.fit.gamma,
              r.run.fit.fit.r2, r.gamma_cs, r.gamma_analytic, r.gamma_exc, r.ratio, r.lin_verdict, r.run_verdict,
              r.k_mode.k_projection});
@@ -646,7 +646,7 @@ void summarise_2d_lists(study::Summary& s, const std::vector<Row>& rows, const C
 }
 
 /// Energy table and convergence orders; the 1D table.
-void summarise_energy_1d(study::Summary& s, const std::vector<EnergyRow>& energy, const std::vector<Row1d>& rows1,
+void summarise_energy_1d(study::Summary& s, const std::vector<EnergyRow>& energy, const std::vector<Row1D>& rows1,
                          const Config& c) {
   std::string rows;
   for (const EnergyRow& e : energy)
@@ -662,18 +662,18 @@ void summarise_energy_1d(study::Summary& s, const std::vector<EnergyRow>& energy
     s.set("energy_" + name + "_order", std::log2(es[1]->max_dev / es[2]->max_dev), 3);
   }
   double m = 0;
-  for (const Row1d& r : rows1)
+  for (const Row1D& r : rows1)
     if (r.gamma_analytic > 0) m = std::max(m, std::abs(r.gamma_cs / r.gamma_analytic - 1));
   s.set("onedim_cs_vs_analytic", m, 2);
   s.set("t_end_1d", c.t_end_1d, 6);
   std::vector<std::string> labels, names;
   for (double xi : c.xis) labels.push_back("T = " + sig(xi - 1, 2));
-  for (const Row1d& r : rows1)
+  for (const Row1D& r : rows1)
     if (std::find(names.begin(), names.end(), r.form) == names.end()) names.push_back(r.form);
   std::string table = table_header("form", labels);
   for (const std::string& name : names) {
     table += "\n| " + name + " |";
-    for (const Row1d& r : rows1)
+    for (const Row1D& r : rows1)
       if (r.form == name)
         table += std::string(" ") + (r.run_verdict == "bounded" ? "S" : "**U**") + " " + sig(r.run.fit.gamma) + " / " +
                  sig(r.gamma_exc) + " |";
@@ -796,7 +796,7 @@ int main(int argc, char** argv) {
   const std::vector<Row> rows = run_2d(forms, c, classes, dt);
   const double wall_2d = study::seconds_since(wall0);
   const std::vector<EnergyRow> energy = energy_conservation(c, dt);
-  const std::vector<Row1d> rows1 = run_1d(c);
+  const std::vector<Row1D> rows1 = run_1d(c);
   const double wall_total = study::seconds_since(wall0);
 
   study::Summary s;

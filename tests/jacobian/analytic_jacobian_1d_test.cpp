@@ -16,12 +16,12 @@ namespace {
 using C = std::complex<double>;
 using VecC = Eigen::VectorXcd;
 
-struct Lattice1d {
+struct Lattice1D {
   ParticleSet<1> p;
   Kernel<1> kernel;
   double h;
   NeighbourList nl;
-  Lattice1d(KernelType type, double h_, int nfree, bool periodic = false)
+  Lattice1D(KernelType type, double h_, int nfree, bool periodic = false)
       : p(make_lattice<1>(LatticeType::Line, nfree, {.spacing = 1.0, .support_radius = 2 * h_, .periodic = periodic})),
         kernel(type),
         h(h_),
@@ -68,7 +68,7 @@ struct Lattice1d {
 
 /// A = -df/du on the free block by complex step (exact to rounding).
 template <class F>
-Eigen::MatrixXd jacobian_by_complex_step(const Lattice1d& s, F force) {
+Eigen::MatrixXd jacobian_by_complex_step(const Lattice1D& s, F force) {
   const std::vector<int> free = s.p.indices(Role::Free);
   const int nf = static_cast<int>(free.size());
   const double eps = 1e-30;
@@ -82,11 +82,11 @@ Eigen::MatrixXd jacobian_by_complex_step(const Lattice1d& s, F force) {
   return a;
 }
 
-TEST(AnalyticJacobian1d, MatchesComplexStepOfEveryForm) {
+TEST(AnalyticJacobian1D, MatchesComplexStepOfEveryForm) {
   const double t = 0.37;
   for (auto [type, h] : {std::pair{KernelType::QuinticSpline, 1.3}, std::pair{KernelType::CubicSpline, 1.7},
                          std::pair{KernelType::WendlandC4, 2.2}}) {
-    Lattice1d s(type, h, 12);
+    Lattice1D s(type, h, 12);
     const Linearisation jac = analytic_jacobian_1d(s.p, s.kernel, h);  // uncorrected: A0 = K, A1 = -L
     ASSERT_EQ(jac.dofs(), 12);
     ASSERT_TRUE(jac.symmetric);
@@ -105,9 +105,9 @@ TEST(AnalyticJacobian1d, MatchesComplexStepOfEveryForm) {
   }
 }
 
-TEST(AnalyticJacobian1d, ConservativeForceIsMinusEnergyGradient) {
+TEST(AnalyticJacobian1D, ConservativeForceIsMinusEnergyGradient) {
   // Powell (3.27) = -dU/du with U summed over free AND fixed particles, at a random displaced state.
-  Lattice1d s(KernelType::CubicSpline, 1.4, 10);
+  Lattice1D s(KernelType::CubicSpline, 1.4, 10);
   std::mt19937_64 rng(42);
   std::uniform_real_distribution<double> dist(-0.05, 0.05);
   VecC u = VecC::Zero(s.p.size());
@@ -122,8 +122,8 @@ TEST(AnalyticJacobian1d, ConservativeForceIsMinusEnergyGradient) {
   }
 }
 
-TEST(AnalyticJacobian1d, StructureOfKAndL) {
-  Lattice1d s(KernelType::Gaussian, 1.6, 20);
+TEST(AnalyticJacobian1D, StructureOfKAndL) {
+  Lattice1D s(KernelType::Gaussian, 1.6, 20);
   const Linearisation jac = analytic_jacobian_1d(s.p, s.kernel, s.h);
   Eigen::MatrixXd k = jac.A0, l = -Eigen::MatrixXd(jac.A1);
   EXPECT_LT((k - k.transpose()).norm(), 1e-14 * k.norm());
@@ -131,7 +131,7 @@ TEST(AnalyticJacobian1d, StructureOfKAndL) {
   // Diagonal of K = sum over ALL j of G_ij^2 (free and fixed neighbours): the same for every free particle.
   for (int i = 1; i < 20; ++i) EXPECT_NEAR(k(i, i), k(0, 0), 1e-13 * k(0, 0));
   // Periodic lattice: translation is a null vector of both.
-  Lattice1d per(KernelType::Gaussian, 1.6, 21, true);
+  Lattice1D per(KernelType::Gaussian, 1.6, 21, true);
   const Linearisation pj = analytic_jacobian_1d(per.p, per.kernel, per.h);
   EXPECT_TRUE(pj.periodic);
   Eigen::VectorXd one = Eigen::VectorXd::Ones(21);
@@ -139,7 +139,7 @@ TEST(AnalyticJacobian1d, StructureOfKAndL) {
   EXPECT_LT((pj.A1 * one).norm(), 1e-13);
 }
 
-TEST(AnalyticJacobian1d, RejectsIrregularSetsAndMissingOperators) {
+TEST(AnalyticJacobian1D, RejectsIrregularSetsAndMissingOperators) {
   Kernel<1> k(KernelType::CubicSpline);
   auto p = make_lattice<1>(LatticeType::Line, 10, {.spacing = 1.0, .support_radius = 2.6, .perturbation = 0.1});
   EXPECT_THROW(analytic_jacobian_1d(p, k, 1.3), std::invalid_argument);

@@ -37,7 +37,7 @@ struct Case {
   double h;
 };
 
-TEST(AnalyticJacobian2d, MatchesComplexStepOnLattices) {
+TEST(AnalyticJacobian2D, MatchesComplexStepOnLattices) {
   const std::vector<Case> cases = {
       {LatticeType::Square, KernelType::CubicSpline, 1.0},   {LatticeType::Square, KernelType::WendlandC2, 1.3},
       {LatticeType::Square, KernelType::QuinticSpline, 1.7}, {LatticeType::Hexagonal, KernelType::CubicSpline, 1.2},
@@ -81,7 +81,7 @@ TEST(AnalyticJacobian2d, MatchesComplexStepOnLattices) {
   std::cout << "largest relative difference analytic vs complex step: " << worst << "\n";
 }
 
-TEST(AnalyticJacobian2d, MatchesComplexStepOffLattice) {
+TEST(AnalyticJacobian2D, MatchesComplexStepOffLattice) {
   // Perturbed positions and unequal volumes: no lattice identity helps; the closed form holds for any set at rest.
   Kernel<2> k(KernelType::WendlandC2);
   auto set = make_lattice<2>(LatticeType::Square, 5, {.spacing = 1.0, .support_radius = 2.8, .perturbation = 0.1});
@@ -98,7 +98,7 @@ TEST(AnalyticJacobian2d, MatchesComplexStepOffLattice) {
     }
 }
 
-TEST(AnalyticJacobian2d, LatticeIdentities) {
+TEST(AnalyticJacobian2D, LatticeIdentities) {
   auto d = lattice(LatticeType::Square, 6, KernelType::CubicSpline, 1.3);
   const auto cons = analytic_jacobian_2d(*d, kMaterial, MomentumForm::Conservative, PreStrainKind::Isotropic);
   const auto plus = analytic_jacobian_2d(*d, kMaterial, MomentumForm::Plus, PreStrainKind::Isotropic);
@@ -116,7 +116,7 @@ TEST(AnalyticJacobian2d, LatticeIdentities) {
   EXPECT_GT(es.eigenvalues()[0], 1e-6 * es.eigenvalues().maxCoeff());
 }
 
-TEST(AnalyticJacobian2d, TranslationIsNullOnPeriodicSets) {
+TEST(AnalyticJacobian2D, TranslationIsNullOnPeriodicSets) {
   for (LatticeType type : {LatticeType::Square, LatticeType::Hexagonal}) {
     auto d = lattice(type, 10, KernelType::QuinticSpline, 1.6, true);
     for (MomentumForm form : all_momentum_forms())
@@ -134,7 +134,7 @@ TEST(AnalyticJacobian2d, TranslationIsNullOnPeriodicSets) {
   }
 }
 
-TEST(AnalyticJacobian2d, RejectsWhatTheClosedFormDoesNotCover) {
+TEST(AnalyticJacobian2D, RejectsWhatTheClosedFormDoesNotCover) {
   auto d = lattice(LatticeType::Square, 4, KernelType::CubicSpline, 1.2);
   ElasticForm2D minus_gradient(d, kMaterial, MomentumForm::Uncorrected, {}, std::make_shared<MinusGradient<2>>());
   EXPECT_THROW(analytic_jacobian_2d(minus_gradient), std::invalid_argument);

@@ -46,7 +46,7 @@ TEST(CriticalStrain2x2, HandMadeCases) {
             InstabilityMechanism::Neutral);
 }
 
-TEST(FourierSymbol2d, BlochVectorsOfThePeriodicJacobian) {
+TEST(FourierSymbol2D, BlochVectorsOfThePeriodicJacobian) {
   struct Case {
     LatticeType type;
     int n;
@@ -60,13 +60,13 @@ TEST(FourierSymbol2d, BlochVectorsOfThePeriodicJacobian) {
       for (PreStrainKind kind : {PreStrainKind::Isotropic, PreStrainKind::UniaxialX}) {
         auto d = periodic(c.type, c.n, c.kernel, c.h);
         const Linearisation jac = analytic_jacobian_2d(*d, kMaterial, form, kind);
-        const ElasticSymbol2d sym(c.type, d->kernel, c.h, 1.0, kMaterial, form, kind);
+        const ElasticSymbol2D sym(c.type, d->kernel, c.h, 1.0, kMaterial, form, kind);
         const auto ks = periodic_wavevectors(sym.lattice(), c.n);
         const Eigen::MatrixXd a0(jac.A0), a1(jac.A1);
         const double scale0 = a0.cwiseAbs().maxCoeff(), scale1 = a1.cwiseAbs().maxCoeff();
         for (size_t m = 0; m < ks.size(); m += 7) {
           const Eigen::Vector2d k = ks[m];
-          const ElasticSymbol2d::Value v = sym(k);
+          const ElasticSymbol2D::Value v = sym(k);
           for (int comp = 0; comp < 2; ++comp) {
             Eigen::VectorXcd u(jac.dofs());
             for (int f = 0; f < d->free_count(); ++f) {
@@ -95,20 +95,20 @@ std::vector<std::complex<double>> sorted(std::vector<std::complex<double>> v) {
   return v;
 }
 
-TEST(FourierSymbol2d, SpectrumOfThePeriodicJacobianIsTheUnionOfSymbolSpectra) {
+TEST(FourierSymbol2D, SpectrumOfThePeriodicJacobianIsTheUnionOfSymbolSpectra) {
   // Uniaxial plus: non-symmetric A; e large enough that some eigenvalues are complex or negative.
   for (double e : {0.02, -0.3, 0.4})
     for (MomentumForm form : {MomentumForm::Conservative, MomentumForm::Plus}) {
       const int n = 8;
       auto d = periodic(LatticeType::Square, n, KernelType::WendlandC2, 1.2);
       const Linearisation jac = analytic_jacobian_2d(*d, kMaterial, form, PreStrainKind::UniaxialX);
-      const ElasticSymbol2d sym(LatticeType::Square, d->kernel, 1.2, 1.0, kMaterial, form, PreStrainKind::UniaxialX);
+      const ElasticSymbol2D sym(LatticeType::Square, d->kernel, 1.2, 1.0, kMaterial, form, PreStrainKind::UniaxialX);
       const Eigen::MatrixXd a(jac.at(e));
       const DenseGeneralEigen ev = general_eigen(a);
       ASSERT_EQ(ev.status, Status::Successful);
       std::vector<std::complex<double>> dense(ev.values.data(), ev.values.data() + ev.values.size()), symbol;
       for (const Eigen::Vector2d& k : periodic_wavevectors(sym.lattice(), n)) {
-        const ElasticSymbol2d::Value v = sym(k);
+        const ElasticSymbol2D::Value v = sym(k);
         const Eigen::Vector2cd s = Eigen::Matrix2d(v.a0 + e * v.a1).eigenvalues();
         symbol.push_back(s[0]);
         symbol.push_back(s[1]);
@@ -123,13 +123,13 @@ TEST(FourierSymbol2d, SpectrumOfThePeriodicJacobianIsTheUnionOfSymbolSpectra) {
     }
 }
 
-TEST(FourierSymbol2d, PeriodicCriticalStrainBracketsTheDenseSpectrum) {
+TEST(FourierSymbol2D, PeriodicCriticalStrainBracketsTheDenseSpectrum) {
   // Odd n: no zone-boundary zero is admissible, so the periodic critical strain is positive.
   const int n = 9;
   for (LoadDirection sign : {LoadDirection::Tension, LoadDirection::Compression}) {
     auto d = periodic(LatticeType::Square, n, KernelType::CubicSpline, 1.3);
     const Linearisation jac = analytic_jacobian_2d(*d, kMaterial, MomentumForm::Conservative, PreStrainKind::Isotropic);
-    const ElasticSymbol2d sym(LatticeType::Square, d->kernel, 1.3, 1.0, kMaterial, MomentumForm::Conservative,
+    const ElasticSymbol2D sym(LatticeType::Square, d->kernel, 1.3, 1.0, kMaterial, MomentumForm::Conservative,
                               PreStrainKind::Isotropic);
     const SymbolCriticalStrain r = critical_strain_periodic_symbol_2d(sym, n, sign);
     ASSERT_TRUE(std::isfinite(r.e)) << r.reason;
@@ -145,16 +145,16 @@ TEST(FourierSymbol2d, PeriodicCriticalStrainBracketsTheDenseSpectrum) {
   }
 }
 
-TEST(FourierSymbol2d, GrayMonaghanSwiftLatticeSums) {
+TEST(FourierSymbol2D, GrayMonaghanSwiftLatticeSums) {
   // GMS (2001) §5 at h = dp, k = (pi/dp, 0), 2D cubic spline: B_x = l^xx, B_y = l^yy, A_x = -s_x (their r_ab = -r).
   const Kernel<2> cubic(KernelType::CubicSpline);
-  const ElasticSymbol2d square(LatticeType::Square, cubic, 1.0, 1.0, kMaterial, MomentumForm::Plus,
+  const ElasticSymbol2D square(LatticeType::Square, cubic, 1.0, 1.0, kMaterial, MomentumForm::Plus,
                                PreStrainKind::Isotropic);
   const auto sq = square({M_PI, 0});
   EXPECT_NEAR(sq.l(0, 0), 150 * (2 - std::sqrt(2.0)) / (7 * M_PI), 1e-12);  // 3.996, closed form of GMS (5.20)
   EXPECT_NEAR(sq.l(1, 1), -0.0969, 5e-5);                                   // printed -0.096 ([RC] -0.0969)
   EXPECT_LE(sq.s.norm(), 1e-15);
-  const ElasticSymbol2d fcc(LatticeType::FaceCentred, cubic, 1.0, 1.0, kMaterial, MomentumForm::Plus,
+  const ElasticSymbol2D fcc(LatticeType::FaceCentred, cubic, 1.0, 1.0, kMaterial, MomentumForm::Plus,
                             PreStrainKind::Isotropic);
   const auto fc = fcc({M_PI, 0});
   EXPECT_NEAR(std::abs(fc.s[0]), 0.430, 5e-4);  // printed to 2 figures (0.43), [RC] 0.430
@@ -163,10 +163,10 @@ TEST(FourierSymbol2d, GrayMonaghanSwiftLatticeSums) {
   EXPECT_NEAR(fc.s[1], 0.0, 1e-15);
 }
 
-TEST(FourierSymbol2d, InfiniteLatticeZoneBoundaryZero) {
+TEST(FourierSymbol2D, InfiniteLatticeZoneBoundaryZero) {
   // Square, cubic, h = dp: l^xx(pi, 0) > 0 destabilises tension, l^yy(pi, 0) < 0 compression (GMS): e_inf = 0 both.
   const Kernel<2> cubic(KernelType::CubicSpline);
-  const ElasticSymbol2d sym(LatticeType::Square, cubic, 1.0, 1.0, kMaterial, MomentumForm::Conservative,
+  const ElasticSymbol2D sym(LatticeType::Square, cubic, 1.0, 1.0, kMaterial, MomentumForm::Conservative,
                             PreStrainKind::Isotropic);
   for (LoadDirection sign : {LoadDirection::Tension, LoadDirection::Compression}) {
     const SymbolCriticalStrain r = critical_strain_infinite_2d(sym, sign, 32);
@@ -176,15 +176,15 @@ TEST(FourierSymbol2d, InfiniteLatticeZoneBoundaryZero) {
   }
   EXPECT_THROW(critical_strain_infinite_2d(sym, LoadDirection::Tension, 8), std::invalid_argument);
   EXPECT_THROW(
-      ElasticSymbol2d(LatticeType::Line, cubic, 1.0, 1.0, kMaterial, MomentumForm::Plus, PreStrainKind::Isotropic),
+      ElasticSymbol2D(LatticeType::Line, cubic, 1.0, 1.0, kMaterial, MomentumForm::Plus, PreStrainKind::Isotropic),
       std::invalid_argument);
   EXPECT_THROW(periodic_wavevectors(sym.lattice(), 1), std::invalid_argument);
 }
 
-TEST(FourierSymbol2d, LongWaveLimitIsTheContinuum) {
+TEST(FourierSymbol2D, LongWaveLimitIsTheContinuum) {
   // k -> 0: A0^ -> acoustic tensor k k, A1^ -> -c s0 k k^T / rho (l(k) -> k k^T).
   const Kernel<2> k5(KernelType::QuinticSpline);
-  const ElasticSymbol2d sym(LatticeType::Hexagonal, k5, 1.5, 1.0, kMaterial, MomentumForm::Plus,
+  const ElasticSymbol2D sym(LatticeType::Hexagonal, k5, 1.5, 1.0, kMaterial, MomentumForm::Plus,
                             PreStrainKind::UniaxialX);
   const Eigen::Vector2d k(1e-3, 0.5e-3);
   const auto v = sym(k);

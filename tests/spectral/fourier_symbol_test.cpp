@@ -9,17 +9,17 @@
 namespace sphstab {
 namespace {
 
-TEST(FourierSymbol1d, SawtoothIsInvisibleToTheGradient) {
+TEST(FourierSymbol1D, SawtoothIsInvisibleToTheGradient) {
   for (KernelType type : all_kernel_types()) {
     Kernel<1> kernel(type);
     for (double h : {0.8, 1.3, 2.9}) {
-      FourierSymbol1d s = fourier_symbol_1d(kernel, h, 1.0, M_PI);
+      FourierSymbol1D s = fourier_symbol_1d(kernel, h, 1.0, M_PI);
       EXPECT_LT(s.g_abs2, 1e-28) << kernel_name(type);
     }
   }
 }
 
-TEST(FourierSymbol1d, MatchesCirculantEigenvalues) {
+TEST(FourierSymbol1D, MatchesCirculantEigenvalues) {
   // Periodic N: exp(i k_m x) is an eigenvector of K and L with eigenvalues |g^|^2 and L^.
   Kernel<1> kernel(KernelType::WendlandC4);
   const double h = 1.7;
@@ -30,13 +30,13 @@ TEST(FourierSymbol1d, MatchesCirculantEigenvalues) {
     const double k = 2 * M_PI * m / n;
     Eigen::VectorXd c(n);
     for (int i = 0; i < n; ++i) c[i] = std::cos(k * jac.x(i, 0));
-    FourierSymbol1d s = fourier_symbol_1d(kernel, h, 1.0, k);
+    FourierSymbol1D s = fourier_symbol_1d(kernel, h, 1.0, k);
     EXPECT_LT((jac.A0 * c - s.g_abs2 * c).norm(), 1e-13);
     EXPECT_LT((-(jac.A1 * c) - s.l_hat * c).norm(), 1e-13);
   }
 }
 
-TEST(FourierSymbol1d, InfiniteLimitZeroWhenSawtoothLHatPositive) {
+TEST(FourierSymbol1D, InfiniteLimitZeroWhenSawtoothLHatPositive) {
   Kernel<1> cubic(KernelType::CubicSpline);
   // h = dx: L^(pi) = 4 W''(dx) dx = 4 > 0.
   SymbolCriticalTension a = critical_tension_infinite_1d(cubic, 1.0, 1.0, 4);
@@ -47,7 +47,7 @@ TEST(FourierSymbol1d, InfiniteLimitZeroWhenSawtoothLHatPositive) {
   EXPECT_NEAR(b.l_hat_sawtooth, 0.0, 1e-15);
 }
 
-TEST(FourierSymbol1d, FixedLayerTcritApproachesInfiniteLimit) {
+TEST(FourierSymbol1D, FixedLayerTcritApproachesInfiniteLimit) {
   // Where T_crit,inf > 0 the fixed-layer T_crit(N) converges to it; where it is 0 T_crit(N) decays.
   for (KernelType type : {KernelType::WendlandC2, KernelType::Gaussian, KernelType::CubicSpline}) {
     Kernel<1> kernel(type);
@@ -71,7 +71,7 @@ TEST(FourierSymbol1d, FixedLayerTcritApproachesInfiniteLimit) {
   }
 }
 
-TEST(FourierSymbol1d, RejectsBadInput) {
+TEST(FourierSymbol1D, RejectsBadInput) {
   Kernel<1> kernel(KernelType::CubicSpline);
   EXPECT_THROW(fourier_symbol_1d(kernel, -1.0, 1.0, 0.5), std::invalid_argument);
   EXPECT_THROW(critical_tension_infinite_1d(kernel, 1.0, 1.0, 4, 8), std::invalid_argument);

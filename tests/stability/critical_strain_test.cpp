@@ -176,7 +176,7 @@ TEST(CriticalStrain, NoNeighboursInsideTheSupportIsReportedNotStable) {
   EXPECT_EQ(r.status, Status::NumericalIssue);
   EXPECT_TRUE(std::isnan(r.load));
   EXPECT_NE(r.reason.find("no particle has a neighbour"), std::string::npos) << r.reason;
-  const ElasticSymbol2d symbol(LatticeType::Square, Kernel<2>(KernelType::CubicSpline), 0.3, 1.0, kMaterial,
+  const ElasticSymbol2D symbol(LatticeType::Square, Kernel<2>(KernelType::CubicSpline), 0.3, 1.0, kMaterial,
                                MomentumForm::Conservative, PreStrainKind::Isotropic);
   EXPECT_TRUE(std::isnan(critical_strain_infinite_2d(symbol, LoadDirection::Tension).e));
   EXPECT_TRUE(std::isnan(critical_strain_periodic_symbol_2d(symbol, 8, LoadDirection::Tension).e));
@@ -208,7 +208,7 @@ TEST(DominantWavevector, RecoversSyntheticModes) {
   // Plane wave on a periodic hex lattice at an admissible k; standing wave on a square block; perturbed positions.
   {
     const auto set = make_lattice<2>(LatticeType::Hexagonal, 12, {.spacing = 1.0, .periodic = true});
-    const BravaisLattice2d lat = bravais_lattice_2d(LatticeType::Hexagonal);
+    const BravaisLattice2D lat = bravais_lattice_2d(LatticeType::Hexagonal);
     const Eigen::Vector2d k = periodic_wavevectors(lat, 12)[3 + 12 * 5];
     Eigen::VectorXd mode(2 * set.size());
     for (int i = 0; i < set.size(); ++i) {

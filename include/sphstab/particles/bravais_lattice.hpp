@@ -11,7 +11,7 @@ namespace sphstab {
 
 /// Primitive vectors (units of length) of the 2D lattices of make_lattice: square a1 = (dx, 0), a2 = (0, dx);
 /// hexagonal a2 = (dx/2, dx sqrt(3)/2); face-centred a2 = (dx/2, dx). Row step dy = a2.y.
-struct BravaisLattice2d {
+struct BravaisLattice2D {
   LatticeType type = LatticeType::Square;
   Eigen::Vector2d a1, a2;
   double dx = 1;
@@ -24,10 +24,10 @@ struct BravaisLattice2d {
 };
 
 /// Throws std::invalid_argument for a lattice type that is not 2D or dx <= 0.
-BravaisLattice2d bravais_lattice_2d(LatticeType type, double dx = 1.0);
+BravaisLattice2D bravais_lattice_2d(LatticeType type, double dx = 1.0);
 
 /// The lattice of a set of 2D positions at spacing dx: square (rows dx apart, unshifted), hexagonal (rows dx sqrt(3)/2
 /// apart, alternate rows shifted by dx/2) or face-centred (rows dx apart, shifted).
-BravaisLattice2d detect_bravais_lattice_2d(const Eigen::MatrixX2d& x, double dx);
+BravaisLattice2D detect_bravais_lattice_2d(const Eigen::MatrixX2d& x, double dx);
 
 }  // namespace sphstab

@@ -7,7 +7,7 @@
 ///
 /// i.e. the power of the mode in the plane wave exp(i k . x) (per component). S is periodic in the reciprocal
 /// lattice and S(k) = S(-k) for real modes, so k is searched as k = u1 b1 + u2 b2 with (u1, u2) in [0, 1)^2 and the
-/// maximiser is folded into the first Brillouin zone and into kx, ky >= 0 (BravaisLattice2d::fold; every lattice here
+/// maximiser is folded into the first Brillouin zone and into kx, ky >= 0 (BravaisLattice2D::fold; every lattice here
 /// is mirror symmetric). A standing wave sin(k . x) or sin(kx x) sin(ky y) on a box with fixed layers has equal peaks
 /// at
 /// +-k, all folding to the same (|kx|, |ky|).
@@ -36,8 +36,8 @@ struct WavevectorEstimate {
 /// @param[in] lattice  the Bravais lattice (reciprocal cell, folding, spacing)
 /// Throws std::invalid_argument on size mismatch or an empty mode. A zero mode gives NaNs.
 WavevectorEstimate dominant_wavevector(const Eigen::VectorXcd& mode, const Eigen::MatrixX2d& x,
-                                       const BravaisLattice2d& lattice);
+                                       const BravaisLattice2D& lattice);
 WavevectorEstimate dominant_wavevector(const Eigen::VectorXd& mode, const Eigen::MatrixX2d& x,
-                                       const BravaisLattice2d& lattice);
+                                       const BravaisLattice2D& lattice);
 
 }  // namespace sphstab

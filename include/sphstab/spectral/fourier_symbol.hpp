@@ -18,14 +18,14 @@
 
 namespace sphstab {
 
-struct FourierSymbol1d {
+struct FourierSymbol1D {
   double g_abs2 = 0;  ///< |g^(k)|^2
   double l_hat = 0;   ///< L^(k)
 };
 
 /// Symbols at wavenumber k (any real k) for kernel support 2h on spacing dx. Throws std::invalid_argument for
 /// h <= 0 or dx <= 0.
-FourierSymbol1d fourier_symbol_1d(const Kernel<1>& kernel, double h, double dx, double k);
+FourierSymbol1D fourier_symbol_1d(const Kernel<1>& kernel, double h, double dx, double k);
 
 struct SymbolCriticalTension {
   double tcrit = 0;           ///< inf if L^ <= 0 at every admissible k

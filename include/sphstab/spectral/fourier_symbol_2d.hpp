@@ -43,7 +43,7 @@
 namespace sphstab {
 
 /// Symbols of one 2D SPH discretisation (lattice, kernel, h, material, form, pre-strain kind).
-class ElasticSymbol2d {
+class ElasticSymbol2D {
  public:
   struct Value {
     Eigen::Vector2d s;   ///< SPH gradient symbol / i
@@ -53,11 +53,11 @@ class ElasticSymbol2d {
   };
 
   /// Throws std::invalid_argument for h <= 0, dx <= 0, a non-2D lattice or an invalid material.
-  ElasticSymbol2d(LatticeType type, const Kernel<2>& kernel, double h, double dx, const ElasticMaterial& material,
+  ElasticSymbol2D(LatticeType type, const Kernel<2>& kernel, double h, double dx, const ElasticMaterial& material,
                   MomentumForm form, PreStrainKind kind);
 
   Value operator()(const Eigen::Vector2d& k) const;
-  const BravaisLattice2d& lattice() const { return m_lattice; }
+  const BravaisLattice2D& lattice() const { return m_lattice; }
   /// sum_m |W'(r_m)| V (scale of s) and sum_m ||H(r_m)|| (scale of l), for tolerances.
   double gradient_scale() const { return m_gscale; }
   double hessian_scale() const { return m_hscale; }
@@ -67,7 +67,7 @@ class ElasticSymbol2d {
   PreStrainKind kind() const { return m_kind; }
 
  private:
-  BravaisLattice2d m_lattice;
+  BravaisLattice2D m_lattice;
   ElasticMaterial m_material;
   MomentumForm m_form;
   PreStrainKind m_kind;
@@ -113,15 +113,15 @@ struct SymbolCriticalStrain {
 /// local patch refinement (9 x 9, step / 4 each) around the best 4 grid points (k dx / pi to about 1e-6). Neutral
 /// zone-boundary zeros are skipped (the limit k -> k* is taken from the neighbourhood, as in 1D).
 /// Throws std::invalid_argument for grid < 16.
-SymbolCriticalStrain critical_strain_infinite_2d(const ElasticSymbol2d& symbol, LoadDirection sign, int grid = 256);
+SymbolCriticalStrain critical_strain_infinite_2d(const ElasticSymbol2D& symbol, LoadDirection sign, int grid = 256);
 
 /// Periodic n x n lattice (make_lattice periodic): minimum over the n^2 - 1 admissible wavevectors (translation
 /// k = 0 excluded). Exact when the box holds the support (n dx >= 4h, as find_neighbours requires). A neutral
 /// zone-boundary zero (n even) gives e = 0 (A singular for every e), as in the 1D periodic analysis.
 /// Throws std::invalid_argument for n < 2, or odd n on hexagonal / face-centred lattices.
-SymbolCriticalStrain critical_strain_periodic_symbol_2d(const ElasticSymbol2d& symbol, int n, LoadDirection sign);
+SymbolCriticalStrain critical_strain_periodic_symbol_2d(const ElasticSymbol2D& symbol, int n, LoadDirection sign);
 
 /// The admissible wavevectors of a periodic n x n lattice (m1 fastest; n^2 entries, k = 0 first).
-std::vector<Eigen::Vector2d> periodic_wavevectors(const BravaisLattice2d& lattice, int n);
+std::vector<Eigen::Vector2d> periodic_wavevectors(const BravaisLattice2D& lattice, int n);
 
 }  // namespace sphstab

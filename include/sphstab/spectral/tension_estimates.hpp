@@ -23,7 +23,7 @@
 
 namespace sphstab {
 
-struct TensionEstimates1d {
+struct TensionEstimates1D {
   double first_minor = 0;                             ///< (3.42)
   double second_minor = 0;                            ///< (3.49)
   double nearest_neighbour = 0;                       ///< (3.43)
@@ -35,14 +35,14 @@ struct TensionEstimates1d {
 /// Estimates from the kernel on the infinite lattice of spacing dx (h, dx > 0; n = initial_stress_multiplier >= 0; n =
 /// 0 gives inf everywhere; no neighbour inside the support, 2h <= dx, gives NaN everywhere). Throws
 /// std::invalid_argument for non-positive h or dx, or negative n.
-TensionEstimates1d tension_estimates_1d(const Kernel<1>& kernel, double h, double dx, int n);
+TensionEstimates1D tension_estimates_1d(const Kernel<1>& kernel, double h, double dx, int n);
 
 /// The principal-minor estimates (3.42) and (3.49) read from the matrices of the UNCORRECTED form's linearisation
 /// (analytic_jacobian_1d with MomentumForm::Uncorrected: K = A0, L = -A1; k_ii = K(row, row), l_ii = L(row, row),
 /// k_next = K(row, row+1), l_next = L(row, row+1)), for the form with initial-stress multiplier n; the
 /// nearest-neighbour and Swegle fields are NaN (they need W'(dx), which K does not hold). For a cross-check of the
 /// kernel sums against the assembled operators. Throws std::invalid_argument if row or row + 1 is out of range.
-TensionEstimates1d tension_estimates_1d(const Linearisation& uncorrected, int row, int n);
+TensionEstimates1D tension_estimates_1d(const Linearisation& uncorrected, int row, int n);
 
 /// Smallest T > 0 with the 2 x 2 principal minor not positive definite (see above); exposed for tests.
 double second_minor_tension(double k_ii, double l_ii, double k_next, double l_next, int n);
