@@ -598,6 +598,7 @@ CriticalLoadOptions CriticalLoadOptions::strain_2d() {
   o.imag_tol = 1e-9;
   o.imag_scale = ImagScale::FrobeniusNorm;
   o.spectrum_real_crossing = true;
+  o.symmetrize = false;
   return o;
 }
 
@@ -653,10 +654,14 @@ CriticalLoad critical_load(const Linearisation& lin, LoadDirection direction, co
   if (crit == Criterion::Spectrum) {
     spectrum_routes(lin, opt, out);
   } else {
-    // A symmetric A is symmetric to round-off only (complex step): its symmetric part removes the noise.
-    if (crit == Criterion::SymmetricPart)
+    if (crit == Criterion::SymmetricPart) {
       append_reason(out.reason, "symmetric-part criterion: definiteness of (A + A^T)/2 (not the stability criterion)");
-    definiteness_routes(lin, symmetric_part(lin.A0), symmetric_part(lin.A1), opt, out);
+      definiteness_routes(lin, symmetric_part(lin.A0), symmetric_part(lin.A1), opt, out);
+    } else if (opt.symmetrize) {
+      definiteness_routes(lin, symmetric_part(lin.A0), symmetric_part(lin.A1), opt, out);
+    } else {
+      definiteness_routes(lin, lin.A0, lin.A1, opt, out);
+    }
   }
   if (std::isinf(out.load) || out.load == 0) out.mechanism = InstabilityMechanism::None;
   if (out.load == 0) out.mode.resize(0);

@@ -97,8 +97,12 @@ struct CriticalLoadOptions {
   bool shift_spectra = false;  ///< Spectra route: shift by the bracket's stable end (see the file comment)
   double spectra_tol = 1e-13;
   int spectra_maxit = 3000;
-  int spectra_ncv = 0;            ///< 0: 40 (doubled twice on non-convergence)
-  bool deflate_periodic = true;   ///< 1D periodic: project out translation (+ sawtooth for even N)
+  int spectra_ncv = 0;           ///< 0: 40 (doubled twice on non-convergence)
+  bool deflate_periodic = true;  ///< 1D periodic: project out translation (+ sawtooth for even N)
+  /// Definiteness of a symmetric A: use (A + A^T)/2, which removes round-off asymmetry (a complex-step Jacobian is
+  /// symmetric to ~1e-16 only); false: the upper triangle as stored (the setting of the 2D studies, whose analytic
+  /// A0 is symmetric to round-off too; the two differ in the last digits, ~1e-11 relative in e_crit).
+  bool symmetrize = true;
   int spectrum_dense_max = 1200;  ///< Auto criterion: largest non-symmetric A for the dense spectrum
   double spectrum_rtol = 1e-10;   ///< spectrum bisection (one dgeev per step): hi/lo - 1 <= spectrum_rtol
   double imag_tol = 1e-10;        ///< spectrum: |Im mu| <= imag_tol x scale counts as real
