@@ -187,19 +187,30 @@ PointResult evaluate(const ElasticSymbol2D& sym, const Eigen::Vector2d& k, LoadD
 
 }  // namespace
 
+namespace {
+
+/// +-inf (no instability found yet), or NaN with a reason when no lattice vector lies inside the support (the symbol
+/// is 0 and stability is undefined).
+SymbolCriticalStrain initial_result(const ElasticSymbol2D& sym, double sgn) {
+  SymbolCriticalStrain out;
+  out.e = sgn * kInf;
+  if (sym.stencil_size() == 0) {
+    out.e = SymbolCriticalStrain::nan;
+    out.reason = "no lattice neighbour inside the kernel support (h too small)";
+  }
+  return out;
+}
+
+}  // namespace
+
 SymbolCriticalStrain critical_strain_infinite_2d(const ElasticSymbol2D& sym, LoadDirection sign, int grid) {
   if (grid < 16)
     throw std::invalid_argument("critical_strain_infinite_2d: grid must be >= 16 (got " + std::to_string(grid) + ")");
   const BravaisLattice2D& lat = sym.lattice();
   const Eigen::Matrix2d b = lat.reciprocal();
   const double sgn = sign == LoadDirection::Tension ? 1.0 : -1.0;
-  SymbolCriticalStrain out;
-  out.e = sgn * kInf;
-  if (sym.stencil_size() == 0) {  // no lattice vector inside the support: the symbol is 0, stability undefined
-    out.e = SymbolCriticalStrain::nan;
-    out.reason = "no lattice neighbour inside the kernel support (h too small)";
-    return out;
-  }
+  SymbolCriticalStrain out = initial_result(sym, sgn);
+  if (std::isnan(out.e)) return out;
   auto report_k = [&](const Eigen::Vector2d& k) {
     const Eigen::Vector2d f = lat.fold(k) * lat.dx / M_PI;
     out.kx_over_pi = f[0];
@@ -303,13 +314,8 @@ std::vector<Eigen::Vector2d> periodic_wavevectors(const BravaisLattice2D& lat, i
 SymbolCriticalStrain critical_strain_periodic_symbol_2d(const ElasticSymbol2D& sym, int n, LoadDirection sign) {
   const std::vector<Eigen::Vector2d> ks = periodic_wavevectors(sym.lattice(), n);
   const double sgn = sign == LoadDirection::Tension ? 1.0 : -1.0;
-  SymbolCriticalStrain out;
-  out.e = sgn * kInf;
-  if (sym.stencil_size() == 0) {  // no lattice vector inside the support: the symbol is 0, stability undefined
-    out.e = SymbolCriticalStrain::nan;
-    out.reason = "no lattice neighbour inside the kernel support (h too small)";
-    return out;
-  }
+  SymbolCriticalStrain out = initial_result(sym, sgn);
+  if (std::isnan(out.e)) return out;
   out.reason = "A^(k_m, e) stable at every admissible k_m";
   for (size_t m = 1; m < ks.size(); ++m) {
     const bool zero = is_zone_boundary_zero(sym.lattice(), ks[m]);
