@@ -25,6 +25,7 @@
 #include "sphstab/forms/stabilised_sph.hpp"
 #include "sphstab/forms/total_lagrangian.hpp"
 #include "sphstab/forms/wave_1d.hpp"
+#include "sphstab/growth/class_growth.hpp"
 #include "sphstab/growth/growth_run.hpp"
 #include "sphstab/growth/linear_growth.hpp"
 #include "sphstab/growth/mirror_symmetry.hpp"
@@ -116,23 +117,15 @@ std::vector<Formulation> formulations() {
 
 /// The four mirror classes of the Swegle block (the same for every xi) and the XSPH smoothing on the DOFs.
 struct Classes {
-  MirrorSymmetry symmetry;
-  std::vector<Eigen::MatrixXd> Q;  ///< (px, py) = (+,+), (+,-), (-,+), (-,-)
-  std::vector<std::pair<int, int>> parity;
-  int excited = -1;       ///< class of the initial velocity
+  MirrorClasses mirror;
   Eigen::MatrixXd S_dof;  ///< XSPH smoothing (x) I_2 at x0
 };
 
 Classes make_classes(const SwegleScene& s) {
   Classes c;
   const double mid = 0.5 * s.options.n * s.options.spacing;
-  c.symmetry = mirror_symmetry(s.free_positions(), Eigen::Vector2d(mid, mid), 1e-6 * s.options.spacing);
-  for (int px : {1, -1})
-    for (int py : {1, -1}) {
-      c.Q.push_back(symmetry_basis(c.symmetry, px, py));
-      c.parity.emplace_back(px, py);
-      if (class_share(c.symmetry, px, py, s.v0) > 1 - 1e-12) c.excited = static_cast<int>(c.Q.size()) - 1;
-    }
+  c.mirror =
+      mirror_classes(mirror_symmetry(s.free_positions(), Eigen::Vector2d(mid, mid), 1e-6 * s.options.spacing), s.v0);
   const SparseMatrix<> S = xsph_smoothing_matrix(*s.discretisation, {});
   const int n = s.discretisation->dofs();
   c.S_dof = Eigen::MatrixXd::Zero(n, n);
@@ -160,38 +153,15 @@ Linear analyse(const ForceFunction& f, const Eigen::VectorXd& u, const Classes& 
   L.colours = jac.colours();
   if (jac.info() != Status::Successful) return L;
   L.asymmetry = relative_asymmetry(As);
-  L.commutation = commutation_error(c.symmetry, As);
-  const Eigen::MatrixXd A(As);
-  if (L.commutation < 1e-10) {
-    L.gamma_all = 0;
-    L.lambda_max = 0;
-    for (std::size_t k = 0; k < c.Q.size(); ++k) {
-      const Eigen::MatrixXd Ak = c.Q[k].transpose() * A * c.Q[k];
-      const bool exc = static_cast<int>(k) == c.excited;
-      const LinearGrowth g = matrix_growth(Ak, exc);
-      if (g.gamma > L.gamma_all || k == 0) {
-        L.gamma_all = g.gamma;
-        L.mu_all = g.mu;
-      }
-      L.lambda_max = std::max(L.lambda_max, g.lambda_max);
-      if (exc) {
-        L.gamma_exc = g.gamma;
-        L.mu_exc = g.mu;
-        L.mode = c.Q[k] * g.mode;
-        if (xsph) {
-          const Eigen::MatrixXd Sk = c.Q[k].transpose() * c.S_dof * c.Q[k];
-          L.gamma_map = leapfrog_map_growth(Ak, dt, Sk, VelocityHookMode::Replace).gamma;
-        }
-      }
-    }
-  } else {  // no mirror symmetry (should not happen): whole spectrum, no class information
-    const LinearGrowth g = matrix_growth(A, true);
-    L.gamma_all = L.gamma_exc = g.gamma;
-    L.mu_all = L.mu_exc = g.mu;
-    L.lambda_max = g.lambda_max;
-    L.mode = g.mode;
-    if (xsph) L.gamma_map = leapfrog_map_growth(A, dt, c.S_dof, VelocityHookMode::Replace).gamma;
-  }
+  const ClassGrowth g = class_growth(As, c.mirror, xsph ? c.S_dof : Eigen::MatrixXd(), dt);
+  L.commutation = g.commutation;
+  L.gamma_all = g.gamma_all;
+  L.mu_all = g.mu_all;
+  L.gamma_exc = g.gamma_excited;
+  L.mu_exc = g.mu_excited;
+  L.gamma_map = g.gamma_map;
+  L.lambda_max = g.lambda_max;
+  L.mode = g.mode;
   L.seconds = study::seconds_since(t0);
   return L;
 }
@@ -791,8 +761,8 @@ int main(int argc, char** argv) {
   std::cout << "Swegle block: " << base.options.n << " x " << base.options.n << " free particles + "
             << fixed_layers_needed(base.discretisation->kernel.support_radius(base.h), dx)
             << " fixed layers, dx = " << dx << " cm, h = 1.3 dx, dt = " << dt << " us, t_end = " << c.t_end
-            << " us; excited class (px, py) = (" << classes.parity[classes.excited].first << ", "
-            << classes.parity[classes.excited].second << ")\n";
+            << " us; excited class (px, py) = (" << classes.mirror.parity[classes.mirror.excited].first << ", "
+            << classes.mirror.parity[classes.mirror.excited].second << ")\n";
   const std::vector<Row> rows = run_2d(forms, c, classes, dt);
   const double wall_2d = study::seconds_since(wall0);
   const std::vector<EnergyRow> energy = energy_conservation(c, dt);
