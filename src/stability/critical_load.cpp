@@ -372,7 +372,6 @@ void spectrum_routes(const Linearisation& lin, const CriticalLoadOptions& opt, C
     return last_failure.empty();
   };
   if (!stable(0.0)) {
-    out.evaluations = tests;
     if (opt.a0_failure_is_zero_load) {
       out.load = out.load_bisection = out.lo = out.hi = 0.0;
       out.status = Status::Successful;
@@ -384,7 +383,7 @@ void spectrum_routes(const Linearisation& lin, const CriticalLoadOptions& opt, C
     }
     return;
   }
-  if (!opt.a0_failure_is_zero_load) tests = 0;  // the 2D count excludes the check of A(0)
+  tests = 0;  // evaluations count the search, not the check of A(0) (as the Cholesky check of the definiteness route)
   // Eigen route: real crossings det A(load) = 0 from the eigenvalues nu of M = A0^-1 (sgn A1):
   // A0 + tau sgn A1 singular iff nu = -1/tau, so tau_real = -1/nu for the most negative real nu.
   double tau_real = kInf;
@@ -612,6 +611,8 @@ CriticalLoadOptions CriticalLoadOptions::force_function() {
 CriticalLoad critical_load(const Linearisation& lin, LoadDirection direction, const CriticalLoadOptions& opt) {
   validate(lin, opt);
   const int m = lin.dofs();
+  const SparseMatrix<> a_one = lin.at(1.0);  // A at unit load, formed once
+  const double asymmetry0 = relative_asymmetry(lin.A0), asymmetry1 = relative_asymmetry(a_one);
   Criterion crit = opt.criterion;
   if (crit == Criterion::Auto)
     crit = lin.symmetric                 ? Criterion::Definiteness
@@ -619,7 +620,7 @@ CriticalLoad critical_load(const Linearisation& lin, LoadDirection direction, co
                                          : Criterion::SymmetricPart;
   if (crit == Criterion::Definiteness && !lin.symmetric)
     throw std::invalid_argument("critical_load: criterion 'definiteness' needs a symmetric A (relative asymmetry " +
-                                format_number(std::max(relative_asymmetry(lin.A0), relative_asymmetry(lin.at(1.0)))) +
+                                format_number(std::max(asymmetry0, asymmetry1)) +
                                 "); use 'spectrum' or 'symmetric-part'");
   CriticalLoad out;
   out.size = m;
@@ -627,8 +628,8 @@ CriticalLoad critical_load(const Linearisation& lin, LoadDirection direction, co
   out.criterion = crit;
   const double sgn = load_sign(direction);
   const double n0 = lin.A0.norm(), n1 = lin.A1.norm();
-  out.asymmetry0 = relative_asymmetry(lin.A0);
-  out.asymmetry1 = relative_asymmetry(lin.at(1.0));
+  out.asymmetry0 = asymmetry0;
+  out.asymmetry1 = asymmetry1;
   out.a1_relative = n0 > 0 ? n1 / n0 : (n1 > 0 ? kInf : 0.0);
 
   if (n0 == 0 && n1 == 0) {  // no pair interacts: A = 0 is singular, stability is undefined
@@ -636,7 +637,7 @@ CriticalLoad critical_load(const Linearisation& lin, LoadDirection direction, co
     out.reason = "A0 = A1 = 0: no particle has a neighbour inside the kernel support (h too small for the lattice)";
     return out;
   }
-  if (n1 <= opt.zero_tol * (n0 + lin.at(1.0).norm())) {  // [Powell2012, (3.38)]: no load dependence
+  if (n1 <= opt.zero_tol * (n0 + a_one.norm())) {  // [Powell2012, (3.38)]: no load dependence
     bool holds = false;
     if (crit == Criterion::Spectrum) {
       holds = spectrum_failure(Eigen::MatrixXd(lin.A0), opt, nullptr).empty();

@@ -196,18 +196,11 @@ std::string linear_verdict(double gamma, double detect) {
   return "stable";
 }
 
-Eigen::MatrixX2d free_points(const SwegleScene& s) {
-  const Discretisation<2>& d = *s.discretisation;
-  Eigen::MatrixX2d x(d.free_count(), 2);
-  for (int f = 0; f < d.free_count(); ++f) x.row(f) = d.particles.x.row(d.free[f]);
-  return x;
-}
-
 ModeK mode_k(const Eigen::VectorXd& field, const SwegleScene& s) {
   ModeK m;
   if (!field.size() || !(field.cwiseAbs().maxCoeff() > 0)) return m;
-  const WavevectorEstimate e =
-      dominant_wavevector(field, free_points(s), bravais_lattice_2d(LatticeType::Square, s.options.spacing));
+  const WavevectorEstimate e = dominant_wavevector(field, Eigen::MatrixX2d(s.discretisation->free_positions()),
+                                                   bravais_lattice_2d(LatticeType::Square, s.options.spacing));
   m.kx = e.kx_over_pi;
   m.ky = e.ky_over_pi;
   m.peak = e.peak_fraction;
@@ -218,7 +211,7 @@ ModeK mode_k(const Eigen::VectorXd& field, const SwegleScene& s) {
 }
 
 void write_mode_vtp(const std::string& path, const SwegleScene& s, const Eigen::VectorXd& field, const char* name) {
-  const Eigen::MatrixX2d x = free_points(s);
+  const Eigen::MatrixX2d x = Eigen::MatrixX2d(s.discretisation->free_positions());
   Eigen::VectorXd f = field;
   const double m = f.cwiseAbs().maxCoeff();
   if (m > 0) f /= m;

@@ -85,6 +85,26 @@ TEST(TcritCommand, MinusFormAndPeriodic) {
   EXPECT_NE(pl[1].find("sawtooth"), std::string::npos);
 }
 
+TEST(TcritCommand, NoNeighbourInsideTheSupportIsTheSameNumericalIssueForEveryRoute) {
+  // h = 0.3 dx: support 0.6 dx, no pair interacts. Plain forms (minus included), a corrected form and 2D all give
+  // nan with status numerical-issue (one engine), never inf or a "successful" value.
+  for (const char* args : {"tcrit --n 30 --h 0.3 --form minus,plus",
+                           "tcrit --n 30 --h 0.3 --form plus --correction shepard", "tcrit --dim 2 --n 6 --h 0.3"}) {
+    CliRun r = run(args);
+    ASSERT_EQ(r.status, 0) << args;
+    const auto ls = lines(r.out);
+    const auto header = fields(ls[0]);
+    auto col = [&](const std::string& name) { return std::find(header.begin(), header.end(), name) - header.begin(); };
+    const std::string load = std::string(args).find("--dim 2") != std::string::npos ? "ecrit" : "tcrit";
+    ASSERT_GE(ls.size(), 2u) << args;
+    for (std::size_t i = 1; i < ls.size(); ++i) {
+      const auto row = fields(ls[i]);
+      EXPECT_EQ(row[col(load)], "nan") << args << ": " << ls[i];
+      EXPECT_EQ(row[col("status")], "numerical-issue") << args << ": " << ls[i];
+    }
+  }
+}
+
 TEST(TcritCommand, CorrectionAddsCriterionColumn) {
   // Plain rows: criterion = definiteness.
   CliRun plain = run("tcrit --n 30 --kernel cubic --form conservative --h 1.25");
