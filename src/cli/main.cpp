@@ -1,24 +1,3 @@
-#include <CLI/CLI.hpp>
-#include <iostream>
+#include "run.hpp"
 
-#include "commands.hpp"
-
-int main(int argc, char** argv) {
-  CLI::App app{"sphstab: stability, accuracy and speed of SPH formulations for elastic solids"};
-  app.require_subcommand(1);
-  sphstab::cli::register_commands(app);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help
-    std::string what = e.what();                     // one line, like every other error
-    for (char& c : what)
-      if (c == '\n') c = ' ';
-    std::cerr << "sphstab: error: " << what << " (see --help)\n";
-    return 1;
-  } catch (const std::exception& e) {
-    std::cerr << "sphstab: error: " << e.what() << "\n";
-    return 1;
-  }
-  return 0;
-}
+int main(int argc, char** argv) { return sphstab::cli::run(argc, argv); }

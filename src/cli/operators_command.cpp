@@ -9,6 +9,8 @@
 #include <string>
 
 #include "commands.hpp"
+#include "parse.hpp"
+#include "sphstab/core/length_scale.hpp"
 #include "sphstab/io/matrix_market.hpp"
 #include "sphstab/kernel/kernel.hpp"
 #include "sphstab/neighbours/neighbour_list.hpp"
@@ -34,7 +36,7 @@ struct OperatorsArgs {
   bool periodic = false;
   int fixed_layers = -1;
   double perturb = 0.0;
-  std::uint64_t seed = 1;
+  std::string seed = "1";
   bool hessian = false;
   std::string out;
 };
@@ -97,8 +99,15 @@ void run(const OperatorsArgs& args, const std::string& command_line) {
                                 std::to_string(lattice_dimension(type)) + " (got --dim " + std::to_string(Dim) + ")");
   if (args.n <= 0) throw std::invalid_argument("--n must be > 0 (got " + std::to_string(args.n) + ")");
   require_finite(args.h_over_dx, true, "--h");
-  require_finite(args.dx, true, "--dx");
+  check_length(args.dx, "--dx");
+  check_length(args.h_over_dx * args.dx, "smoothing length h = --h x --dx");
   require_finite(args.perturb, false, "--perturb");
+  if (args.fixed_layers < -1)
+    throw std::invalid_argument("--fixed-layers must be >= 0, or -1 for as many as the support needs (got " +
+                                std::to_string(args.fixed_layers) + ")");
+  if (args.periodic && args.fixed_layers > 0)
+    throw std::invalid_argument("--fixed-layers " + std::to_string(args.fixed_layers) +
+                                " does not apply to --periodic (a periodic lattice has no fixed layers)");
   const Correction correction = parse_correction(args.correction);
   const NeighbourCounting counting = parse_counting(args.counting);
   const Kernel<Dim> kernel(parse_kernel_type(args.kernel));
@@ -110,7 +119,7 @@ void run(const OperatorsArgs& args, const std::string& command_line) {
   lopt.support_radius = kernel.support_radius(h);
   lopt.periodic = args.periodic;
   lopt.perturbation = args.perturb;
-  lopt.seed = args.seed;
+  lopt.seed = parse_unsigned(args.seed, "--seed");
   const ParticleSet<Dim> set = make_lattice<Dim>(type, args.n, lopt);
   if (correction_is_dense(correction) && set.size() > kMaxDenseParticles)
     throw std::invalid_argument("--correction " + correction_name(correction) + " is dense (N^2 entries); N = " +
@@ -217,7 +226,7 @@ void register_operators_command(CLI::App& app) {
         number(args->dx) + " --correction " + args->correction + " --counting " + args->counting +
         (args->first_step_shepard ? " --first-step-shepard" : "") + (args->polish_free ? " --polish-free" : "") +
         (args->periodic ? " --periodic" : "") + " --fixed-layers " + std::to_string(args->fixed_layers) +
-        " --perturb " + number(args->perturb) + " --seed " + std::to_string(args->seed);
+        " --perturb " + number(args->perturb) + " --seed " + args->seed;
     switch (args->dim) {
       case 1:
         run<1>(*args, line);

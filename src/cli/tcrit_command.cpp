@@ -2,20 +2,26 @@
 // --correction, of the 1D forms with a corrected kernel gradient (Powell ch. 3 §4.1.1, ch. 4 §2) by the general
 // affine route (critical_load.hpp); or (--dim 2) the critical pre-strain of a 2D lattice (elastic forms,
 // analytic Jacobian A0 + e A1).
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
+#include "parse.hpp"
 #include "sphstab/core/format.hpp"
+#include "sphstab/core/length_scale.hpp"
+#include "sphstab/core/memory_budget.hpp"
 #include "sphstab/forms/correction_gradient.hpp"
 #include "sphstab/forms/momentum_form.hpp"
 #include "sphstab/forms/wave_1d.hpp"
 #include "sphstab/io/csv.hpp"
+#include "sphstab/io/progress.hpp"
 #include "sphstab/jacobian/analytic_jacobian_2d.hpp"
 #include "sphstab/kernel/kernel.hpp"
 #include "sphstab/particles/lattice.hpp"
@@ -44,47 +50,17 @@ struct TcritArgs {
 /// correction (Powell's regular grid, ch. 3 footnote h); checked by the residual in `reason`.
 constexpr int kCorrectedLayerSupports = 3;
 
-std::vector<std::string> split(const std::string& s, char sep) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, sep)) out.push_back(item);
-  return out;
-}
-
-double parse_double(const std::string& s, const std::string& what) {
-  size_t used = 0;
-  double v = 0;
-  try {
-    v = std::stod(s, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != s.size() || !std::isfinite(v))
-    throw std::invalid_argument("tcrit: " + what + " must be a finite number (got '" + s + "')");
-  return v;
-}
-
 int parse_positive_int(const std::string& s, const std::string& what) {
-  size_t used = 0;
-  long v = 0;
-  try {
-    v = std::stol(s, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != s.size() || v < 1 || v > 100000000)
-    throw std::invalid_argument("tcrit: " + what + " must be a positive integer (got '" + s + "')");
-  return static_cast<int>(v);
+  return static_cast<int>(parse_integer(s, 1, 100000000, "tcrit: " + what));
 }
 
 /// "a", "a,b,c" or "a:b:step" (inclusive, values snapped to 12 significant digits).
 std::vector<double> parse_h(const std::string& spec) {
   std::vector<double> hs;
-  const auto range = split(spec, ':');
+  const auto range = split_list(spec, ':', "tcrit: --h");
   if (range.size() == 3) {
-    const double a = parse_double(range[0], "--h start"), b = parse_double(range[1], "--h end"),
-                 s = parse_double(range[2], "--h step");
+    const double a = parse_double(range[0], "tcrit: --h start"), b = parse_double(range[1], "tcrit: --h end"),
+                 s = parse_double(range[2], "tcrit: --h step");
     if (!(s > 0) || b < a)
       throw std::invalid_argument("tcrit: --h a:b:step needs step > 0 and b >= a (got '" + spec + "')");
     const double count = std::floor((b - a) / s + 1e-9) + 1;
@@ -95,17 +71,60 @@ std::vector<double> parse_h(const std::string& spec) {
       hs.push_back(std::stod(buf));
     }
   } else if (range.size() == 1) {
-    for (const auto& item : split(spec, ',')) hs.push_back(parse_double(item, "--h"));
+    for (const auto& item : split_list(spec, ',', "tcrit: --h")) hs.push_back(parse_double(item, "tcrit: --h"));
   } else {
     throw std::invalid_argument("tcrit: --h must be a value, a comma list or a:b:step (got '" + spec + "')");
   }
-  if (hs.empty()) throw std::invalid_argument("tcrit: --h is empty");
-  for (double h : hs)
-    if (!(h > 0)) throw std::invalid_argument("tcrit: --h values must be > 0 (got " + std::to_string(h) + ")");
+  for (double h : hs) check_length(h, "tcrit: --h (h/dx, dx = 1)");
   return hs;
 }
 
 std::string num(double v) { return format_number(v, 12); }
+
+/// A long sweep says so: when the first case's time x the number of cases exceeds a minute, an estimate on stderr,
+/// then a progress line every 10 s (stdout keeps only the CSV).
+class SweepProgress {
+ public:
+  explicit SweepProgress(long cases) : m_cases(cases), m_start(std::chrono::steady_clock::now()) {}
+  void case_done() {
+    ++m_done;
+    if (m_done == 1 && m_cases > 1) {
+      const double first = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
+      if (first * m_cases > 60) {
+        std::fprintf(stderr, "tcrit: %ld cases; the first took %.3g s, so about %.3g min in all\n", m_cases, first,
+                     first * m_cases / 60);
+        m_line.emplace("tcrit", 10.0);
+      }
+    }
+    if (m_line) m_line->update(static_cast<double>(m_done), static_cast<double>(m_cases));
+  }
+
+ private:
+  long m_cases, m_done = 0;
+  std::chrono::steady_clock::time_point m_start;
+  std::optional<ProgressLine> m_line;
+};
+
+/// Peak memory of one 1D case, estimated before anything is built (the library checks each allocation again): the
+/// lattice, the neighbour list, G and H, the Jacobian (about 120 bytes per entry of G, analytic_jacobian_1d.cpp), the
+/// Cholesky factor of the banded A0 (bandwidth 2 supports) and, for a dense eigen route, five n x n copies.
+void require_tcrit_1d_memory(int nfree, double support, int layer_supports, bool periodic, bool dense) {
+  const double particles = nfree + (periodic ? 0.0 : 2.0 * std::floor(layer_supports * support + 1));
+  const double pairs = particles * std::min(particles, 1 + 2 * support);
+  const double bytes = 21 * particles + 150 * pairs + 18 * nfree * std::min<double>(nfree, 4 * support + 1) +
+                       (dense ? 40.0 * nfree * nfree : 0.0);
+  require_memory(bytes, "tcrit: --n " + std::to_string(nfree) + " with h/dx = " + num(support / 2));
+}
+
+/// The same for a 2D block: the lattice, neighbours, G and H, the Jacobian (analytic_jacobian_2d.cpp) and dense copies
+/// for a dense route. The Cholesky factor's fill is checked by CHOLMOD's analysis (cholmod_factor.cpp).
+void require_tcrit_2d_memory(int n, double support, bool dense) {
+  const double side = n + 2.0 * std::floor(support + 2), particles = side * side, nf = double(n) * n;
+  const double q = std::min(particles, 1 + M_PI * support * support),
+               q2 = std::min(particles, 1 + 4 * M_PI * support * support);
+  const double bytes = 25 * particles + 66 * particles * q + 96 * nf * (q + q2) + (dense ? 160.0 * nf * nf : 0.0);
+  require_memory(bytes, "tcrit: --dim 2 --n " + std::to_string(n) + " with h/dx = " + num(support / 2));
+}
 
 /// --dim 2: critical pre-strain e_crit of an n x n lattice (fixed layers: analytic Jacobian, bisection + eigen;
 /// periodic: exact Fourier symbols) with the infinite-lattice limit.
@@ -128,12 +147,12 @@ void run_tcrit_2d(const TcritArgs& a) {
   else
     throw std::invalid_argument("tcrit: --prestrain must be isotropic or uniaxial (got '" + a.prestrain + "')");
   const ElasticMaterial material{
-      .lambda = parse_double(a.lambda, "--lambda"), .mu = parse_double(a.mu, "--mu"), .rho = 1.0};
+      .lambda = parse_double(a.lambda, "tcrit: --lambda"), .mu = parse_double(a.mu, "tcrit: --mu"), .rho = 1.0};
   material.validate("tcrit");
   std::vector<KernelType> kernels;
-  for (const auto& k : split(a.kernel, ',')) kernels.push_back(parse_kernel_type(k));
+  for (const auto& k : split_list(a.kernel, ',', "tcrit: --kernel")) kernels.push_back(parse_kernel_type(k));
   std::vector<MomentumForm> forms;
-  for (const auto& f : split(a.form, ',')) forms.push_back(parse_momentum_form(f));
+  for (const auto& f : split_list(a.form, ',', "tcrit: --form")) forms.push_back(parse_momentum_form(f));
   if (kernels.empty() || forms.empty()) throw std::invalid_argument("tcrit: --kernel and --form must not be empty");
   const std::vector<double> hs = parse_h(a.h);
   CriticalLoadOptions opt = CriticalLoadOptions::strain_2d();
@@ -147,6 +166,8 @@ void run_tcrit_2d(const TcritArgs& a) {
     if (a.periodic && n * (type == LatticeType::Hexagonal ? std::sqrt(3.0) / 2 : 1.0) < 2 * support)
       throw std::invalid_argument("tcrit: periodic box of --n " + a.n +
                                   " is shorter than twice the support 2h = " + num(support) + " (increase --n)");
+    const bool dense = opt.backend == EigenBackend::Dense || 2.0 * n * n <= opt.spectrum_dense_max;
+    if (!a.periodic) require_tcrit_2d_memory(n, support, dense);
   }
 
   std::string out =
@@ -154,6 +175,7 @@ void run_tcrit_2d(const TcritArgs& a) {
       "ecrit_bisect,rel_diff,mechanism,ecrit_infinite,ecrit_symbol,mode_kx_over_pi,mode_ky_over_pi,"
       "mode_peak_fraction,infinite_kx_over_pi,infinite_ky_over_pi,status,reason\n";
   const std::string prestrain_name = kind == PreStrainKind::Isotropic ? "isotropic" : "uniaxial";
+  SweepProgress progress(static_cast<long>(kernels.size() * hs.size() * forms.size()));
   for (KernelType kt : kernels) {
     Kernel<2> kernel(kt);
     for (double h : hs) {
@@ -171,7 +193,7 @@ void run_tcrit_2d(const TcritArgs& a) {
           r.mechanism = p.mechanism;
           r.mode_wavevector.kx_over_pi = p.kx_over_pi;
           r.mode_wavevector.ky_over_pi = p.ky_over_pi;
-          r.status = Status::Successful;
+          r.status = std::isnan(p.e) ? Status::NumericalIssue : Status::Successful;  // NaN: no neighbour
           r.reason = p.reason;
           method = "symbol";
           backend = "none";
@@ -208,6 +230,7 @@ void run_tcrit_2d(const TcritArgs& a) {
                                            status_name(r.status),
                                            r.reason};
         out += csv_line(row);
+        progress.case_done();
       }
     }
   }
@@ -216,7 +239,7 @@ void run_tcrit_2d(const TcritArgs& a) {
 
 void run_tcrit(const TcritArgs& a) {
   // Validate everything before printing anything.
-  const int dim = parse_positive_int(a.dim, "--dim");
+  const int dim = static_cast<int>(parse_integer(a.dim, 1, 3, "tcrit: --dim"));
   if (dim == 3) throw std::invalid_argument("tcrit: --dim 3 is not yet supported (only --dim 1 or 2)");
   if (dim == 2) return run_tcrit_2d(a);
   if (dim != 1) throw std::invalid_argument("tcrit: --dim must be 1 or 2 (got '" + a.dim + "')");
@@ -235,13 +258,22 @@ void run_tcrit(const TcritArgs& a) {
   const LoadDirection direction = a.compression ? LoadDirection::Compression : LoadDirection::Tension;
   const int nfree = parse_positive_int(a.n, "--n");
   std::vector<KernelType> kernels;
-  for (const auto& k : split(a.kernel, ',')) kernels.push_back(parse_kernel_type(k));
+  for (const auto& k : split_list(a.kernel, ',', "tcrit: --kernel")) kernels.push_back(parse_kernel_type(k));
   std::vector<MomentumForm> forms;
-  for (const auto& f : split(a.form, ',')) forms.push_back(parse_momentum_form(f));
+  for (const auto& f : split_list(a.form, ',', "tcrit: --form")) forms.push_back(parse_momentum_form(f));
   if (kernels.empty() || forms.empty()) throw std::invalid_argument("tcrit: --kernel and --form must not be empty");
   const std::vector<double> hs = parse_h(a.h);
   const CriticalLoadMethod method = parse_critical_load_method(a.method);
   const EigenBackend backend = parse_eigen_backend(a.backend);
+  for (double h : hs) {
+    const double support = Kernel<1>(kernels[0]).support_radius(h);
+    const bool dense = method != CriticalLoadMethod::Bisection &&
+                       (backend == EigenBackend::Dense ||
+                        nfree <= (correction == Correction::None ? CriticalLoadOptions{}.dense_max
+                                                                 : CriticalLoadOptions{}.spectrum_dense_max));
+    require_tcrit_1d_memory(nfree, support, correction == Correction::None ? 1 : kCorrectedLayerSupports, a.periodic,
+                            dense);
+  }
   auto with_routes = [&](CriticalLoadOptions o) {
     o.method = method;
     o.backend = backend;
@@ -255,6 +287,7 @@ void run_tcrit(const TcritArgs& a) {
       "t_second_minor,t_nn,t_nn_minor,t_swegle,tcrit_infinite,tcrit_symbol,mode_k_over_pi,status,reason,criterion\n";
   auto add_row = [&out](const std::vector<std::string>& row) { out += csv_line(row); };
   const double nan = CriticalLoad::nan;
+  SweepProgress progress(static_cast<long>(kernels.size() * hs.size() * forms.size()));
   for (KernelType type : kernels) {
     Kernel<1> kernel(type);
     for (double h : hs) {
@@ -292,10 +325,40 @@ void run_tcrit(const TcritArgs& a) {
                    status_name(r.status),
                    a.compression ? "compression: T < 0 searched as K + |T| n L; " + r.reason : r.reason,
                    criterion_name(r.criterion)});
+          progress.case_done();
         }
         continue;
       }
       // Corrected kernel: complex-step A(T) = A0 + T A1 of the force function, then the general criteria.
+      if (kernel.support_radius(h) <= 1.0) {
+        // One rule with the plain routes: no neighbour inside the support -> NaN and numerical-issue (a correction
+        // such as NCSPH is not even defined there).
+        for (MomentumForm form : forms)
+          add_row({kernel_name(type),
+                   momentum_form_name(form),
+                   std::to_string(nfree),
+                   "0",
+                   num(h),
+                   a.method,
+                   "none",
+                   num(nan),
+                   num(nan),
+                   num(nan),
+                   num(nan),
+                   num(nan),
+                   num(nan),
+                   num(nan),
+                   num(nan),
+                   num(nan),
+                   num(nan),
+                   num(nan),
+                   num(nan),
+                   status_name(Status::NumericalIssue),
+                   "no neighbour inside the kernel support (2h = " + num(kernel.support_radius(h)) +
+                       " <= dx): every operator is diagonal",
+                   "none"});
+        continue;
+      }
       const ParticleSet<1> set = tension_lattice_1d(kernel, h, nfree, false, kCorrectedLayerSupports);
       auto disc = make_discretisation(set, kernel, h);
       const Eigen::MatrixXd x = disc->free_positions();
@@ -334,6 +397,7 @@ void run_tcrit(const TcritArgs& a) {
                    note + "; " + r.reason,
                    criterion_name(r.criterion)});
         }
+        progress.case_done();
       }
     }
   }

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "sphstab/core/format.hpp"
 #include "sphstab/numerics/instantiation.hpp"
 
 namespace sphstab {
@@ -14,12 +15,12 @@ std::shared_ptr<const Discretisation<Dim>> make_discretisation(ParticleSet<Dim> 
   particles.validate("make_discretisation");
   if (!(h > 0) || !std::isfinite(h))
     throw std::invalid_argument("make_discretisation: smoothing length h must be finite and > 0 (got " +
-                                std::to_string(h) + ")");
+                                format_number(h) + ")");
   const double support = kernel.support_radius(h);
   if (neighbour_radius <= 0) neighbour_radius = support;
   if (neighbour_radius < support * (1 - 1e-12))
-    throw std::invalid_argument("make_discretisation: neighbour radius " + std::to_string(neighbour_radius) +
-                                " is smaller than the kernel support " + std::to_string(support));
+    throw std::invalid_argument("make_discretisation: neighbour radius " + format_number(neighbour_radius) +
+                                " is smaller than the kernel support " + format_number(support));
   auto d = std::make_shared<Discretisation<Dim>>(Discretisation<Dim>{std::move(particles), kernel, h, {}, {}, {}});
   d->neighbours = find_neighbours(d->particles, neighbour_radius);
   d->free = d->particles.indices(Role::Free);

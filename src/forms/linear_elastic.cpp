@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "sphstab/core/format.hpp"
 #include "sphstab/numerics/instantiation.hpp"
 
 namespace sphstab {
@@ -33,7 +34,7 @@ LinearElasticSph<Dim>::LinearElasticSph(const ParticleSet<Dim>& particles, const
     : m_p(particles), m_kernel(kernel), m_h(h), m_opt(opt) {
   m_p.validate("LinearElasticSph");
   if (!(h > 0) || !std::isfinite(h))
-    throw std::invalid_argument("LinearElasticSph: h must be finite and > 0 (got " + std::to_string(h) + ")");
+    throw std::invalid_argument("LinearElasticSph: h must be finite and > 0 (got " + format_number(h) + ")");
   if (!(opt.density > 0) || !(opt.shear_modulus > 0) || !std::isfinite(opt.lame_lambda) ||
       !(opt.lame_lambda + 2.0 * opt.shear_modulus / Dim > 0))
     throw std::invalid_argument("LinearElasticSph: need density > 0, shear modulus > 0 and a positive bulk modulus");

@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "sphstab/core/memory_budget.hpp"
 #include "sphstab/neighbours/neighbour_list.hpp"
 
 namespace sphstab {
@@ -20,6 +21,11 @@ Linearisation analytic_jacobian_1d(const ParticleSet<1>& p, const Operators<1>& 
     throw std::invalid_argument("analytic_jacobian_1d: Hessian operator H must be " + std::to_string(n) + " x " +
                                 std::to_string(n) + " (assemble with hessian = true)");
 
+  // Triplets, G_f and its transpose, the product A0 = G_f G_f^T (twice the pairs: neighbours of neighbours) and its
+  // pruned copy, and L: about 120 bytes per stored entry of G.
+  require_memory(
+      120.0 * static_cast<double>(g.nonZeros()),
+      "analytic_jacobian_1d: " + std::to_string(n) + " particles, " + std::to_string(g.nonZeros()) + " entries in G");
   Linearisation jac;
   jac.free_index = p.indices(Role::Free);
   const int nf = static_cast<int>(jac.free_index.size());

@@ -6,6 +6,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "sphstab/core/format.hpp"
+#include "sphstab/core/memory_budget.hpp"
+
 namespace sphstab {
 
 namespace {
@@ -42,9 +45,25 @@ SparseMatrix<> block_matrix(int nfree, RowFn&& row_blocks, long nnz_hint) {
 
 }  // namespace
 
+namespace {
+
+/// Checked before anything is assembled: A0 couples neighbours of neighbours (G G), A1 neighbours, in 2 x 2 blocks of
+/// 12 bytes per entry (value + index), twice for the row buffers; plus the five operator matrices if asked.
+void require_jacobian_memory(const Discretisation<2>& d, bool with_operators) {
+  const double r = d.neighbours.radius, pairs = expected_neighbour_pairs(d.particles, r);
+  const double pairs2 = expected_neighbour_pairs(d.particles, 2 * r);
+  const double free_fraction = static_cast<double>(d.free_count()) / d.size();
+  const double bytes = 2 * free_fraction * (pairs2 + pairs) * 4 * 12 + (with_operators ? 5 * pairs * 12 : 0.0);
+  require_memory(bytes, "analytic_jacobian_2d: " + std::to_string(2L * d.free_count()) + " DOFs, ~" +
+                            format_number(4 * free_fraction * pairs2, 3) + " nonzeros in A0");
+}
+
+}  // namespace
+
 Linearisation analytic_jacobian_2d(const Discretisation<2>& d, const Operators<2>& ops, const ElasticMaterial& material,
                                    MomentumForm form, PreStrainKind kind) {
   material.validate("analytic_jacobian_2d");
+  require_jacobian_memory(d, false);
   const int n = d.size(), nf = d.free_count();
   const NeighbourList& nl = d.neighbours;
   auto check = [&](const SparseMatrix<>& m, const char* name) {
@@ -172,6 +191,8 @@ Linearisation analytic_jacobian_2d(const Discretisation<2>& d, const Operators<2
 
 Linearisation analytic_jacobian_2d(const Discretisation<2>& d, const ElasticMaterial& material, MomentumForm form,
                                    PreStrainKind kind) {
+  material.validate("analytic_jacobian_2d");
+  require_jacobian_memory(d, true);
   const Operators<2> ops = assemble_operators<2>(d.particles, d.neighbours, d.kernel, d.h,
                                                  {.kernel = false, .gradient = true, .hessian = true});
   return analytic_jacobian_2d(d, ops, material, form, kind);

@@ -4,6 +4,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "sphstab/core/format.hpp"
+#include "sphstab/core/memory_budget.hpp"
+
 namespace sphstab {
 
 namespace detail {
@@ -55,6 +58,11 @@ void CholmodFactor::analyze_pattern(const ColSparseMatrix& lower) {
   if (!lower.isCompressed())
     throw std::invalid_argument("CholmodFactor::analyze_pattern: matrix must be compressed (call makeCompressed())");
   m_impl->chol.analyzePattern(lower);
+  // The analysis knows the factor's fill for the chosen ordering (Common->lnz): check it before factorising.
+  // 12 bytes per entry (value + row index), 1.5x for supernodal padding and workspace.
+  const double lnz = m_impl->chol.cholmod().lnz;
+  require_memory(1.5 * 12.0 * lnz, "Cholesky factor (CHOLMOD, n = " + std::to_string(lower.rows()) + ", " +
+                                       format_number(lnz, 3) + " nonzeros in L)");
   m_impl->analysed = true;
   m_impl->factorised = false;
   m_n = lower.rows();

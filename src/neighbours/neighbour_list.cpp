@@ -5,6 +5,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "sphstab/core/format.hpp"
+#include "sphstab/core/length_scale.hpp"
+#include "sphstab/core/memory_budget.hpp"
 #include "sphstab/numerics/instantiation.hpp"
 
 namespace sphstab {
@@ -14,22 +17,33 @@ namespace {
 template <int Dim>
 void check_inputs(const ParticleSet<Dim>& p, double radius, const char* who) {
   p.validate(who);
-  if (!(radius > 0) || !std::isfinite(radius))
-    throw std::invalid_argument(std::string(who) + ": search radius must be finite and > 0 (got " +
-                                std::to_string(radius) + ")");
+  check_length(radius, std::string(who) + ": search radius");
   for (int a = 0; a < Dim; ++a)
     if (p.periodic[a] && p.box_hi[a] - p.box_lo[a] < 2.0 * radius)
       throw std::invalid_argument(std::string(who) + ": periodic box length " +
-                                  std::to_string(p.box_hi[a] - p.box_lo[a]) + " in axis " + std::to_string(a) +
-                                  " is shorter than 2 x search radius " + std::to_string(radius));
+                                  format_number(p.box_hi[a] - p.box_lo[a]) + " in axis " + std::to_string(a) +
+                                  " is shorter than 2 x search radius " + format_number(radius));
 }
 
 }  // namespace
 
 template <int Dim>
+double expected_neighbour_pairs(const ParticleSet<Dim>& p, double radius) {
+  const double n = p.size();
+  if (n == 0) return 0;
+  // Ball of the radius over the mean particle volume, as a ratio of lengths so that nothing under/overflows.
+  const double cell = std::pow(p.volume.mean(), 1.0 / Dim), ratio = radius / cell;
+  const double ball =
+      Dim == 1 ? 2 * ratio : (Dim == 2 ? M_PI * ratio * ratio : 4.0 / 3.0 * M_PI * ratio * ratio * ratio);
+  return n * std::min(n, 1.0 + ball);
+}
+
+template <int Dim>
 NeighbourList find_neighbours(const ParticleSet<Dim>& p, double radius) {
   check_inputs(p, radius, "find_neighbours");
   const int n = p.size();
+  const double pairs = expected_neighbour_pairs(p, radius);
+  require_memory(pairs * sizeof(int) * 1.5, "find_neighbours: ~" + format_number(pairs, 3) + " neighbour pairs");
   const double r2 = radius * radius;
 
   // Cell grid over the bounding box (or the periodic box); cell edge >= radius, at most ~n cells.
@@ -44,8 +58,8 @@ NeighbourList find_neighbours(const ParticleSet<Dim>& p, double radius) {
       hi[a] = p.box_hi[a];
     }
     double L = std::max(hi[a] - lo[a], 0.0);
-    cells[a] = std::max(1, static_cast<int>(std::floor(L / radius)));
-    cells[a] = static_cast<int>(std::min<long>(cells[a], 4L * n + 4));
+    // Clamp in double before the cast (L / radius can exceed any int).
+    cells[a] = static_cast<int>(std::clamp(std::floor(L / radius), 1.0, 4.0 * n + 4));
   }
   // Sparse sets spread far apart: coarsen so the grid never has more than ~4N cells.
   auto product = [&] {
@@ -64,8 +78,7 @@ NeighbourList find_neighbours(const ParticleSet<Dim>& p, double radius) {
     ncells *= cells[a];
   }
   auto cell_coord = [&](int i, int a) {
-    int c = static_cast<int>(std::floor((p.x(i, a) - lo[a]) / edge[a]));
-    return std::clamp(c, 0, cells[a] - 1);
+    return static_cast<int>(std::clamp(std::floor((p.x(i, a) - lo[a]) / edge[a]), 0.0, cells[a] - 1.0));
   };
 
   // Counting sort of particles into cells.
@@ -146,8 +159,9 @@ NeighbourList find_neighbours_brute_force(const ParticleSet<Dim>& p, double radi
   return list;
 }
 
-#define SPHSTAB_INSTANTIATE(D)                                              \
-  template NeighbourList find_neighbours<D>(const ParticleSet<D>&, double); \
+#define SPHSTAB_INSTANTIATE(D)                                                \
+  template double expected_neighbour_pairs<D>(const ParticleSet<D>&, double); \
+  template NeighbourList find_neighbours<D>(const ParticleSet<D>&, double);   \
   template NeighbourList find_neighbours_brute_force<D>(const ParticleSet<D>&, double);
 SPHSTAB_FOR_EACH_DIM(SPHSTAB_INSTANTIATE)
 #undef SPHSTAB_INSTANTIATE

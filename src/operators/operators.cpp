@@ -5,6 +5,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "sphstab/core/format.hpp"
+#include "sphstab/core/length_scale.hpp"
+#include "sphstab/core/memory_budget.hpp"
 #include "sphstab/numerics/dual.hpp"
 #include "sphstab/numerics/instantiation.hpp"
 
@@ -51,18 +54,24 @@ void assemble_operators_into(Operators<Dim, Scalar>& ops, const ParticleSet<Dim>
                              const Kernel<Dim>& kernel, double h, OperatorRequest req,
                              const Positions<Dim, Scalar>* positions) {
   p.validate("assemble_operators");
-  if (!(h > 0) || !std::isfinite(h))
-    throw std::invalid_argument("assemble_operators: smoothing length h must be finite and > 0 (got " +
-                                std::to_string(h) + ")");
+  check_length(h, "assemble_operators: smoothing length h");
   if (nl.size() != p.size())
     throw std::invalid_argument("assemble_operators: neighbour list has " + std::to_string(nl.size()) +
                                 " rows but the particle set has " + std::to_string(p.size()) + " particles");
   if (positions && positions->rows() != p.size())
     throw std::invalid_argument("assemble_operators: positions have the wrong number of rows");
   if (nl.radius + 1e-12 * h < kernel.support_radius(h) * (1 - 1e-12))
-    throw std::invalid_argument("assemble_operators: neighbour radius " + std::to_string(nl.radius) +
-                                " is smaller than the kernel support " + std::to_string(kernel.support_radius(h)));
+    throw std::invalid_argument("assemble_operators: neighbour radius " + format_number(nl.radius) +
+                                " is smaller than the kernel support " + format_number(kernel.support_radius(h)));
 
+  const int matrices = (req.kernel ? 1 : 0) + (req.gradient ? Dim : 0) + (req.hessian ? Dim * Dim : 0);
+  const auto& first = req.kernel ? ops.W : (req.gradient ? ops.G[0] : ops.H[0][0]);
+  const bool reuse = first.rows() == nl.size() && first.nonZeros() == nl.nonzeros();  // re-assembly: no new storage
+  if (!reuse)
+    require_memory(
+        matrices * (static_cast<double>(nl.nonzeros()) * (sizeof(Scalar) + sizeof(int)) + 4.0 * (nl.size() + 1)),
+        "assemble_operators: " + std::to_string(matrices) + " matrices of " + std::to_string(nl.nonzeros()) +
+            " entries");
   if (req.kernel) detail::set_pattern(ops.W, nl);
   if (req.gradient)
     for (int a = 0; a < Dim; ++a) detail::set_pattern(ops.G[a], nl);

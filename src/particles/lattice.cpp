@@ -6,6 +6,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "sphstab/core/checked_arithmetic.hpp"
+#include "sphstab/core/format.hpp"
+#include "sphstab/core/length_scale.hpp"
+#include "sphstab/core/memory_budget.hpp"
 #include "sphstab/numerics/instantiation.hpp"
 
 namespace sphstab {
@@ -36,12 +40,13 @@ std::string lattice_name(LatticeType type) {
 }
 
 int fixed_layers_needed(double support_radius, double dx) {
-  if (!(dx > 0)) throw std::invalid_argument("fixed_layers_needed: spacing must be > 0");
-  if (!(support_radius > 0)) throw std::invalid_argument("fixed_layers_needed: support radius must be > 0");
+  check_length(dx, "fixed_layers_needed: spacing");
+  check_length(support_radius, "fixed_layers_needed: support radius");
   // Every k with k dx < support_radius, plus a borderline layer at exactly the support (to rounding): the
   // neighbour search's strict r < radius may include or exclude it after rounding, and a kernel that does not
   // vanish continuously at its support (truncated Gaussian) must see the same layer on both sides.
-  return static_cast<int>(std::floor(support_radius / dx * (1 + 1e-9)));
+  return static_cast<int>(checked_floor_count(support_radius / dx * (1 + 1e-9), kMaxFixedLayers,
+                                              "fixed layers (support radius / spacing)"));
 }
 
 template <int Dim>
@@ -58,11 +63,19 @@ ParticleSet<Dim> make_lattice(LatticeType type, int n, const LatticeOptions& opt
     throw std::invalid_argument("make_lattice: number of particles per side must be > 0 (got " + std::to_string(n) +
                                 ")");
   const double dx = opt.spacing;
-  if (!(dx > 0) || !std::isfinite(dx)) throw std::invalid_argument("make_lattice: spacing must be finite and > 0");
+  check_length(dx, "make_lattice: spacing");
+  if (opt.fixed_layers < -1)
+    throw std::invalid_argument(
+        "make_lattice: fixed_layers must be >= 0, or -1 for as many as the support needs (got " +
+        std::to_string(opt.fixed_layers) + ")");
+  if (opt.periodic && opt.fixed_layers > 0)
+    throw std::invalid_argument("make_lattice: a periodic lattice has no fixed layers (got fixed_layers = " +
+                                std::to_string(opt.fixed_layers) + ")");
   if (!(opt.stretch > 0) || !std::isfinite(opt.stretch))
     throw std::invalid_argument("make_lattice: stretch must be finite and > 0");
-  if (opt.perturbation < 0 || !std::isfinite(opt.perturbation))
-    throw std::invalid_argument("make_lattice: perturbation must be finite and >= 0");
+  if (!(opt.perturbation >= 0 && opt.perturbation <= 1))
+    throw std::invalid_argument("make_lattice: perturbation must be in [0, 1] spacings (got " +
+                                format_number(opt.perturbation) + ")");
   const bool shifted = type == LatticeType::Hexagonal || type == LatticeType::FaceCentred;
   if (opt.periodic && shifted && n % 2 != 0)
     throw std::invalid_argument("make_lattice: periodic hex/face-centred lattices need an even n");
@@ -77,8 +90,7 @@ ParticleSet<Dim> make_lattice(LatticeType type, int n, const LatticeOptions& opt
     if (opt.fixed_layers >= 0) {
       layers.fill(opt.fixed_layers);
     } else {
-      if (!(opt.support_radius > 0))
-        throw std::invalid_argument("make_lattice: support_radius must be > 0 to choose the fixed layers");
+      check_length(opt.support_radius, "make_lattice: support_radius (to choose the fixed layers)");
       for (int a = 0; a < Dim; ++a) {
         // Shifted rows put a neighbour up to dx/2 further along x.
         double reach = opt.support_radius + ((shifted && a == 0) ? 0.5 * dx : 0.0);
@@ -87,21 +99,27 @@ ParticleSet<Dim> make_lattice(LatticeType type, int n, const LatticeOptions& opt
     }
   }
 
-  // Enumerate the index box; free block first, then fixed particles, each in lexicographic order.
+  // Enumerate the index box; free block first, then fixed particles, each in lexicographic order. Sizes are counted
+  // in checked arithmetic and the memory is estimated before anything is allocated.
   std::array<int, Dim> lo, extent;
-  long total = 1;
+  long total = 1, free_count = 1;
   for (int a = 0; a < Dim; ++a) {
     lo[a] = -layers[a];
-    extent[a] = n + 2 * layers[a];
-    total *= extent[a];
+    extent[a] = checked_index_count(checked_add(n, checked_mul(2, layers[a], "make_lattice"), "make_lattice"),
+                                    "make_lattice: particles per side (free + fixed layers)");
+    total = checked_mul(total, extent[a], "make_lattice: particle count");
+    free_count = checked_mul(free_count, n, "make_lattice: free particle count");
   }
+  checked_index_count(total, "make_lattice: particle count");
+  require_memory(static_cast<double>(total) * (8.0 * Dim + 13.0),
+                 "make_lattice: " + std::to_string(total) + " particles");
   ParticleSet<Dim> set;
   set.x.resize(total, Dim);
   set.volume.resize(total);
   set.role.resize(total);
   set.depth.resize(total);
   const double volume = (type == LatticeType::Hexagonal) ? dx * step[1] : std::pow(dx, Dim);
-  long next_free = 0, next_fixed = static_cast<long>(std::pow(n, Dim));
+  long next_free = 0, next_fixed = free_count;
   for (long flat = 0; flat < total; ++flat) {
     std::array<int, Dim> idx;
     long rest = flat;

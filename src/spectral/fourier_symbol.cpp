@@ -6,6 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "sphstab/core/checked_arithmetic.hpp"
+#include "sphstab/core/format.hpp"
+
 namespace sphstab {
 
 namespace {
@@ -19,11 +22,12 @@ struct LatticeSums {
 
 LatticeSums lattice_sums(const Kernel<1>& kernel, double h, double dx, const char* who) {
   if (!(h > 0) || !std::isfinite(h))
-    throw std::invalid_argument(std::string(who) + ": h must be finite and > 0 (got " + std::to_string(h) + ")");
+    throw std::invalid_argument(std::string(who) + ": h must be finite and > 0 (got " + format_number(h) + ")");
   if (!(dx > 0) || !std::isfinite(dx))
-    throw std::invalid_argument(std::string(who) + ": dx must be finite and > 0 (got " + std::to_string(dx) + ")");
+    throw std::invalid_argument(std::string(who) + ": dx must be finite and > 0 (got " + format_number(dx) + ")");
   LatticeSums s;
   const double support = kernel.support_radius(h);
+  checked_floor_count(support / dx, 1L << 29, std::string(who) + ": lattice terms (support / dx)");
   for (int m = 1; m * dx < support; ++m) {  // strict, like find_neighbours
     s.w1.push_back(kernel.d1(m * dx, h) * dx);
     s.w2.push_back(kernel.d2(m * dx, h) * dx);
@@ -136,6 +140,11 @@ SymbolCriticalTension critical_tension_periodic_symbol_1d(const Kernel<1>& kerne
   r.tcrit = kInf;
   r.k_over_pi = std::numeric_limits<double>::quiet_NaN();
   r.reason = n == 0 ? "n = 0: no tension dependence" : "L^(k_m) <= 0 for all m: A(T) positive definite for every T > 0";
+  if (s.w1.empty()) {  // as critical_tension_infinite_1d: undefined, not unconditionally stable
+    r.tcrit = r.k_over_pi;
+    r.reason = "no lattice neighbour inside the kernel support (h too small)";
+    return r;
+  }
   if (n == 0) return r;
   const double tol = 1e-12 * s.h_scale;
   for (int m = 1; 2 * m <= particles; ++m) {

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "sphstab/core/format.hpp"
+#include "sphstab/core/memory_budget.hpp"
 
 namespace sphstab {
 
@@ -303,6 +304,8 @@ std::vector<Eigen::Vector2d> periodic_wavevectors(const BravaisLattice2D& lat, i
   if (lat.type != LatticeType::Square && n % 2 != 0)
     throw std::invalid_argument("periodic_wavevectors: periodic hex/face-centred lattices need an even n (got " +
                                 std::to_string(n) + ")");
+  require_memory(16.0 * n * n,
+                 "periodic_wavevectors: " + std::to_string(n) + " x " + std::to_string(n) + " wavevectors");
   std::vector<Eigen::Vector2d> ks;
   ks.reserve(static_cast<size_t>(n) * n);
   const double dy = lat.a2.y();

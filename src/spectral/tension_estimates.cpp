@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "sphstab/core/format.hpp"
+
 namespace sphstab {
 
 namespace {
@@ -25,9 +27,9 @@ double second_minor_tension(double k_ii, double l_ii, double k_next, double l_ne
 
 TensionEstimates1D tension_estimates_1d(const Kernel<1>& kernel, double h, double dx, int n) {
   if (!(h > 0) || !std::isfinite(h))
-    throw std::invalid_argument("tension_estimates_1d: h must be finite and > 0 (got " + std::to_string(h) + ")");
+    throw std::invalid_argument("tension_estimates_1d: h must be finite and > 0 (got " + format_number(h) + ")");
   if (!(dx > 0) || !std::isfinite(dx))
-    throw std::invalid_argument("tension_estimates_1d: dx must be finite and > 0 (got " + std::to_string(dx) + ")");
+    throw std::invalid_argument("tension_estimates_1d: dx must be finite and > 0 (got " + format_number(dx) + ")");
   if (n < 0) throw std::invalid_argument("tension_estimates_1d: n must be >= 0 (got " + std::to_string(n) + ")");
   const double support = kernel.support_radius(h);
   // g[m] = G_{i,i+m} for m = -M..M stored at offset M; H_m for m >= 1.

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "sphstab/core/format.hpp"
+#include "sphstab/core/memory_budget.hpp"
 #include "sphstab/growth/growth_rate.hpp"
 #include "sphstab/jacobian/analytic_jacobian_1d.hpp"
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
@@ -184,6 +185,7 @@ EigenRoute eigen_route(const ColSparseMatrix& k, const ColSparseMatrix& l, const
   const int m = static_cast<int>(k.rows());
   if (dense) {
     out.eigen_backend = "dense";
+    require_dense_memory(m, 5, "critical_load (dense generalised eigenproblem)");
     const Eigen::MatrixXd kd = Eigen::MatrixXd(k).selfadjointView<Eigen::Lower>();
     const Eigen::MatrixXd ld = Eigen::MatrixXd(l).selfadjointView<Eigen::Lower>();
     DenseSymmetricEigen e = generalized_symmetric_eigen(ld, kd, opt.want_mode);
@@ -362,6 +364,7 @@ std::string spectrum_failure(const Eigen::MatrixXd& a, const CriticalLoadOptions
 /// Spectrum criterion (dense, any A).
 void spectrum_routes(const Linearisation& lin, const CriticalLoadOptions& opt, CriticalLoad& out) {
   const double sgn = load_sign(out.direction);
+  require_dense_memory(lin.A0.rows(), 5, "critical_load (dense spectrum criterion)");
   const Eigen::MatrixXd a0(lin.A0);
   const Eigen::MatrixXd a1 = sgn * Eigen::MatrixXd(lin.A1);
   int tests = 0;
@@ -640,6 +643,7 @@ CriticalLoad critical_load(const Linearisation& lin, LoadDirection direction, co
   if (n1 <= opt.zero_tol * (n0 + a_one.norm())) {  // [Powell2012, (3.38)]: no load dependence
     bool holds = false;
     if (crit == Criterion::Spectrum) {
+      require_dense_memory(lin.A0.rows(), 3, "critical_load (dense spectrum criterion)");
       holds = spectrum_failure(Eigen::MatrixXd(lin.A0), opt, nullptr).empty();
     } else {
       ColSparseMatrix k = lower_from_symmetric_rows(crit == Criterion::SymmetricPart ? symmetric_part(lin.A0) : lin.A0);
@@ -672,6 +676,7 @@ CriticalLoad critical_load(const Linearisation& lin, LoadDirection direction, co
   if (opt.growth_factor > 0 && std::isfinite(out.load) && out.load != 0) {
     out.growth_load = opt.growth_factor * out.load;
     const Eigen::VectorXd x = lin.x.size() ? Eigen::VectorXd(lin.x.col(0)) : Eigen::VectorXd::Zero(lin.free_count());
+    require_dense_memory(m, 3, "critical_load (dense growth rate)");
     const GrowthAnalysis g = growth_rate(Eigen::MatrixXd(lin.at(out.growth_load)),
                                          lin.dofs_per_particle == 1 ? x : Eigen::VectorXd::Zero(m), lin.periodic);
     out.growth_rate = g.growth_rate;
@@ -723,7 +728,7 @@ ForceCriticalLoad force_critical_loads(const ForceFunction& force, LoadDirection
     force.with_load(load)->acceleration(u0, a);
     out.equilibrium_residual = std::max(out.equilibrium_residual, a.cwiseAbs().maxCoeff());
   }
-  const double scale = Eigen::MatrixXd(out.jacobian.A0).cwiseAbs().maxCoeff();
+  const double scale = out.jacobian.A0.nonZeros() ? out.jacobian.A0.coeffs().cwiseAbs().maxCoeff() : 0.0;
   out.residual_relative = scale > 0 ? out.equilibrium_residual / scale : out.equilibrium_residual;
   out.results = critical_loads(out.jacobian, direction, options);
   return out;

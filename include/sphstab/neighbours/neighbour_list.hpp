@@ -21,9 +21,15 @@ struct NeighbourList {
   int count(int i) const { return static_cast<int>(offsets[i + 1] - offsets[i]); }
 };
 
-/// O(N) cell-list search with cells of edge >= radius. Throws std::invalid_argument for radius <= 0 or
-/// non-finite, an invalid particle set, or a periodic box shorter than 2 * radius in a periodic axis (the
-/// minimum-image convention would then miss images).
+/// Estimated number of (i, j) entries for `radius`: N (1 + ball volume / mean particle volume), at most N^2. The
+/// exact count for a regular lattice's interior; used to check memory before the search.
+template <int Dim>
+double expected_neighbour_pairs(const ParticleSet<Dim>& particles, double radius);
+
+/// O(N) cell-list search with cells of edge >= radius. Throws std::invalid_argument for a radius outside
+/// check_length()'s range (core/length_scale.hpp), an invalid particle set, or a periodic box shorter than 2 * radius
+/// in a periodic axis (the minimum-image convention would then miss images); MemoryLimitError when the estimated
+/// pairs do not fit the memory limit.
 template <int Dim>
 NeighbourList find_neighbours(const ParticleSet<Dim>& particles, double radius);
 

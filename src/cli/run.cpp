@@ -1,0 +1,57 @@
+#include "run.hpp"
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <iostream>
+#include <new>
+#include <string>
+
+#include "commands.hpp"
+#include "sphstab/core/memory_budget.hpp"
+
+namespace sphstab::cli {
+
+namespace {
+
+std::string one_line(std::string s) {
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  return s;
+}
+
+}  // namespace
+
+int run(int argc, const char* const* argv) {
+  CLI::App app{"sphstab: stability, accuracy and speed of SPH formulations for elastic solids"};
+  app.require_subcommand(1);
+  app.fallthrough();  // --max-memory also after the subcommand
+  std::string max_memory;
+  app.add_option("--max-memory", max_memory,
+                 "Memory limit for size checks, e.g. 8G or 512M (default: this machine's memory); a case whose "
+                 "estimated memory exceeds it is refused before anything is allocated")
+      ->each([](const std::string& text) { set_memory_limit_bytes(parse_memory_size(text)); });
+  register_commands(app);
+  int code = 0;
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) {
+      app.exit(e);  // --help
+    } else {
+      std::cerr << "sphstab: error: " << one_line(e.what()) << " (see --help)\n";
+      code = 1;
+    }
+  } catch (const std::bad_alloc&) {
+    std::cerr << "sphstab: error: out of memory (an allocation failed that the size estimates did not foresee; "
+                 "reduce --n or --h, or report the case)\n";
+    code = 1;
+  } catch (const std::exception& e) {
+    std::cerr << "sphstab: error: " << one_line(e.what()) << "\n";
+    code = 1;
+  }
+  std::fflush(stdout);
+  set_memory_limit_bytes(0);  // process-wide: leave it as found for the next in-process call
+  return code;
+}
+
+}  // namespace sphstab::cli
