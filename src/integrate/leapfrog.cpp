@@ -6,6 +6,8 @@
 #include <memory>
 #include <stdexcept>
 
+#include "sphstab/core/checked_arithmetic.hpp"
+
 namespace sphstab {
 
 LeapfrogStepper::LeapfrogStepper(SecondOrderSystem system, Eigen::VectorXd u0, Eigen::VectorXd v0, double t0)
@@ -107,7 +109,7 @@ RunResult run_leapfrog(const SecondOrderSystem& system, const Eigen::VectorXd& u
   double dt = opt.dt;
   long nsteps = opt.max_steps;
   if (opt.t_end > 0) {
-    nsteps = static_cast<long>(std::ceil(opt.t_end / dt - 1e-9));
+    nsteps = checked_floor_count(std::ceil(opt.t_end / dt - 1e-9), 1L << 53, "run_leapfrog: steps t_end / dt");
     if (nsteps < 1) nsteps = 1;
     if (opt.land_on_t_end) dt = opt.t_end / static_cast<double>(nsteps);
   }

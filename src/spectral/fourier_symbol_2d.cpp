@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "sphstab/core/checked_arithmetic.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/memory_budget.hpp"
 
@@ -56,7 +57,9 @@ ElasticSymbol2D::ElasticSymbol2D(LatticeType type, const Kernel<2>& kernel, doub
     throw std::invalid_argument("ElasticSymbol2D: h must be finite and > 0 (got " + format_number(h) + ")");
   m_s0 = PreStrain{kind, 1.0}.stress(material);
   const double support = kernel.support_radius(h), vol = m_lattice.cell_area();
-  const int reach = static_cast<int>(std::ceil(2 * support / m_lattice.a2.y())) + 2;
+  const int reach = static_cast<int>(checked_floor_count(std::ceil(2 * support / m_lattice.a2.y()), kMaxLatticeReach,
+                                                         "ElasticSymbol2D: lattice rows in twice the support")) +
+                    2;
   for (int i = -reach; i <= reach; ++i)
     for (int j = -reach; j <= reach; ++j) {
       const Eigen::Vector2d r = i * m_lattice.a1 + j * m_lattice.a2;

@@ -19,6 +19,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "sphstab/core/checked_arithmetic.hpp"
 #include "sphstab/models/artificial_stress.hpp"
 
 namespace sphstab {
@@ -107,8 +108,13 @@ LatticeSums lattice_sums(LatticeType type, const Kernel<2>& kernel, double h, co
   LatticeSums s;
   s.cell_volume = dp * dy;
   const double V = s.cell_volume;
-  const int jmax = static_cast<int>(std::ceil(support / dy)) + 1;
-  const int imax = static_cast<int>(std::ceil(support / dp)) + 2;
+  // Checked before the cast: a huge h / dp would overflow the int and the (2 reach)^2 loop would never end.
+  const int jmax = static_cast<int>(checked_floor_count(std::ceil(support / dy), kMaxLatticeReach,
+                                                        std::string(who) + ": lattice rows in the support")) +
+                   1;
+  const int imax = static_cast<int>(checked_floor_count(std::ceil(support / dp), kMaxLatticeReach,
+                                                        std::string(who) + ": lattice columns in the support")) +
+                   2;
   for (int j = -jmax; j <= jmax; ++j) {
     const double y = j * dy, x0 = (j & 1) ? shift : 0.0;
     for (int i = -imax; i <= imax; ++i) {

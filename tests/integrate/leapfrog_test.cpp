@@ -42,6 +42,14 @@ double measured_period(double omega, double dt, double t_end) {
   return 2.0 * (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
 }
 
+TEST(Leapfrog, StepCountFromTEndOverDtIsChecked) {
+  LeapfrogOptions opt;
+  opt.dt = 1e-300;
+  opt.t_end = 1.0;  // 1e300 steps: a long overflow before, now a one-line error
+  EXPECT_THROW(run_leapfrog(oscillator(1.0), Eigen::VectorXd::Ones(1), Eigen::VectorXd::Zero(1), opt),
+               std::length_error);
+}
+
 TEST(Leapfrog, HarmonicOscillatorMatchesTheDiscreteExactSolution) {
   // For ü = -w² u, u0 = 1, v0 = 0, leap-frog gives u_n = cos(w~ n dt) exactly with cos(w~ dt) = 1 - (w dt)²/2.
   const double omega = 2.0, dt = 0.05;

@@ -11,6 +11,9 @@ namespace sphstab {
 /// Particle and DOF indices are int: the largest count of particles (and of DOFs) any routine accepts.
 inline constexpr long kMaxIndexCount = std::numeric_limits<int>::max();
 
+/// Largest number of lattice rows a lattice sum visits on each side ((2 x 16384)^2 = 1.1e9 terms, minutes).
+inline constexpr long kMaxLatticeReach = 1L << 14;
+
 /// a * b; throws std::length_error("<what>: a x b overflows") when the product does not fit a long.
 long checked_mul(long a, long b, const std::string& what);
 /// a + b; throws std::length_error on overflow.
