@@ -1,0 +1,156 @@
+#pragma once
+/// \file rate_form.hpp
+/// The rate-form SPH solid scheme that practitioners run (Powell's MCM code, Gray, Monaghan & Swift 2001, LS-DYNA
+/// SPH) written once as a first-order system y' = F(y) (system/semi_discrete_system.hpp), in 1D (uniaxial strain)
+/// and 2D (plane strain). Per particle: position x, velocity v, density rho, deviatoric stress S. Every term is
+/// switchable (RateFormOptions) so that a scene carries only what it needs. Equations (tension-positive stress,
+/// sigma = -p I + S; G_ij = grad_i W(x_i - x_j) at the current positions; sums over the neighbour list):
+///
+///   XSPH [GMS2001, (3.6)]       vhat_i = v_i + eps_x sum_j (m_j / rhobar_ij) (v_j - v_i) W_ij
+///   motion                       dx_i/dt = vhat_i
+///   velocity gradient [GMS2001, (3.10)]  L_i^ab = dv^a/dx^b = sum_j (m_j/rho_j) (vhat_j^a - vhat_i^a) G_ij^b
+///                                (Powell (1.33) prints (v_i - v_j): a sign typo, docs/conventions.md)
+///   continuity                   Summation [GMS2001, (3.8)]: drho_i/dt = sum_j m_j (vhat_i - vhat_j) . G_ij
+///                                Divergence [GMS2001, (3.9)]:  drho_i/dt = -rho_i tr L_i
+///                                (Powell (1.32) lacks the factor rho_i)
+///   equation of state [GMS2001, (2.7)]  p_i = K (rho_i / rho0 - 1)
+///   Jaumann rate [GMS2001, (2.3)]  dS/dt = 2 mu (D - tr(D)/3 I_3) + Omega S - S Omega,  D = sym L, Omega = skew L
+///                                (3 x 3 with D_zz = 0; plane strain keeps S_zz = -(S_xx + S_yy), so it is derived,
+///                                not stored; 1D uniaxial strain: dS_xx/dt = (4 mu / 3) L)
+///   momentum [Powell2012, (1.36)], [GMS2001, (3.1)]
+///       dv_i/dt = sum_j m_j [sigma_i/rho_i^2 + sigma_j/rho_j^2 - Pi_ij I + (R_i + R_j) f_ij^n] . G_ij
+///   artificial viscosity [Monaghan1992]  Pi_ij = (-alpha c0 mu_ij + beta mu_ij^2) / rhobar_ij,
+///       mu_ij = h v_ij . r_ij / (r_ij^2 + 0.01 h^2), for approaching pairs (v_ij . r_ij < 0) only (Compression) or
+///       for every pair (Always; then beta is not used). It enters with a MINUS sign: [GMS2001, (3.1)] prints +Pi,
+///       which is anti-dissipative (docs/conventions.md).
+///   artificial stress [GMS2001, (6.1)-(6.9)]  R_i = -eps_a sigma_i^+ / rho_i^2 (tensile principal part),
+///       f_ij = W_ij / W(dp), dp the lattice spacing of the discretisation.
+///
+/// Fixed particles keep their positions and zero velocity; with evolve_fixed (default) their density and stress
+/// evolve by the same equations (their stress responds to the free particles, as in a block with fixed boundary
+/// particles), otherwise they stay at the state they were given.
+///
+/// State layout (size()): per particle in index order, free particles [x (Dim), v (Dim), rho, S (1 in 1D; xx, yy, xy
+/// in 2D)], fixed particles [rho, S] (or nothing when not evolving). The neighbour list is the discretisation's
+/// (built once at the initial positions): runs whose particles move by more than the list's margin must rebuild it.
+///
+/// \code{.cpp}
+/// auto disc = sphstab::make_discretisation(sphstab::make_lattice<2>(sphstab::LatticeType::Square, 16,
+///                                          {.spacing = 1.0, .periodic = true}), kernel, 1.3);
+/// sphstab::RateFormScheme<2> scheme(disc, sphstab::RateFormMaterial::from_youngs(2.1, 0.3, 7.8), {},
+///                                   /*density=*/7.8 / 1.02);        // volume strain xi = 1.02
+/// Eigen::VectorXd y = scheme.uniform_state();                       // equilibrium: v = 0, rho, S = 0
+/// auto spectrum = sphstab::system_spectrum(scheme, y);              // full-state growth rate
+/// \endcode
+#include <Eigen/Core>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sphstab/forms/discretisation.hpp"
+#include "sphstab/system/semi_discrete_system.hpp"
+
+namespace sphstab {
+
+/// Linear equation of state + hypoelastic shear: p = K (rho/rho0 - 1), dS/dt = 2 mu dev D.
+struct RateFormMaterial {
+  double density = 1.0;        ///< rho0 > 0, the density at zero pressure
+  double bulk_modulus = 1.0;   ///< K > 0 (c0^2 = K / rho0)
+  double shear_modulus = 0.0;  ///< mu >= 0
+  /// From Young's modulus E > 0 and Poisson's ratio -1 < nu < 1/2 (3D moduli: K = E / (3 (1 - 2 nu)),
+  /// mu = E / (2 (1 + nu)); plane strain and uniaxial strain follow from the 3D deviator).
+  static RateFormMaterial from_youngs(double youngs_modulus, double poisson_ratio, double density);
+  double sound_speed() const;  ///< c0 = sqrt(K / rho0)
+  /// Longitudinal (P) wave speed of small-strain waves, sqrt((K + 4 mu / 3) / rho0).
+  double p_wave_speed() const;
+  /// Throws std::invalid_argument("who: ...") unless rho0 > 0, K > 0, mu >= 0, all finite.
+  void validate(const char* who) const;
+};
+
+enum class ContinuityForm { Summation, Divergence };
+enum class ViscositySwitch { Off, Compression, Always };
+
+/// The switchable terms. Defaults: plain SPH (no XSPH, no viscosity, no artificial stress), continuity by summation.
+struct RateFormOptions {
+  ContinuityForm continuity = ContinuityForm::Summation;
+  double xsph = 0;  ///< eps_x of [GMS2001, (3.6)] (GMS use 1/2), >= 0; 0: off
+  ViscositySwitch viscosity = ViscositySwitch::Off;
+  double viscosity_alpha = 0.06;          ///< linear coefficient (MCM deck default 0.06)
+  double viscosity_beta = 1.5;            ///< quadratic coefficient (MCM deck default 1.5; Compression only)
+  double artificial_stress = 0;           ///< eps_a of [GMS2001, (6.4)] (GMS use 0.3), >= 0; 0: off
+  double artificial_stress_exponent = 4;  ///< n of f^n (GMS 4)
+  bool evolve_fixed = true;               ///< fixed particles integrate rho and S
+};
+
+/// Parses "summation" | "divergence" and "off" | "compression" | "always"; throws std::invalid_argument naming the
+/// valid choices otherwise.
+ContinuityForm parse_continuity_form(const std::string& name);
+ViscositySwitch parse_viscosity_switch(const std::string& name);
+
+template <int Dim>
+class RateFormScheme final : public SemiDiscreteSystem {
+  static_assert(Dim == 1 || Dim == 2, "RateFormScheme: Dim must be 1 or 2");
+
+ public:
+  /// Stored deviatoric components per particle: 1 (1D: S_xx), 3 (2D: S_xx, S_yy, S_xy).
+  static constexpr int kStress = Dim == 1 ? 1 : 3;
+
+  /// @param disc     particles at their initial (current) positions, kernel, h, neighbour list
+  /// @param material rho0, K, mu
+  /// @param options  the terms
+  /// @param density  the uniform initial density; the masses are m_i = density V_i (default, NaN: rho0). A lattice
+  ///                 at volume strain xi = V / V0 has density rho0 / xi.
+  /// @param deviator the uniform initial deviator (kStress entries; default 0): uniform_state()'s S and the frozen
+  ///                 stress of fixed particles when they do not evolve
+  /// Throws std::invalid_argument for a null discretisation, a bad material, negative coefficients, density <= 0 or
+  /// a deviator of the wrong size.
+  RateFormScheme(std::shared_ptr<const Discretisation<Dim>> disc, const RateFormMaterial& material,
+                 const RateFormOptions& options = {}, double density = std::numeric_limits<double>::quiet_NaN(),
+                 const Eigen::VectorXd& deviator = {});
+
+  int size() const override { return m_size; }
+  std::string name() const override;
+  void rate(const Eigen::VectorXd& y, Eigen::VectorXd& dydt) const override;
+  void rate(const Eigen::VectorXcd& y, Eigen::VectorXcd& dydt) const override;
+  SparsityPattern pattern() const override;
+
+  /// The uniform state: initial positions, v = 0, the initial density and deviator on every particle. At a complete
+  /// lattice (fixed layers or periodic) it is an equilibrium: F = 0 to rounding.
+  Eigen::VectorXd uniform_state() const;
+
+  /// Offsets into y (-1 where a particle does not carry that variable).
+  int position_offset(int particle) const { return m_x_off[particle]; }
+  int velocity_offset(int particle) const { return m_x_off[particle] < 0 ? -1 : m_x_off[particle] + Dim; }
+  int density_offset(int particle) const { return m_rho_off[particle]; }
+  int stress_offset(int particle) const { return m_rho_off[particle] < 0 ? -1 : m_rho_off[particle] + 1; }
+
+  /// 1/2 sum over free particles of m_i |v_i|^2.
+  double kinetic_energy(const Eigen::VectorXd& y) const;
+  /// Sets the velocity of particle i (a free particle) in y.
+  void set_velocity(Eigen::VectorXd& y, int particle, const Eigen::Matrix<double, Dim, 1>& v) const;
+  /// Smallest density over the particles that carry one (a non-positive density ends a run).
+  double min_density(const Eigen::VectorXd& y) const;
+
+  const Discretisation<Dim>& discretisation() const { return *m_disc; }
+  const RateFormMaterial& material() const { return m_material; }
+  const RateFormOptions& options() const { return m_options; }
+  double initial_density() const { return m_density; }
+  const Eigen::VectorXd& mass() const { return m_mass; }
+
+ private:
+  template <class Scalar>
+  void evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& y,
+                Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& dydt) const;
+
+  std::shared_ptr<const Discretisation<Dim>> m_disc;
+  RateFormMaterial m_material;
+  RateFormOptions m_options;
+  double m_density = 0;
+  double m_w_dp = 1;  // W(dp) of the artificial stress
+  Eigen::VectorXd m_mass, m_deviator;
+  std::vector<int> m_x_off, m_rho_off;  // per particle: offset of x (free only) and of rho (or -1)
+  int m_size = 0;
+};
+
+}  // namespace sphstab
