@@ -56,6 +56,8 @@ std::string run_status_name(RunStatus s) {
       return "left-box";
     case RunStatus::EnergyGrowth:
       return "energy-growth";
+    case RunStatus::NonPositiveDensity:
+      return "non-positive-density";
   }
   return "?";
 }

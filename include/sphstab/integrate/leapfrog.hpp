@@ -70,7 +70,8 @@ enum class RunStatus {
   NonFinite,          ///< NaN or inf in u, v or a
   DisplacementLimit,  ///< max |u_k| > limits.max_displacement
   LeftBox,            ///< a particle's X + u left [box_lo, box_hi]
-  EnergyGrowth        ///< |E| > limits.energy_growth * max(|E(0)|, limits.energy_floor)
+  EnergyGrowth,       ///< |E| > limits.energy_growth * max(|E(0)|, limits.energy_floor)
+  NonPositiveDensity  ///< a rate-form run reached rho <= 0 (integrate/rate_form_run.hpp)
 };
 std::string run_status_name(RunStatus status);
 

@@ -1,0 +1,135 @@
+#include "sphstab/growth/rate_form_spectrum.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "../forms/forms_fixture.hpp"
+#include "sphstab/growth/growth_fit.hpp"
+#include "sphstab/growth/system_spectrum.hpp"
+#include "sphstab/integrate/rate_form_run.hpp"
+
+namespace sphstab {
+namespace {
+
+const RateFormMaterial kGms{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};
+
+/// The reduction against the dense spectrum of the whole J: every reduced eigenvalue is an eigenvalue of J, and the
+/// growth rates agree.
+void expect_reduction_exact(const RateFormOptions& o, double xi, bool periodic) {
+  const auto disc = test::lattice_discretisation<2>({.n = periodic ? 6 : 4, .h = 1.3, .periodic = periodic});
+  Eigen::VectorXd dev(3);
+  dev << 0.004, -0.002, 0.001;
+  const RateFormScheme<2> scheme(disc, kGms, o, 1.0 / xi, dev);
+  const Eigen::VectorXd y = scheme.uniform_state();
+  const RateFormSpectrum red = rate_form_spectrum(scheme, y, true);
+  ASSERT_EQ(red.status, Status::Successful) << red.reason;
+  EXPECT_LT(red.structure_residual, 1e-14);
+  const SystemSpectrum full = system_spectrum(scheme, y, {.dense_max = 5000});
+  ASSERT_EQ(full.status, Status::Successful);
+  double scale = 0, worst = 0;
+  for (int k = 0; k < red.eigenvalues.size(); ++k) scale = std::max(scale, std::abs(red.eigenvalues[k]));
+  for (int k = 0; k < red.eigenvalues.size(); ++k) {
+    double best = 1e300;
+    for (int q = 0; q < full.eigenvalues.size(); ++q)
+      best = std::min(best, std::abs(full.eigenvalues[q] - red.eigenvalues[k]));
+    worst = std::max(worst, best);
+  }
+  EXPECT_LT(worst, 1e-7 * scale) << "xi " << xi;
+  // The dense route meets Jordan blocks of the zero eigenvalue (translation, slaved rho and S): ~sqrt(eps) scatter.
+  EXPECT_NEAR(red.growth_rate, std::max(full.growth_rate, 0.0), 1e-6 * scale) << "xi " << xi;
+  EXPECT_EQ(red.mode.size(), 2 * disc->free_count());
+}
+
+TEST(RateFormSpectrum, ReductionEqualsTheDenseSpectrumOfTheWholeJacobian) {
+  for (double xi : {0.97, 1.03}) {
+    expect_reduction_exact({}, xi, false);
+    expect_reduction_exact({.xsph = 0.5, .artificial_stress = 0.3}, xi, false);
+    expect_reduction_exact({.xsph = 0.25, .viscosity = ViscositySwitch::Always, .viscosity_alpha = 0.5}, xi, true);
+    expect_reduction_exact({.continuity = ContinuityForm::Divergence, .evolve_fixed = false}, xi, false);
+  }
+}
+
+TEST(RateFormSpectrum, RefusesAMovingState) {
+  const auto disc = test::lattice_discretisation<2>({.n = 4, .h = 1.3});
+  const RateFormScheme<2> scheme(disc, kGms);
+  Eigen::VectorXd y = scheme.uniform_state();
+  scheme.set_velocity(y, 0, Eigen::Vector2d(1e-6, 0));
+  EXPECT_THROW(rate_form_spectrum(scheme, y), std::invalid_argument);
+}
+
+/// Convergence order of the final state at t = 2 (wave packet on a periodic lattice) against a dt/8 reference.
+double observed_order(const RateFormOptions& o, PositionUpdate positions) {
+  const auto disc = test::lattice_discretisation<2>({.n = 8, .h = 1.3, .periodic = true});
+  const RateFormScheme<2> scheme(disc, kGms, o, 1.0 / 0.99);
+  Eigen::VectorXd y0 = scheme.uniform_state();
+  for (int i = 0; i < disc->size(); ++i)
+    scheme.set_velocity(y0, i, 1e-3 * Eigen::Vector2d(std::sin(2 * M_PI * disc->particles.x(i, 0) / 8), 0.0));
+  auto final_state = [&](double dt) {
+    return run_rate_form(scheme, y0, {.dt = dt, .positions = positions, .t_end = 2.0}).y;
+  };
+  const Eigen::VectorXd ref = final_state(0.0125);
+  return std::log2((final_state(0.1) - ref).norm() / (final_state(0.05) - ref).norm());
+}
+
+TEST(RateFormRun, PredictorCorrectorOrder) {
+  const RateFormOptions as{.artificial_stress = 0.3}, xsph{.xsph = 0.5, .artificial_stress = 0.3};
+  const double gms = observed_order(as, PositionUpdate::Gms);
+  EXPECT_GT(gms, 1.8);
+  EXPECT_LT(gms, 2.3);
+  const double heun = observed_order(xsph, PositionUpdate::Trapezoid);
+  EXPECT_GT(heun, 1.8);
+  EXPECT_LT(heun, 2.3);
+  // GMS's uncorrected positions with XSPH: first order (x'' = d vhat/dt, not a0).
+  EXPECT_LT(observed_order(xsph, PositionUpdate::Gms), 1.5);
+}
+
+TEST(RateFormRun, MeasuredGrowthMatchesTheFullStateLinearRate) {
+  // Square lattice, h = 1.3, xi = 1.02 (tension): unstable. A tiny random kick grows at the rate of J's spectrum.
+  const auto disc = test::lattice_discretisation<2>({.n = 8, .h = 1.3, .periodic = true});
+  const RateFormScheme<2> scheme(disc, kGms, {}, 1.0 / 1.02);
+  Eigen::VectorXd y0 = scheme.uniform_state();
+  const RateFormSpectrum lin = rate_form_spectrum(scheme, y0);
+  ASSERT_EQ(lin.status, Status::Successful);
+  EXPECT_NEAR(lin.growth_rate, 0.1868, 2e-4);  // GMS units; = the lattice dispersion relation (rate_form_test.cpp)
+  // Seeded with the unstable eigenvector's velocity shape (the +lambda and -lambda modes equally): after a few
+  // e-foldings the +lambda mode dominates.
+  const RateFormSpectrum mode = rate_form_spectrum(scheme, y0, true);
+  for (int i = 0; i < disc->size(); ++i) {
+    const int f = disc->free_slot[i];
+    scheme.set_velocity(y0, i, 1e-10 * mode.mode.segment<2>(2 * f));
+  }
+  const RateFormRunResult run = run_rate_form(scheme, y0, {.dt = 0.05, .t_end = 60.0, .record_every = 4});
+  ASSERT_TRUE(run.completed()) << run.message;
+  const LogLinearFit late = fit_log_linear(run.times, run.kinetic_energy, 20.0, 60.0);
+  EXPECT_NEAR(late.slope / 2 / lin.growth_rate, 1.0, 0.01);
+  // A single kicked particle excites every mode: the fitted window rate approaches gamma from below.
+  Eigen::VectorXd y1 = scheme.uniform_state();
+  scheme.set_velocity(y1, 27, Eigen::Vector2d(1e-10, 0));
+  const RateFormRunResult kicked = run_rate_form(scheme, y1, {.dt = 0.05, .t_end = 60.0, .record_every = 4});
+  const ExponentialGrowthFit fit =
+      fit_exponential_growth(kicked.times, kicked.kinetic_energy, kicked.kinetic_energy.front(), 60.0);
+  ASSERT_TRUE(fit.grew);
+  EXPECT_GT(fit.gamma / lin.growth_rate, 0.8);
+  EXPECT_LT(fit.gamma / lin.growth_rate, 1.01);
+}
+
+TEST(RateFormRun, StopsWithStatusAndBadInput) {
+  const auto disc = test::lattice_discretisation<2>({.n = 6, .h = 1.3, .periodic = true});
+  const RateFormScheme<2> scheme(disc, kGms, {}, 1.0 / 1.02);
+  Eigen::VectorXd y0 = scheme.uniform_state();
+  EXPECT_THROW(run_rate_form(scheme, y0, {.dt = 0, .t_end = 1}), std::invalid_argument);
+  EXPECT_THROW(run_rate_form(scheme, Eigen::VectorXd::Zero(3), {.dt = 0.1, .t_end = 1}), std::invalid_argument);
+  scheme.set_velocity(y0, 0, Eigen::Vector2d(1e-8, 0));
+  const RateFormRunResult grow = run_rate_form(scheme, y0, {.dt = 0.05, .t_end = 200.0, .energy_growth = 1e6});
+  EXPECT_EQ(grow.status, RunStatus::EnergyGrowth);
+  EXPECT_GT(grow.kinetic_energy.back(), 1e6 * grow.kinetic_energy.front());
+  // A time step far beyond the CFL limit blows up: reported with step and particle, not thrown.
+  const RateFormRunResult blow = run_rate_form(scheme, y0, {.dt = 5.0, .t_end = 5000.0});
+  EXPECT_NE(blow.status, RunStatus::Completed);
+  EXPECT_NE(blow.message.find("at step"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sphstab
