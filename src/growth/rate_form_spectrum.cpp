@@ -31,7 +31,9 @@ Eigen::MatrixXd block(const SparseMatrix<>& J, const std::vector<int>& rows, con
 }  // namespace
 
 template <int Dim>
-RateFormSpectrum rate_form_spectrum(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y, bool want_mode) {
+RateFormSpectrum rate_form_spectrum(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y,
+                                    const RateFormSpectrumOptions& options) {
+  const bool want_mode = options.want_mode;
   if (y.size() != scheme.size())
     throw std::invalid_argument("rate_form_spectrum: state has " + std::to_string(y.size()) + " entries, expected " +
                                 std::to_string(scheme.size()));
@@ -68,16 +70,29 @@ RateFormSpectrum rate_form_spectrum(const RateFormScheme<Dim>& scheme, const Eig
                  " relative)";
     return out;
   }
-  const Eigen::MatrixXd Xv = block(J, ix, iv), Jvx = block(J, iv, ix), Jvv = block(J, iv, iv);
+  const Eigen::MatrixXd Xv = block(J, ix, iv), Jvx = block(J, iv, ix);
+  Eigen::MatrixXd Jvv = block(J, iv, iv);
   Eigen::MatrixXd B = Jvx * Xv;
   if (!iq.empty()) B += block(J, iv, iq) * block(J, iq, iv);
+  const Eigen::MatrixXd& Q = options.basis;
+  if (Q.size()) {  // restrict to the invariant subspace
+    if (Q.rows() != nv)
+      throw std::invalid_argument("rate_form_spectrum: basis has " + std::to_string(Q.rows()) + " rows, expected " +
+                                  std::to_string(nv) + " (free velocity DOFs)");
+    const Eigen::MatrixXd BQ = B * Q, Bc = Q.transpose() * BQ;
+    const double norm = std::max(B.norm(), 1e-300);
+    out.invariance_residual = (BQ - Q * Bc).norm() / norm;
+    B = Bc;
+    Jvv = Q.transpose() * Jvv * Q;
+  }
+  const long m = B.rows();
   const bool damped = Jvv.cwiseAbs().maxCoeff() > 0;
   Eigen::MatrixXd M;
   if (damped) {
-    M = Eigen::MatrixXd::Zero(2 * nv, 2 * nv);
-    M.topRightCorner(nv, nv).setIdentity();
-    M.bottomLeftCorner(nv, nv) = B;
-    M.bottomRightCorner(nv, nv) = Jvv;
+    M = Eigen::MatrixXd::Zero(2 * m, 2 * m);
+    M.topRightCorner(m, m).setIdentity();
+    M.bottomLeftCorner(m, m) = B;
+    M.bottomRightCorner(m, m) = Jvv;
   } else {
     M = B;
   }
@@ -89,7 +104,7 @@ RateFormSpectrum rate_form_spectrum(const RateFormScheme<Dim>& scheme, const Eig
     return out;
   }
   // Eigenvalues of J: the companion's directly, or +-sqrt(mu).
-  out.eigenvalues.resize(2 * nv);
+  out.eigenvalues.resize(2 * m);
   for (long k = 0; k < M.rows(); ++k) {
     if (damped) {
       out.eigenvalues[k] = e.values[k];
@@ -106,17 +121,20 @@ RateFormSpectrum rate_form_spectrum(const RateFormScheme<Dim>& scheme, const Eig
   out.growth_rate = out.lambda.real();
   if (want_mode) {
     const long col = damped ? best : best / 2;
-    Eigen::VectorXcd v = e.vectors.col(col).head(nv);  // companion: the top half is v
+    Eigen::VectorXcd v = e.vectors.col(col).head(m);  // companion: the top half is v
+    if (Q.size()) v = Q.cast<std::complex<double>>() * v;
     out.mode = real_mode_shape(v);
   }
   out.status = Status::Successful;
-  out.reason = std::string(damped ? "companion [[0, I], [B, Jvv]]" : "lambda = +-sqrt(eig(B))") + ", " +
-               std::to_string(out.reduced) + " x " + std::to_string(out.reduced) + " from " +
-               std::to_string(out.states) + " states";
+  out.reason = std::string(damped ? "companion [[0, I], [B, Jvv]]" : "lambda = +-sqrt(eig(B))") +
+               (Q.size() ? " in the given class" : "") + ", " + std::to_string(out.reduced) + " x " +
+               std::to_string(out.reduced) + " from " + std::to_string(out.states) + " states";
   return out;
 }
 
-template RateFormSpectrum rate_form_spectrum<1>(const RateFormScheme<1>&, const Eigen::VectorXd&, bool);
-template RateFormSpectrum rate_form_spectrum<2>(const RateFormScheme<2>&, const Eigen::VectorXd&, bool);
+template RateFormSpectrum rate_form_spectrum<1>(const RateFormScheme<1>&, const Eigen::VectorXd&,
+                                                const RateFormSpectrumOptions&);
+template RateFormSpectrum rate_form_spectrum<2>(const RateFormScheme<2>&, const Eigen::VectorXd&,
+                                                const RateFormSpectrumOptions&);
 
 }  // namespace sphstab

@@ -7,6 +7,7 @@
 
 #include "../forms/forms_fixture.hpp"
 #include "sphstab/growth/growth_fit.hpp"
+#include "sphstab/growth/mirror_symmetry.hpp"
 #include "sphstab/growth/system_spectrum.hpp"
 #include "sphstab/integrate/rate_form_run.hpp"
 
@@ -23,7 +24,7 @@ void expect_reduction_exact(const RateFormOptions& o, double xi, bool periodic) 
   dev << 0.004, -0.002, 0.001;
   const RateFormScheme<2> scheme(disc, kGms, o, 1.0 / xi, dev);
   const Eigen::VectorXd y = scheme.uniform_state();
-  const RateFormSpectrum red = rate_form_spectrum(scheme, y, true);
+  const RateFormSpectrum red = rate_form_spectrum(scheme, y, {.want_mode = true});
   ASSERT_EQ(red.status, Status::Successful) << red.reason;
   EXPECT_LT(red.structure_residual, 1e-14);
   const SystemSpectrum full = system_spectrum(scheme, y, {.dense_max = 5000});
@@ -49,6 +50,36 @@ TEST(RateFormSpectrum, ReductionEqualsTheDenseSpectrumOfTheWholeJacobian) {
     expect_reduction_exact({.xsph = 0.25, .viscosity = ViscositySwitch::Always, .viscosity_alpha = 0.5}, xi, true);
     expect_reduction_exact({.continuity = ContinuityForm::Divergence, .evolve_fixed = false}, xi, false);
   }
+}
+
+TEST(RateFormSpectrum, MirrorClassesPartitionTheSpectrum) {
+  // A symmetric block: the four classes' spectra together are the whole reduced spectrum.
+  const auto disc = test::lattice_discretisation<2>({.n = 5, .h = 1.3});
+  const RateFormScheme<2> scheme(disc, kGms, {.xsph = 0.5, .artificial_stress = 0.3}, 1.0 / 1.02);
+  const Eigen::VectorXd y = scheme.uniform_state();
+  const RateFormSpectrum all = rate_form_spectrum(scheme, y);
+  Eigen::VectorXd pos(2 * disc->free_count());
+  for (int f = 0; f < disc->free_count(); ++f) pos.segment<2>(2 * f) = disc->particles.x.row(disc->free[f]).transpose();
+  const MirrorSymmetry sym = mirror_symmetry(pos, Eigen::Vector2d(2.5, 2.5), 1e-9);
+  std::vector<std::complex<double>> joined;
+  double best = -1e300;
+  for (int px : {1, -1})
+    for (int py : {1, -1}) {
+      const RateFormSpectrum c = rate_form_spectrum(scheme, y, {.basis = symmetry_basis(sym, px, py)});
+      ASSERT_EQ(c.status, Status::Successful);
+      EXPECT_LT(c.invariance_residual, 1e-13);
+      best = std::max(best, c.growth_rate);
+      for (int k = 0; k < c.eigenvalues.size(); ++k) joined.push_back(c.eigenvalues[k]);
+    }
+  ASSERT_EQ(static_cast<long>(joined.size()), all.eigenvalues.size());
+  EXPECT_NEAR(best, all.growth_rate, 1e-10);
+  double scale = all.eigenvalues.cwiseAbs().maxCoeff(), worst = 0;
+  for (const auto& z : joined) {
+    double d = 1e300;
+    for (int k = 0; k < all.eigenvalues.size(); ++k) d = std::min(d, std::abs(all.eigenvalues[k] - z));
+    worst = std::max(worst, d);
+  }
+  EXPECT_LT(worst, 1e-9 * scale);
 }
 
 TEST(RateFormSpectrum, RefusesAMovingState) {
@@ -95,7 +126,7 @@ TEST(RateFormRun, MeasuredGrowthMatchesTheFullStateLinearRate) {
   EXPECT_NEAR(lin.growth_rate, 0.1868, 2e-4);  // GMS units; = the lattice dispersion relation (rate_form_test.cpp)
   // Seeded with the unstable eigenvector's velocity shape (the +lambda and -lambda modes equally): after a few
   // e-foldings the +lambda mode dominates.
-  const RateFormSpectrum mode = rate_form_spectrum(scheme, y0, true);
+  const RateFormSpectrum mode = rate_form_spectrum(scheme, y0, {.want_mode = true});
   for (int i = 0; i < disc->size(); ++i) {
     const int f = disc->free_slot[i];
     scheme.set_velocity(y0, i, 1e-10 * mode.mode.segment<2>(2 * f));

@@ -27,25 +27,34 @@
 
 namespace sphstab {
 
+struct RateFormSpectrumOptions {
+  bool want_mode = false;
+  /// Optional orthonormal columns Q (free velocity DOFs x m) spanning a subspace that B and Jvv leave invariant, e.g.
+  /// a mirror class of a symmetric block (growth/mirror_symmetry.hpp): the spectrum of Q^T B Q (and Q^T Jvv Q) is
+  /// then the part of J's spectrum whose modes lie in that class; invariance_residual says how well it holds.
+  Eigen::MatrixXd basis;
+};
+
 struct RateFormSpectrum {
   static constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-  double growth_rate = nan;         ///< max Re lambda over the non-zero eigenvalues of J (>= 0: +-pairs)
-  std::complex<double> lambda;      ///< the eigenvalue attaining it
-  Eigen::VectorXcd eigenvalues;     ///< the non-zero part of the spectrum of J (2 per velocity DOF)
-  Eigen::VectorXd mode;             ///< real velocity shape of lambda's eigenvector, free DOFs interleaved (want_mode)
-  int states = 0;                   ///< size of J
-  int reduced = 0;                  ///< size of the reduced eigenproblem
-  double structure_residual = nan;  ///< max |zero blocks| / max |J|: the reduction's precondition (~1e-16)
+  double growth_rate = nan;          ///< max Re lambda over the non-zero eigenvalues of J (>= 0: +-pairs)
+  std::complex<double> lambda;       ///< the eigenvalue attaining it
+  Eigen::VectorXcd eigenvalues;      ///< the non-zero part of the spectrum of J (2 per velocity DOF)
+  Eigen::VectorXd mode;              ///< real velocity shape of lambda's eigenvector, free DOFs interleaved (want_mode)
+  int states = 0;                    ///< size of J
+  int reduced = 0;                   ///< size of the reduced eigenproblem
+  double structure_residual = nan;   ///< max |zero blocks| / max |J|: the reduction's precondition (~1e-16)
+  double invariance_residual = nan;  ///< with a basis: ||B Q - Q Q^T B Q||_F / ||B||_F (~1e-16 for a true class)
   Status status = Status::NotComputed;
   std::string reason;
   Status info() const { return status; }
 };
 
 /// Spectrum of J at y (a state at rest: all velocities 0). Throws std::invalid_argument for a state of the wrong
-/// size or with non-zero velocities; NumericalIssue (with a reason) when the zero blocks are not zero to 1e-10
-/// relative or LAPACK fails.
+/// size, with non-zero velocities or a basis of the wrong height; NumericalIssue (with a reason) when the zero blocks
+/// are not zero to 1e-10 relative or LAPACK fails.
 template <int Dim>
 RateFormSpectrum rate_form_spectrum(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y,
-                                    bool want_mode = false);
+                                    const RateFormSpectrumOptions& options = {});
 
 }  // namespace sphstab
