@@ -1,0 +1,236 @@
+// Study: the Swegle test as Powell ran it, with the rate-form scheme (forms/rate_form.hpp: continuity, equation of
+// state, Jaumann rate) instead of the additive pre-stress of the §3.3 model (studies/swegle). Each (formulation, xi)
+// gets its full-state linear growth rate (growth/rate_form_spectrum.hpp, in the mirror class the kick excites and
+// over all classes) and a nonlinear run (GMS predictor-corrector, integrate/rate_form_run.hpp) whose kinetic-energy
+// growth is fitted. See README.md; the prose of the summary is summary.md.in.
+//
+// Writes to --out DIR: runs.csv, ke.csv, summary.json. Units g, cm, us (stress in Mbar).
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "common/study.hpp"
+#include "sphstab/growth/growth_fit.hpp"
+#include "sphstab/growth/mirror_symmetry.hpp"
+#include "sphstab/growth/rate_form_spectrum.hpp"
+#include "sphstab/integrate/rate_form_run.hpp"
+#include "sphstab/io/csv.hpp"
+#include "sphstab/problems/swegle.hpp"
+
+using namespace sphstab;
+
+namespace {
+
+struct Formulation {
+  std::string name, label;
+  RateFormOptions options;
+};
+
+/// The terms of the scheme practitioners switch on, one at a time and together (MCM deck viscosity 0.06 / 1.5;
+/// GMS XSPH 1/2 and artificial stress 0.3, n = 4).
+std::vector<Formulation> formulations() {
+  const RateFormOptions visc{.viscosity = ViscositySwitch::Compression};
+  return {{"sph", "basic SPH (continuity by summation, rho^2 momentum)", {}},
+          {"sph-xsph", "SPH + XSPH (GMS 3.6, eps = 1/2)", {.xsph = 0.5}},
+          {"sph-visc", "SPH + artificial viscosity (compression switch, alpha 0.06, beta 1.5)", visc},
+          {"sph-as", "SPH + GMS artificial stress (eps = 0.3, n = 4)", {.artificial_stress = 0.3}},
+          {"sph-div", "SPH with continuity -rho tr L (GMS 3.9)", {.continuity = ContinuityForm::Divergence}},
+          {"sph-all",
+           "SPH + XSPH + viscosity + artificial stress",
+           {.xsph = 0.5, .viscosity = ViscositySwitch::Compression, .artificial_stress = 0.3}}};
+}
+
+std::string verdict(bool unstable) { return unstable ? "U" : "S"; }
+
+/// Growth rate of the Heun one-step map y1 = (I + dt J + dt^2 J^2 / 2) y0 (the predictor-corrector with corrected
+/// positions) on the given eigenvalues of J: max log |1 + z + z^2/2| / dt, z = lambda dt. On the imaginary axis
+/// |g|^2 = 1 + (omega dt)^4 / 4 > 1: Heun amplifies undamped oscillations, at a rate ~ omega^4 dt^3 / 8.
+double heun_map_growth(const Eigen::VectorXcd& lambda, double dt) {
+  double g = 0;
+  for (const std::complex<double>& l : lambda) {
+    const std::complex<double> z = l * dt;
+    g = std::max(g, std::log(std::abs(1.0 + z + 0.5 * z * z)) / dt);
+  }
+  return g;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Swegle test with the rate-form SPH scheme: full-state linear versus measured growth"};
+  std::string out = "results/swegle-rate-form";
+  int n = 21;
+  double t_end = 45, onset = 100, stop_growth = 1e10;
+  app.add_option("--out", out, "output directory");
+  app.add_option("--n", n, "free particles per side (odd)")->check(CLI::Range(5, 101));
+  app.add_option("--t-end", t_end, "run length (us)")->check(CLI::PositiveNumber);
+  CLI11_PARSE(app, argc, argv);
+  const auto t0 = study::Clock::now();
+  std::filesystem::create_directories(out);
+
+  const std::vector<double> xis = {0.96, 0.98, 0.99, 1.0, 1.01, 1.02, 1.04};
+  SwegleOptions so;
+  so.n = n;
+  const SwegleScene scene = make_swegle_scene(so);  // block, fixed layers, centre particle, kick direction
+  const auto& disc = scene.discretisation;
+  const RateFormMaterial steel = RateFormMaterial::from_youngs(so.youngs_modulus, so.poisson_ratio, so.density);
+  const double cp = steel.p_wave_speed(), dt = 0.3 * scene.h / cp;
+  const double detect = std::log(onset) / (2 * t_end);  // slowest growth that reaches the onset within t_end
+
+  // The kick (+x at the centre) lies in the mirror class (px, py) = (-1, +1) of the free velocity DOFs.
+  Eigen::VectorXd pos(2 * disc->free_count());
+  for (int f = 0; f < disc->free_count(); ++f) pos.segment<2>(2 * f) = disc->particles.x.row(disc->free[f]).transpose();
+  const Eigen::Vector2d centre = disc->particles.x.row(scene.centre).transpose();
+  const MirrorSymmetry sym = mirror_symmetry(pos, centre, 1e-9 * so.spacing);
+  const Eigen::MatrixXd excited = symmetry_basis(sym, -1, 1);
+
+  std::ofstream runs_csv(out + "/runs.csv"), ke_csv(out + "/ke.csv");
+  runs_csv << "formulation,xi,density,pressure,gamma_linear_class,lambda_imag_class,gamma_linear_all,gamma_map_class,"
+              "invariance_residual,structure_residual,gamma_measured,grew,fit_t_begin,fit_t_end,fit_r2,ratio,"
+              "linear_verdict,measured_verdict,status,steps,t_stop,ke_max_over_ke0,wall_linear,wall_run\n";
+  ke_csv << "formulation,xi,t,kinetic\n";
+  std::string table, ratios_table;
+  double ratio_min = 1e300, ratio_max = -1e300, smooth_min = 1e300, smooth_max = -1e300, wall_linear = 0, wall_runs = 0;
+  int agree = 0, cases = 0, comparable = 0;
+  for (const Formulation& form : formulations()) {
+    std::vector<std::string> row{"**" + form.name + "**"};
+    for (double xi : xis) {
+      const double rho = so.density / xi;
+      const RateFormScheme<2> scheme(disc, steel, form.options, rho);
+      Eigen::VectorXd y = scheme.uniform_state();
+      auto tl = study::Clock::now();
+      const RateFormSpectrum all = rate_form_spectrum(scheme, y);
+      const RateFormSpectrum cls = rate_form_spectrum(scheme, y, {.basis = excited});
+      const double w_lin = study::seconds_since(tl);
+      wall_linear += w_lin;
+      scheme.set_velocity(y, scene.centre, scene.v0.segment<2>(2 * disc->free_slot[scene.centre]));
+      tl = study::Clock::now();
+      const RateFormRunResult run =
+          run_rate_form(scheme, y, {.dt = dt, .t_end = t_end, .record_every = 10, .energy_growth = stop_growth});
+      const double w_run = study::seconds_since(tl);
+      wall_runs += w_run;
+      for (std::size_t k = 0; k < run.times.size(); ++k)
+        ke_csv << csv_line(
+            {form.name, format_number(xi), format_number(run.times[k], 8), format_number(run.kinetic_energy[k], 8)});
+      const double ke0 = run.kinetic_energy.front();
+      const ExponentialGrowthFit fit =
+          fit_exponential_growth(run.times, run.kinetic_energy, ke0, run.times.back(), {.onset_factor = onset});
+      double ke_max = 0;
+      for (double e : run.kinetic_energy) ke_max = std::max(ke_max, e / ke0);
+      const bool lin_unstable = cls.growth_rate > detect;
+      const bool measured_unstable = fit.grew;
+      const double ratio = fit.grew && lin_unstable ? fit.gamma / cls.growth_rate : NAN;
+      ++cases;
+      agree += lin_unstable == measured_unstable;
+      if (std::isfinite(ratio)) {
+        ++comparable;
+        ratio_min = std::min(ratio_min, ratio);
+        ratio_max = std::max(ratio_max, ratio);
+        if (form.options.viscosity == ViscositySwitch::Off) {  // smooth terms: the linear theory applies
+          smooth_min = std::min(smooth_min, ratio);
+          smooth_max = std::max(smooth_max, ratio);
+        }
+      }
+      runs_csv << csv_line({form.name,
+                            format_number(xi),
+                            format_number(rho, 8),
+                            format_number(steel.bulk_modulus * (rho / steel.density - 1), 8),
+                            format_number(cls.growth_rate, 8),
+                            format_number(std::abs(cls.lambda.imag()), 8),
+                            format_number(all.growth_rate, 8),
+                            format_number(cls.invariance_residual, 3),
+                            format_number(all.structure_residual, 3),
+                            format_number(fit.gamma, 8),
+                            fit.grew ? "1" : "0",
+                            format_number(fit.fit.t_begin, 6),
+                            format_number(fit.fit.t_end, 6),
+                            format_number(fit.fit.r2, 8),
+                            format_number(ratio, 6),
+                            verdict(lin_unstable),
+                            verdict(measured_unstable),
+                            run_status_name(run.status),
+                            std::to_string(run.steps),
+                            format_number(run.time, 6),
+                            format_number(ke_max, 6),
+                            format_number(w_lin, 3),
+                            format_number(w_run, 3)});
+      row.push_back(measured_unstable ? "**U** " + study::sig(fit.gamma) : "S");
+      std::printf("%-9s xi %.2f: gamma linear %.4g (all %.4g), measured %.4g (%s), ratio %.3f, %s (%.1f + %.1f s)\n",
+                  form.name.c_str(), xi, cls.growth_rate, all.growth_rate, fit.gamma, fit.grew ? "grew" : "bounded",
+                  ratio, run.message.c_str(), w_lin, w_run);
+      std::fflush(stdout);
+      study::md_row(ratios_table, {form.name, study::fixed(xi, 2), study::sig(cls.growth_rate, 4),
+                                   study::sig(all.growth_rate, 4), study::sig(fit.gamma, 4), study::fixed(ratio, 3)});
+    }
+    study::md_row(table, row);
+  }
+
+  // Is the growth at xi = 1 (linearly neutral) made by the time integrator? Measured gamma versus dt, GMS positions
+  // and corrected (Heun) positions, against the Heun map's rate: an integrator-made growth falls as dt^3.
+  std::ofstream dt_csv(out + "/dt_study.csv");
+  dt_csv << "formulation,xi,positions,dt,gamma_measured,gamma_map_class,grew\n";
+  std::vector<double> dts, gms_rates;
+  std::string dt_table;
+  for (double scale : {1.0, 0.5}) {  // dt/2 grows 8x slower: run 4x longer to see it
+    const RateFormScheme<2> scheme(disc, steel, {}, so.density);
+    Eigen::VectorXd y = scheme.uniform_state();
+    const RateFormSpectrum cls = rate_form_spectrum(scheme, y, {.basis = excited});
+    scheme.set_velocity(y, scene.centre, scene.v0.segment<2>(2 * disc->free_slot[scene.centre]));
+    for (PositionUpdate pu : {PositionUpdate::Gms, PositionUpdate::Trapezoid}) {
+      const RateFormRunResult run = run_rate_form(
+          scheme, y,
+          {.dt = scale * dt, .positions = pu, .t_end = t_end, .record_every = 10, .energy_growth = stop_growth});
+      const ExponentialGrowthFit fit = fit_exponential_growth(run.times, run.kinetic_energy, run.kinetic_energy.front(),
+                                                              run.times.back(), {.onset_factor = onset});
+      const double map = heun_map_growth(cls.eigenvalues, run.dt);
+      const std::string name = pu == PositionUpdate::Gms ? "gms" : "trapezoid";
+      dt_csv << csv_line({"sph", "1", name, format_number(run.dt, 8), format_number(fit.gamma, 8),
+                          format_number(map, 8), fit.grew ? "1" : "0"});
+      study::md_row(dt_table, {name, study::sig(run.dt, 4), study::sig(fit.gamma, 4), study::sig(map, 4)});
+      if (pu == PositionUpdate::Gms) {
+        dts.push_back(run.dt);
+        gms_rates.push_back(fit.gamma);
+      }
+      std::printf("dt study: %s dt %.4g: measured %.4g, Heun map %.4g\n", name.c_str(), run.dt, fit.gamma, map);
+    }
+  }
+
+  study::Summary s;
+  s.set("dt_table", dt_table);
+  s.set("dt_power", study::loglog_slope(dts, gms_rates), 3);
+  s.set("n", n);
+  s.set("particles", disc->size());
+  s.set("states", RateFormScheme<2>(disc, steel).size());
+  s.set("reduced", 2 * disc->free_count());
+  s.set("class_size", static_cast<int>(excited.cols()));
+  s.set("bulk_modulus", steel.bulk_modulus, 4);
+  s.set("shear_modulus", steel.shear_modulus, 4);
+  s.set("c_P", cp, 4);
+  s.set("dt", dt, 4);
+  s.set("t_end", t_end, 4);
+  s.set("onset", onset, 3);
+  s.set("stop_growth", stop_growth, 3);
+  s.set("detect", detect, 3);
+  s.set("xi_list", "0.96, 0.98, 0.99, 1, 1.01, 1.02, 1.04");
+  s.set("stability_table", table);
+  s.set("ratios_table", ratios_table);
+  s.set("cases", cases);
+  s.set("agree", agree);
+  s.set("comparable", comparable);
+  s.set("ratio_min", comparable ? ratio_min : NAN, 3);
+  s.set("ratio_max", comparable ? ratio_max : NAN, 3);
+  s.set("smooth_ratio_min", smooth_min, 3);
+  s.set("smooth_ratio_max", smooth_max, 3);
+  s.set("wall_linear", wall_linear, 3);
+  s.set("wall_runs", wall_runs, 3);
+  s.set("wall_total", study::seconds_since(t0), 3);
+  s.write(out);
+  std::printf("linear and measured verdicts agree in %d of %d runs; ratio measured/linear %.3f..%.3f over %d\n", agree,
+              cases, ratio_min, ratio_max, comparable);
+  return 0;
+}
