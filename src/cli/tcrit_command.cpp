@@ -286,6 +286,25 @@ void run_tcrit(const TcritArgs& a) {
       "kernel,form,N,periodic,h_over_dx,method,backend,tcrit,tcrit_eig,tcrit_bisect,rel_diff,t_first_minor,"
       "t_second_minor,t_nn,t_nn_minor,t_swegle,tcrit_infinite,tcrit_symbol,mode_k_over_pi,status,reason,criterion\n";
   auto add_row = [&out](const std::vector<std::string>& row) { out += csv_line(row); };
+  // Corrected routes have no closed-form estimates or symbols: those columns are NaN.
+  auto add_corrected_row = [&](KernelType type, MomentumForm form, double h, const CriticalLoad& r,
+                               const std::string& backend, const std::string& reason, const std::string& criterion) {
+    const std::string nan_cell = num(CriticalLoad::nan);
+    std::vector<std::string> row{kernel_name(type),
+                                 momentum_form_name(form),
+                                 std::to_string(nfree),
+                                 "0",
+                                 num(h),
+                                 a.method,
+                                 backend,
+                                 num(r.load),
+                                 num(r.load_eigen),
+                                 num(r.load_bisection),
+                                 num(r.relative_difference)};
+    row.insert(row.end(), 7, nan_cell);  // t_first_minor ... tcrit_symbol
+    row.insert(row.end(), {num(r.reported_wavenumber().k_projection), status_name(r.status), reason, criterion});
+    add_row(row);
+  };
   const double nan = CriticalLoad::nan;
   SweepProgress progress(static_cast<long>(kernels.size() * hs.size() * forms.size()));
   for (KernelType type : kernels) {
@@ -333,30 +352,13 @@ void run_tcrit(const TcritArgs& a) {
       if (kernel.support_radius(h) <= 1.0) {
         // One rule with the plain routes: no neighbour inside the support -> NaN and numerical-issue (a correction
         // such as NCSPH is not even defined there).
+        CriticalLoad none;
+        none.status = Status::NumericalIssue;
         for (MomentumForm form : forms)
-          add_row({kernel_name(type),
-                   momentum_form_name(form),
-                   std::to_string(nfree),
-                   "0",
-                   num(h),
-                   a.method,
-                   "none",
-                   num(nan),
-                   num(nan),
-                   num(nan),
-                   num(nan),
-                   num(nan),
-                   num(nan),
-                   num(nan),
-                   num(nan),
-                   num(nan),
-                   num(nan),
-                   num(nan),
-                   num(nan),
-                   status_name(Status::NumericalIssue),
-                   "no neighbour inside the kernel support (2h = " + num(kernel.support_radius(h)) +
-                       " <= dx): every operator is diagonal",
-                   "none"});
+          add_corrected_row(type, form, h, none, "none",
+                            "no neighbour inside the kernel support (2h = " + num(kernel.support_radius(h)) +
+                                " <= dx): every operator is diagonal",
+                            "none");
         continue;
       }
       const ParticleSet<1> set = tension_lattice_1d(kernel, h, nfree, false, kCorrectedLayerSupports);
@@ -374,28 +376,7 @@ void run_tcrit(const TcritArgs& a) {
         for (const CriticalLoad& r : load.results) {
           const bool pd = r.criterion != Criterion::Spectrum;
           const std::string backend = pd ? (r.eigen_backend.empty() ? "none" : r.eigen_backend) : std::string("dgeev");
-          add_row({kernel_name(type),
-                   momentum_form_name(form),
-                   std::to_string(nfree),
-                   "0",
-                   num(h),
-                   a.method,
-                   backend,
-                   num(r.load),
-                   num(r.load_eigen),
-                   num(r.load_bisection),
-                   num(r.relative_difference),
-                   num(nan),
-                   num(nan),
-                   num(nan),
-                   num(nan),
-                   num(nan),
-                   num(nan),
-                   num(nan),
-                   num(r.reported_wavenumber().k_projection),
-                   status_name(r.status),
-                   note + "; " + r.reason,
-                   criterion_name(r.criterion)});
+          add_corrected_row(type, form, h, r, backend, note + "; " + r.reason, criterion_name(r.criterion));
         }
         progress.case_done();
       }

@@ -2,36 +2,13 @@
 """Plots of the Swegle study: one log-KE-versus-time panel per formulation with a curve per volume strain xi (like
 Powell Fig. 4.2), measured versus predicted growth rates, the 1D version and the energy error of the conservative
 form. Usage: plot.py RESULTS_DIR (reads ke.csv, runs.csv, onedim_ke.csv, onedim_runs.csv, energy_series.csv)."""
-import csv
 import math
 import os
 import sys
 from collections import defaultdict
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
-
-def read(path):
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
-
-
-def num(x):
-    try:
-        return float(x)
-    except ValueError:
-        return math.nan
-
-
-def xi_colour(xi, xis):
-    if abs(xi - 1) < 1e-12:
-        return "k"
-    cmap = plt.get_cmap("coolwarm")
-    lo, hi = min(xis), max(xis)
-    return cmap(0.5 + 0.5 * (xi - 1) / max(hi - 1, 1 - lo, 1e-12))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from plot_common import num, plt, read, xi_colour  # noqa: E402
 
 
 def main(out):
