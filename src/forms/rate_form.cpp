@@ -1,5 +1,7 @@
 #include "sphstab/forms/rate_form.hpp"
 
+#include <Eigen/LU>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -50,6 +52,26 @@ ViscositySwitch parse_viscosity_switch(const std::string& name) {
   throw std::invalid_argument("unknown viscosity switch '" + name + "' (valid: off, compression, always)");
 }
 
+RateFormGradient parse_rate_form_gradient(const std::string& name) {
+  if (name == "plain") return RateFormGradient::Plain;
+  if (name == "ncsph") return RateFormGradient::Ncsph;
+  throw std::invalid_argument("unknown rate-form gradient '" + name + "' (valid: plain, ncsph)");
+}
+
+RateFormMomentum parse_rate_form_momentum(const std::string& name) {
+  if (name == "symmetric") return RateFormMomentum::Symmetric;
+  if (name == "antisymmetric") return RateFormMomentum::Antisymmetric;
+  if (name == "cij") return RateFormMomentum::Cij;
+  if (name == "ssph") return RateFormMomentum::StabilisedSph;
+  throw std::invalid_argument("unknown rate-form momentum '" + name + "' (valid: symmetric, antisymmetric, cij, ssph)");
+}
+
+namespace {
+
+bool uses_local_means(RateFormMomentum m) { return m == RateFormMomentum::Cij || m == RateFormMomentum::StabilisedSph; }
+
+}  // namespace
+
 template <int Dim>
 RateFormScheme<Dim>::RateFormScheme(std::shared_ptr<const Discretisation<Dim>> disc, const RateFormMaterial& material,
                                     const RateFormOptions& options, double density, const Eigen::VectorXd& deviator)
@@ -82,6 +104,34 @@ RateFormScheme<Dim>::RateFormScheme(std::shared_ptr<const Discretisation<Dim>> d
     m_w_dp = w;
   }
   const int n = p.size();
+  const NeighbourList& nl = m_disc->neighbours;
+  if (uses_local_means(options.momentum)) {
+    if (options.gradient != RateFormGradient::Plain)
+      throw std::invalid_argument("RateFormScheme: the C_ij and S-SPH momentum forms use the plain gradient");
+    m_counts = neighbour_counts(p, nl, options.counting);
+  }
+  if (options.momentum == RateFormMomentum::StabilisedSph) {
+    if (options.excluded_depth < -1)
+      throw std::invalid_argument("RateFormScheme: excluded_depth must be >= -1 (got " +
+                                  std::to_string(options.excluded_depth) + ")");
+    if (options.excluded_depth >= 0 && static_cast<int>(p.depth.size()) != n)
+      throw std::invalid_argument("RateFormScheme: S-SPH's outer-layer exclusion needs a depth per particle");
+    m_excluded.assign(n, false);
+    for (int i = 0; i < n; ++i) m_excluded[i] = options.excluded_depth >= 0 && p.depth[i] <= options.excluded_depth;
+  }
+  if (options.momentum == RateFormMomentum::Antisymmetric) {
+    m_transpose.assign(nl.nonzeros(), -1);
+    for (int i = 0; i < n; ++i)
+      for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
+        const int j = nl.indices[k];
+        const auto first = nl.indices.begin() + nl.offsets[j], last = nl.indices.begin() + nl.offsets[j + 1];
+        const auto it = std::lower_bound(first, last, i);
+        if (it == last || *it != i)
+          throw std::invalid_argument("RateFormScheme: the neighbour list is not symmetric (pair " + std::to_string(i) +
+                                      ", " + std::to_string(j) + ")");
+        m_transpose[k] = it - nl.indices.begin();
+      }
+  }
   m_mass = m_density * p.volume;
   m_x_off.assign(n, -1);
   m_rho_off.assign(n, -1);
@@ -109,6 +159,20 @@ std::string RateFormScheme<Dim>::name() const {
          (m_options.viscosity == ViscositySwitch::Compression ? "compression" : "always") + " " +
          format_number(m_options.viscosity_alpha) + "/" + format_number(m_options.viscosity_beta);
   if (m_options.artificial_stress > 0) s += ", artificial stress " + format_number(m_options.artificial_stress);
+  if (m_options.gradient == RateFormGradient::Ncsph) s += ", ncsph";
+  switch (m_options.momentum) {
+    case RateFormMomentum::Symmetric:
+      break;
+    case RateFormMomentum::Antisymmetric:
+      s += ", antisymmetric momentum";
+      break;
+    case RateFormMomentum::Cij:
+      s += ", C_ij momentum";
+      break;
+    case RateFormMomentum::StabilisedSph:
+      s += ", S-SPH " + switch_rule_name(m_options.switch_rule);
+      break;
+  }
   return s + ")";
 }
 
@@ -235,6 +299,41 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
       grad[k] = (kernel.d1(rr, h) / rr) * r;
     }
 
+  // Current volumes and the gradient Ghat_ij with V_j included (plain or NCSPH).
+  std::vector<Scalar> vol(n);
+  for (int i = 0; i < n; ++i) vol[i] = m_mass[i] / rho[i];
+  const bool plain = o.gradient == RateFormGradient::Plain;
+  std::vector<Vec> gh;
+  if (!plain || uses_local_means(o.momentum)) {
+    gh.resize(nnz);
+    for (int i = 0; i < n; ++i)
+      for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) gh[k] = vol[nl.indices[k]] * grad[k];
+  }
+  if (o.gradient == RateFormGradient::Ncsph)
+    for (int i = 0; i < n; ++i) {
+      // Powell (1.19): Shepard gradient (S_i grad W_ij V_j - W_ij V_j g_i) / S_i^2, then times M_i^-1 with
+      // M_i^ab = sum_j (x_j^a - x_i^a) gradW~^b_ij, so that sum_j (x_j - x_i) Ghat_ij^T = I.
+      Scalar shep(0);
+      Vec g = Vec::Zero();
+      for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
+        shep += vol[nl.indices[k]] * w[k];
+        g += gh[k];
+      }
+      Mat M = Mat::Zero();
+      for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
+        gh[k] = (gh[k] * shep - (vol[nl.indices[k]] * w[k]) * g) / (shep * shep);
+        M -= rij[k] * gh[k].transpose();
+      }
+      const Eigen::Matrix<double, Dim, Dim> Mr = M.unaryExpr([](const Scalar& z) { return detail::re(z); });
+      const Eigen::JacobiSVD<Eigen::Matrix<double, Dim, Dim>> svd(Mr);
+      const double smax = svd.singularValues()(0), smin = svd.singularValues()(Dim - 1);
+      if (!(smin > 1e-12 * smax))
+        throw std::domain_error("RateFormScheme: NCSPH moment matrix of particle " + std::to_string(i) +
+                                " is singular (rcond " + format_number(smax > 0 ? smin / smax : 0.0) + ")");
+      const Mat Minv_t = M.inverse().transpose();
+      for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) gh[k] = Minv_t * gh[k];
+    }
+
   // XSPH velocity [GMS2001, (3.6)].
   for (int i = 0; i < n; ++i) {
     vhat[i] = v[i];
@@ -269,6 +368,57 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
     }
   }
 
+  // Local means of algorithm 4.1 of P_ij = V_j grad W_ij (C_ij, S-SPH): row mean r_i, column mean c_j =
+  // (1/n_j) sum_k P_kj = -(V_j / n_j) sum_k grad W_jk, mean of column means m_i; and the S-SPH switch.
+  std::vector<Vec> row_mean, col_mean, mean_mean;
+  std::vector<Eigen::Matrix<bool, Dim, 1>> on;
+  if (uses_local_means(o.momentum)) {
+    row_mean.assign(n, Vec::Zero());
+    col_mean.assign(n, Vec::Zero());
+    mean_mean.assign(n, Vec::Zero());
+    for (int i = 0; i < n; ++i) {
+      Vec gs = Vec::Zero();
+      for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
+        row_mean[i] += gh[k];
+        gs += grad[k];
+      }
+      row_mean[i] /= m_counts[i];
+      col_mean[i] = (-vol[i] / m_counts[i]) * gs;
+    }
+    for (int i = 0; i < n; ++i) {
+      for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) mean_mean[i] += col_mean[nl.indices[k]];
+      mean_mean[i] /= m_counts[i];
+    }
+  }
+  if (o.momentum == RateFormMomentum::StabilisedSph) {
+    // Switch per component, on the real parts (frozen under a complex step); |sum| below a relative tolerance
+    // counts as zero so that the unstressed lattice sits on the "off" branch of the tension rule.
+    const double tol = 1e-14 * (K + 4.0 * mu / 3.0);
+    on.assign(n, Eigen::Matrix<bool, Dim, 1>::Constant(false));
+    for (int i = 0; i < n; ++i) {
+      if (m_excluded[i]) continue;
+      for (int a = 0; a < Dim; ++a) {
+        double sum = 0;
+        for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) sum += detail::re(sigma[nl.indices[k]](a, a));
+        if (std::abs(sum) <= tol) sum = 0;
+        switch (o.switch_rule) {
+          case SwitchRule::Tension:
+            on[i][a] = sum > 0;
+            break;
+          case SwitchRule::AsPrinted:
+            on[i][a] = sum <= 0;
+            break;
+          case SwitchRule::Always:
+            on[i][a] = true;
+            break;
+          case SwitchRule::Never:
+            on[i][a] = false;
+            break;
+        }
+      }
+    }
+  }
+
   dydt.setZero(m_size);
   const double c0 = m_material.sound_speed(), eta2 = 0.01 * h * h;
   for (int i = 0; i < n; ++i) {
@@ -280,14 +430,24 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
     const Mat si = sigma[i] / (rho[i] * rho[i]);
     for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
       const int j = nl.indices[k];
-      if (j == i) continue;
-      const Vec& g = grad[k];
+      if (j == i) {  // only a corrected gradient has a self term (it makes the rows sum to zero)
+        if (free && o.momentum == RateFormMomentum::Symmetric && !plain) acc += (2.0 / rho[i]) * (sigma[i] * gh[k]);
+        if (free && o.momentum == RateFormMomentum::Cij)
+          acc += (sigma[i] / rho[i]) * (gh[k] - row_mean[i] - col_mean[i] + mean_mean[i]);
+        continue;
+      }
       const Vec dv = vhat[j] - vhat[i];
-      L += (m_mass[j] / rho[j]) * dv * g.transpose();  // L^ab = dv^a/dx^b  [GMS2001, (3.10)]
-      if (o.continuity == ContinuityForm::Summation)
-        drho -= m_mass[j] * dv.cwiseProduct(g).sum();  // not dot(): it conjugates complex steps
+      // L^ab = dv^a/dx^b [GMS2001, (3.10)]; continuity [GMS2001, (3.8)] (not dot(): it conjugates complex steps).
+      if (plain) {
+        L += (vol[j] * dv) * grad[k].transpose();
+        if (o.continuity == ContinuityForm::Summation) drho -= m_mass[j] * dv.cwiseProduct(grad[k]).sum();
+      } else {
+        L += dv * gh[k].transpose();
+        if (o.continuity == ContinuityForm::Summation) drho -= rho[j] * dv.cwiseProduct(gh[k]).sum();
+      }
       if (!free) continue;
-      Mat bracket = si + sigma[j] / (rho[j] * rho[j]);
+      // Pair terms on the plain gradient: viscosity and artificial stress (every momentum form).
+      Mat pair = Mat::Zero();
       if (o.viscosity != ViscositySwitch::Off) {
         const Vec vij = v[i] - v[j];
         const Scalar vr = vij.cwiseProduct(rij[k]).sum();
@@ -295,14 +455,47 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
           const Scalar mu_ij = h * vr / (r2s[k] + eta2), rho_bar = 0.5 * (rho[i] + rho[j]);
           Scalar pi = -o.viscosity_alpha * c0 * mu_ij;
           if (o.viscosity == ViscositySwitch::Compression) pi += o.viscosity_beta * mu_ij * mu_ij;
-          bracket -= (pi / rho_bar) * Mat::Identity();
+          pair -= (pi / rho_bar) * Mat::Identity();
         }
       }
       if (o.artificial_stress > 0) {
         const Scalar f = artificial_stress_pair_factor<Scalar>(w[k], m_w_dp, o.artificial_stress_exponent);
-        bracket += f * (R[i] + R[j]);
+        pair += f * (R[i] + R[j]);
       }
-      acc += m_mass[j] * (bracket * g);
+      const Mat sj = sigma[j] / (rho[j] * rho[j]);
+      switch (o.momentum) {
+        case RateFormMomentum::Symmetric:  // Powell (1.36): m_j grad W_ij = rho_j Ghat_ij
+          if (plain) {
+            acc += m_mass[j] * ((si + sj + pair) * grad[k]);
+          } else {
+            acc += rho[j] * ((si + sj) * gh[k]) + m_mass[j] * (pair * grad[k]);
+          }
+          break;
+        case RateFormMomentum::Antisymmetric: {
+          if (plain) {  // grad W_ji = -grad W_ij: the symmetric form
+            acc += m_mass[j] * ((si + sj + pair) * grad[k]);
+          } else {
+            const Vec ga = 0.5 * (gh[k] / vol[j] - gh[m_transpose[k]] / vol[i]);
+            acc += m_mass[j] * ((si + sj) * ga + pair * grad[k]);
+          }
+          break;
+        }
+        case RateFormMomentum::Cij:  // Powell (4.10), C_ij of (4.9)
+          acc +=
+              (sigma[j] / rho[j]) * (gh[k] - row_mean[i] - col_mean[j] + mean_mean[i]) + m_mass[j] * (pair * grad[k]);
+          break;
+        case RateFormMomentum::StabilisedSph: {  // Powell algorithm 4.2: a_i += (f_ij + g_ij - f_ji - g_ji) / 2
+          const Mat Sij = sigma[i] / rho[i] + sigma[j] / rho[j];
+          Vec gij = -(Sij * (row_mean[i] + col_mean[j] - mean_mean[i]));
+          Vec gji = -(Sij * (row_mean[j] + col_mean[i] - mean_mean[j]));
+          for (int a = 0; a < Dim; ++a) {
+            if (!on[i][a]) gij[a] = Scalar(0);
+            if (!on[j][a]) gji[a] = Scalar(0);
+          }
+          acc += 0.5 * ((vol[i] + vol[j]) * (Sij * grad[k]) + gij - gji) + m_mass[j] * (pair * grad[k]);
+          break;
+        }
+      }
     }
     if (o.continuity == ContinuityForm::Divergence) drho = -rho[i] * L.trace();
     if (free) {
@@ -331,7 +524,11 @@ template <int Dim>
 SparsityPattern RateFormScheme<Dim>::pattern() const {
   // Rows of particle i read the particles within `hops` of i: 1 (own neighbours), 2 with XSPH (vhat_j reads v_k).
   const NeighbourList& nl = m_disc->neighbours;
-  const int n = m_disc->size(), hops = m_options.xsph > 0 ? 2 : 1;
+  // Momentum reach: Ghat_ji reads N(j) (antisymmetric), c_j reads N(j) (C_ij), g_ji reads m_j, i.e. c of N(j)
+  // (S-SPH); XSPH's vhat_j reads N(j) in L_i and the continuity.
+  const RateFormMomentum m = m_options.momentum;
+  const int momentum_reach = m == RateFormMomentum::Symmetric ? 1 : m == RateFormMomentum::StabilisedSph ? 3 : 2;
+  const int n = m_disc->size(), hops = std::max(momentum_reach, m_options.xsph > 0 ? 2 : 1);
   auto block = [&](int i, std::vector<int>& cols) {
     if (m_x_off[i] >= 0)
       for (int c = 0; c < 2 * Dim; ++c) cols.push_back(m_x_off[i] + c);

@@ -49,6 +49,8 @@
 #include <vector>
 
 #include "sphstab/forms/discretisation.hpp"
+#include "sphstab/forms/stabilised_sph.hpp"
+#include "sphstab/operators/local_polish.hpp"
 #include "sphstab/system/semi_discrete_system.hpp"
 
 namespace sphstab {
@@ -71,6 +73,31 @@ struct RateFormMaterial {
 enum class ContinuityForm { Summation, Divergence };
 enum class ViscositySwitch { Off, Compression, Always };
 
+/// The kernel gradient Ghat_ij (particle volume V_j = m_j / rho_j included) of the velocity gradient, the
+/// continuity equation and the symmetric/antisymmetric momentum equations.
+enum class RateFormGradient {
+  Plain,  ///< V_j grad W_ij
+  Ncsph   ///< Powell (1.19) with the current volumes: Shepard gradient times the inverse moment matrix
+};
+
+/// How the momentum equation uses the stresses (a_i, tension-positive sigma; sums over j in N(i), self included
+/// where the gradient has a self term).
+enum class RateFormMomentum {
+  /// [Powell2012, (1.36)] a_i = sum_j rho_j (sigma_i/rho_i^2 + sigma_j/rho_j^2) . Ghat_ij. With NCSPH this is the
+  /// "row" form MCM runs: the rows of Ghat sum to zero, so a uniform sigma exerts no force at any positions.
+  Symmetric,
+  /// (1.36) with Ghat_ij / V_j replaced by (Ghat_ij / V_j - Ghat_ji / V_i) / 2: equal and opposite pair forces
+  /// (momentum conserving). Identical to Symmetric for the plain gradient.
+  Antisymmetric,
+  /// [Powell2012, (4.10)] a_i = sum_j (sigma_j / rho_j) . C_ij with the local polish C_ij of (4.9) (algorithm 4.1:
+  /// mean of COLUMN means) of P_ij = V_j grad W_ij; (4.10) prints "f_i = m a_i" for a_i.
+  Cij,
+  /// [Powell2012, (4.13)-(4.17), algorithm 4.2] S-SPH: basic SPH (4.13) plus the correction g_ij (the last three
+  /// terms of C_ij with S_ij = sigma_i/rho_i + sigma_j/rho_j) per component where the switch is on, pair
+  /// interactions symmetrised: a_i = 1/2 sum_j [S_ij (V_i + V_j) grad W_ij + g_ij - g_ji].
+  StabilisedSph
+};
+
 /// The switchable terms. Defaults: plain SPH (no XSPH, no viscosity, no artificial stress), continuity by summation.
 struct RateFormOptions {
   ContinuityForm continuity = ContinuityForm::Summation;
@@ -81,12 +108,25 @@ struct RateFormOptions {
   double artificial_stress = 0;           ///< eps_a of [GMS2001, (6.4)] (GMS use 0.3), >= 0; 0: off
   double artificial_stress_exponent = 4;  ///< n of f^n (GMS 4)
   bool evolve_fixed = true;               ///< fixed particles integrate rho and S
+  RateFormGradient gradient = RateFormGradient::Plain;
+  RateFormMomentum momentum = RateFormMomentum::Symmetric;
+  /// Cij and StabilisedSph: the counts n_i of the means (Powell Fig. 4.3 boundary levels, or |N(i)|).
+  NeighbourCounting counting = NeighbourCounting::Actual;
+  /// StabilisedSph: when component alpha of particle i is corrected (stabilised_sph.hpp; Tension is (4.15)-(4.17),
+  /// AsPrinted the test printed in algorithm 4.2). The switch reads real parts: a complex-step Jacobian freezes it.
+  SwitchRule switch_rule = SwitchRule::Tension;
+  /// StabilisedSph: particles with depth <= this never get the correction (0: the outer layer BP of algorithm 4.2;
+  /// -1: none).
+  int excluded_depth = 0;
 };
 
 /// Parses "summation" | "divergence" and "off" | "compression" | "always"; throws std::invalid_argument naming the
 /// valid choices otherwise.
 ContinuityForm parse_continuity_form(const std::string& name);
 ViscositySwitch parse_viscosity_switch(const std::string& name);
+/// Parses "plain" | "ncsph" and "symmetric" | "antisymmetric" | "cij" | "ssph" (throws naming the valid choices).
+RateFormGradient parse_rate_form_gradient(const std::string& name);
+RateFormMomentum parse_rate_form_momentum(const std::string& name);
 
 template <int Dim>
 class RateFormScheme final : public SemiDiscreteSystem {
@@ -150,6 +190,9 @@ class RateFormScheme final : public SemiDiscreteSystem {
   double m_w_dp = 1;  // W(dp) of the artificial stress
   Eigen::VectorXd m_mass, m_deviator;
   std::vector<int> m_x_off, m_rho_off;  // per particle: offset of x (free only) and of rho (or -1)
+  std::vector<long> m_transpose;        // pair (i, j) -> pair (j, i) (antisymmetric momentum)
+  Eigen::VectorXd m_counts;             // n_i of the local means (Cij, StabilisedSph)
+  std::vector<bool> m_excluded;         // StabilisedSph: particles that never get the correction
   int m_size = 0;
 };
 
