@@ -2,11 +2,15 @@
 
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "sphstab/core/checked_arithmetic.hpp"
 #include "sphstab/core/format.hpp"
+#include "sphstab/integrate/xsph.hpp"
+#include "sphstab/models/von_mises.hpp"
 
 namespace sphstab {
 
@@ -27,45 +31,74 @@ std::pair<RunStatus, int> check_state(const RateFormScheme<Dim>& s, const Eigen:
   return {RunStatus::Completed, -1};
 }
 
-}  // namespace
-
+/// Von Mises radial return of every stored deviator in y (models/von_mises.hpp).
 template <int Dim>
-RateFormRunResult run_rate_form(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y0,
-                                const RateFormRunOptions& o) {
-  if (!(o.dt > 0) || !std::isfinite(o.dt))
-    throw std::invalid_argument("run_rate_form: dt must be finite and > 0 (got " + format_number(o.dt) + ")");
-  if (!(o.t_end > 0) || !std::isfinite(o.t_end))
-    throw std::invalid_argument("run_rate_form: t_end must be finite and > 0 (got " + format_number(o.t_end) + ")");
-  if (o.record_every < 1) throw std::invalid_argument("run_rate_form: record_every must be >= 1");
-  if (y0.size() != scheme.size())
-    throw std::invalid_argument("run_rate_form: state has " + std::to_string(y0.size()) + " entries, expected " +
-                                std::to_string(scheme.size()));
-  const auto wall0 = std::chrono::steady_clock::now();
-  const long nsteps =
-      std::max(1L, checked_floor_count(std::ceil(o.t_end / o.dt - 1e-9), 1L << 53, "run_rate_form: steps t_end / dt"));
-  const double dt = o.t_end / static_cast<double>(nsteps);
-  const int n = scheme.discretisation().size();
+void return_to_yield_surface(const RateFormScheme<Dim>& s, const VonMises& model, Eigen::VectorXd& y) {
+  static_assert(RateFormScheme<Dim>::kStress == kDeviatorEntries<Dim>);
+  for (int i = 0; i < s.discretisation().size(); ++i) {
+    const int so = s.stress_offset(i);
+    if (so < 0) continue;
+    const RadialReturn<Dim> r = radial_return<Dim>(model, y.template segment<kDeviatorEntries<Dim>>(so));
+    if (r.yielded) y.template segment<kDeviatorEntries<Dim>>(so) = r.deviator;
+  }
+}
 
+/// Bookkeeping shared by the integrators: records, stops, the final message.
+template <int Dim>
+struct RunBook {
+  const RateFormScheme<Dim>& scheme;
+  const RateFormRunOptions& o;
+  long nsteps;
+  double dt, ke0;
   RateFormRunResult r;
-  r.dt = dt;
-  r.y = y0;
-  const double ke0 = scheme.kinetic_energy(y0);
-  auto record = [&](long step) {
+
+  void record(long step) {
     r.times.push_back(step * dt);
     r.kinetic_energy.push_back(scheme.kinetic_energy(r.y));
     if (o.observer) o.observer(step, step * dt, r.y);
-  };
-  auto stop = [&](RunStatus status, int particle, long step, const std::string& why) {
+  }
+  void stop(RunStatus status, int particle, long step, const std::string& why) {
     r.status = status;
     r.particle = particle;
     r.steps = step;
     r.time = step * dt;
     r.message = run_status_name(status) + ": " + why + " at step " + std::to_string(step) +
                 ", t = " + format_number(r.time) + (particle >= 0 ? ", particle " + std::to_string(particle) : "");
-  };
-  record(0);
+  }
+  /// After step `step` has put its synchronised state in r.y: checks, records; false when the run ends.
+  bool finish_step(long step) {
+    const auto [status, particle] = check_state(scheme, r.y);
+    if (status != RunStatus::Completed) {
+      stop(status, particle, step, status == RunStatus::NonFinite ? "non-finite state" : "density <= 0");
+      return false;
+    }
+    const bool last = step == nsteps;
+    if (step % o.record_every == 0 || last) record(step);
+    if (std::isfinite(o.energy_growth) && scheme.kinetic_energy(r.y) > o.energy_growth * ke0) {
+      if (step % o.record_every != 0 && !last) record(step);
+      stop(RunStatus::EnergyGrowth, -1, step,
+           "kinetic energy grew by more than " + format_number(o.energy_growth) + "x");
+      return false;
+    }
+    if (last) {
+      r.steps = step;
+      r.time = step * dt;
+      r.message = "completed " + std::to_string(step) + " steps to t = " + format_number(r.time);
+    }
+    return true;
+  }
+};
+
+/// [GMS2001, (6.14)-(6.18)] (rate_form_run.hpp).
+template <int Dim>
+void predictor_corrector(RunBook<Dim>& b, const VonMises* plastic) {
+  const RateFormScheme<Dim>& scheme = b.scheme;
+  const RateFormRunOptions& o = b.o;
+  const double dt = b.dt;
+  const int n = scheme.discretisation().size();
+  RateFormRunResult& r = b.r;
   Eigen::VectorXd f0, f1, yp;
-  for (long step = 1; step <= nsteps; ++step) {
+  for (long step = 1; step <= b.nsteps; ++step) {
     scheme.rate(r.y, f0);
     yp = r.y + dt * f0;  // predictor for v, rho, S (and a first-order x, replaced below)
     for (int i = 0; i < n; ++i) {
@@ -85,28 +118,120 @@ RateFormRunResult run_rate_form(const RateFormScheme<Dim>& scheme, const Eigen::
       else
         y.segment(xo, Dim) = r.y.segment(xo, Dim) + 0.5 * dt * (f0.segment(xo, Dim) + f1.segment(xo, Dim));
     }
+    if (plastic) return_to_yield_surface(scheme, *plastic, y);
     r.y.swap(y);
-    const auto [status, particle] = check_state(scheme, r.y);
-    if (status != RunStatus::Completed) {
-      stop(status, particle, step, status == RunStatus::NonFinite ? "non-finite state" : "density <= 0");
-      break;
-    }
-    const bool last = step == nsteps;
-    if (step % o.record_every == 0 || last) record(step);
-    if (std::isfinite(o.energy_growth) && scheme.kinetic_energy(r.y) > o.energy_growth * ke0) {
-      if (step % o.record_every != 0 && !last) record(step);
-      stop(RunStatus::EnergyGrowth, -1, step,
-           "kinetic energy grew by more than " + format_number(o.energy_growth) + "x");
-      break;
-    }
-    if (last) {
-      r.steps = step;
-      r.time = step * dt;
-      r.message = "completed " + std::to_string(step) + " steps to t = " + format_number(r.time);
-    }
+    if (!b.finish_step(step)) break;
   }
-  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  return r;
+}
+
+/// [Powell2012, algorithm 1.1, (1.40)], staggered; the numbered steps are those of rate_form_run.hpp.
+template <int Dim>
+void leapfrog(RunBook<Dim>& b, const VonMises* plastic) {
+  const RateFormScheme<Dim>& scheme = b.scheme;
+  const Discretisation<Dim>& d = scheme.discretisation();
+  const double dt = b.dt;
+  RateFormRunResult& r = b.r;
+  // State offsets of the free particles in DOF order (d.free): x at xoff, v at xoff + Dim.
+  std::vector<int> xoff(d.free_count());
+  for (int f = 0; f < d.free_count(); ++f) xoff[f] = scheme.position_offset(d.free[f]);
+  auto set_velocities = [&](Eigen::VectorXd& y, const Eigen::VectorXd& v) {
+    for (int f = 0; f < d.free_count(); ++f) y.template segment<Dim>(xoff[f] + Dim) = v.template segment<Dim>(f * Dim);
+  };
+  auto get_velocities = [&](const Eigen::VectorXd& y, Eigen::VectorXd& v) {
+    v.resize(d.dofs());
+    for (int f = 0; f < d.free_count(); ++f) v.template segment<Dim>(f * Dim) = y.template segment<Dim>(xoff[f] + Dim);
+  };
+  // Powell (2.71) through the XSPH hook of the second-order integrator (one smoothing code, kernel at x^n).
+  VelocityHook smooth;
+  Eigen::VectorXd u, vs;
+  if (b.o.leapfrog_xsph > 0)
+    smooth = xsph_hook<Dim>(std::shared_ptr<const Discretisation<Dim>>(&d, [](const Discretisation<Dim>*) {}),
+                            {.epsilon = b.o.leapfrog_xsph, .current_positions = true, .include_fixed = true});
+
+  // y holds the whole-step state (x^n, v*^n, q^n) of E_n and fe its rates; vh = v^{n+1/2}.
+  Eigen::VectorXd y = r.y, fe, fh, yh, vh, ve;
+  scheme.rate(y, fe);
+  r.rate_evaluations += 1;
+  get_velocities(y, vh);
+  get_velocities(fe, ve);  // the velocity slots of F hold a: ve = a^0
+  vh += 0.5 * dt * ve;     // v^{1/2} = v^0 + dt/2 a^0
+  for (long step = 1; step <= b.nsteps; ++step) {
+    // 1. Powell's XSPH on v^{n+1/2}, at the positions x^n.
+    if (smooth) {
+      u.resize(d.dofs());
+      for (int f = 0; f < d.free_count(); ++f)
+        u.template segment<Dim>(f * Dim) = y.template segment<Dim>(xoff[f]) - d.particles.x.row(d.free[f]).transpose();
+      smooth(u, vh, vs);
+      vh.swap(vs);
+    }
+    // 2. The half-step state: q^n + dt/2 qdot^n, x^n + dt/2 (v^{n+1/2} + vhat^n - v*^n), v^{n+1/2}.
+    yh = y + 0.5 * dt * fe;
+    for (int f = 0; f < d.free_count(); ++f) {
+      const int xo = xoff[f];
+      yh.template segment<Dim>(xo) =
+          y.template segment<Dim>(xo) +
+          0.5 * dt *
+              (vh.template segment<Dim>(f * Dim) + fe.template segment<Dim>(xo) - y.template segment<Dim>(xo + Dim));
+    }
+    set_velocities(yh, vh);
+    scheme.rate(yh, fh);
+    // 3. x^{n+1}, q^{n+1} from the half-step rates (the velocity slots are overwritten below), radial return.
+    y += dt * fh;
+    if (plastic) return_to_yield_surface(scheme, *plastic, y);
+    // 4. E_{n+1} at v*^{n+1} = v^{n+1/2} + dt/2 a^n.
+    set_velocities(y, vh + 0.5 * dt * ve);
+    scheme.rate(y, fe);
+    r.rate_evaluations += 2;
+    get_velocities(fe, ve);  // a^{n+1}
+    // Synchronised record y^{n+1} = (x^{n+1}, v^{n+1/2} + dt/2 a^{n+1}, q^{n+1}).
+    r.y = y;
+    set_velocities(r.y, vh + 0.5 * dt * ve);
+    // 5. v^{n+3/2} = v^{n+1/2} + dt a^{n+1}.
+    vh += dt * ve;
+    if (!b.finish_step(step)) break;
+  }
+}
+
+}  // namespace
+
+template <int Dim>
+RateFormRunResult run_rate_form(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y0,
+                                const RateFormRunOptions& o) {
+  if (!(o.dt > 0) || !std::isfinite(o.dt))
+    throw std::invalid_argument("run_rate_form: dt must be finite and > 0 (got " + format_number(o.dt) + ")");
+  if (!(o.t_end > 0) || !std::isfinite(o.t_end))
+    throw std::invalid_argument("run_rate_form: t_end must be finite and > 0 (got " + format_number(o.t_end) + ")");
+  if (o.record_every < 1) throw std::invalid_argument("run_rate_form: record_every must be >= 1");
+  if (y0.size() != scheme.size())
+    throw std::invalid_argument("run_rate_form: state has " + std::to_string(y0.size()) + " entries, expected " +
+                                std::to_string(scheme.size()));
+  if (!(o.leapfrog_xsph >= 0) || !std::isfinite(o.leapfrog_xsph))
+    throw std::invalid_argument("run_rate_form: leapfrog_xsph must be finite and >= 0 (got " +
+                                format_number(o.leapfrog_xsph) + ")");
+  if (o.leapfrog_xsph > 0 && o.integrator != RateFormIntegrator::Leapfrog)
+    throw std::invalid_argument(
+        "run_rate_form: leapfrog_xsph needs the leap-frog integrator (the predictor-corrector's XSPH is "
+        "RateFormOptions::xsph)");
+  if (!(o.yield_stress > 0))
+    throw std::invalid_argument("run_rate_form: yield_stress must be > 0 (+infinity: elastic; got " +
+                                format_number(o.yield_stress) + ")");
+  const VonMises plastic(o.yield_stress);
+  const auto wall0 = std::chrono::steady_clock::now();
+  const long nsteps =
+      std::max(1L, checked_floor_count(std::ceil(o.t_end / o.dt - 1e-9), 1L << 53, "run_rate_form: steps t_end / dt"));
+  const double dt = o.t_end / static_cast<double>(nsteps);
+
+  RunBook<Dim> b{.scheme = scheme, .o = o, .nsteps = nsteps, .dt = dt, .ke0 = scheme.kinetic_energy(y0), .r = {}};
+  b.r.dt = dt;
+  b.r.y = y0;
+  b.record(0);
+  const VonMises* yield = std::isfinite(o.yield_stress) ? &plastic : nullptr;
+  if (o.integrator == RateFormIntegrator::Leapfrog)
+    leapfrog(b, yield);
+  else
+    predictor_corrector(b, yield);
+  b.r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return std::move(b.r);
 }
 
 template RateFormRunResult run_rate_form<1>(const RateFormScheme<1>&, const Eigen::VectorXd&,

@@ -108,4 +108,41 @@ StabilityEstimate estimate_stability_limit(const AccelerationFunction& accel, lo
   return est;
 }
 
+double leapfrog_time_step_limit(const Eigen::VectorXcd& eigenvalues) {
+  double w = 0;
+  for (const auto& l : eigenvalues) w = std::max(w, std::abs(l.imag()));
+  return w > 0 ? 2.0 / w : std::numeric_limits<double>::infinity();
+}
+
+double heun_amplification(std::complex<double> z) { return std::abs(1.0 + z + 0.5 * z * z); }
+
+double heun_time_step_limit(const Eigen::VectorXcd& eigenvalues) {
+  double limit = std::numeric_limits<double>::infinity();
+  for (const auto& l : eigenvalues) {
+    const double a = l.real(), m2 = std::norm(l);
+    if (m2 == 0) continue;
+    if (a >= -1e-12 * std::sqrt(m2)) return 0.0;
+    // The root t > 0 of p(t) = 2a + 2a^2 t + a m2 t^2 + m2^2 t^3 / 4: p(0) = 2a < 0, and p' = 2a^2 + 2a m2 t +
+    // 3/4 m2^2 t^2 > 0 (discriminant 4a^2 m2^2 - 6a^2 m2^2 < 0), so the root is unique and |R| <= 1 exactly on
+    // [0, root]. Bisection.
+    auto p = [&](double t) { return 2 * a + 2 * a * a * t + a * m2 * t * t + 0.25 * m2 * m2 * t * t * t; };
+    double lo = 0, hi = 1.0 / std::sqrt(m2);
+    while (p(hi) <= 0) hi *= 2;
+    for (int it = 0; it < 200 && hi - lo > 1e-15 * hi; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (p(mid) > 0 ? hi : lo) = mid;
+    }
+    limit = std::min(limit, lo);
+  }
+  return limit;
+}
+
+double heun_excess_growth_rate(const Eigen::VectorXcd& eigenvalues, double dt) {
+  if (!(dt > 0) || !std::isfinite(dt))
+    throw std::invalid_argument("heun_excess_growth_rate: dt must be finite and > 0 (got " + std::to_string(dt) + ")");
+  double g = -std::numeric_limits<double>::infinity();
+  for (const auto& l : eigenvalues) g = std::max(g, std::log(heun_amplification(dt * l)) / dt - l.real());
+  return g;
+}
+
 }  // namespace sphstab

@@ -1,6 +1,8 @@
 #pragma once
 /// \file rate_form_run.hpp
-/// Time stepping of the rate-form scheme (forms/rate_form.hpp) by the predictor-corrector of Gray, Monaghan & Swift
+/// Time stepping of the rate-form scheme (forms/rate_form.hpp), y = (x, v, q) with q = (rho, S) per particle.
+///
+/// **Predictor-corrector** (RateFormIntegrator::PredictorCorrector, the default) of Gray, Monaghan & Swift
 /// [GMS2001, (6.14)-(6.18)], with the stress integrated like the density (GMS do not say; the natural reading):
 ///   predictor   v_p = v0 + dt a0,  rho_p = rho0 + dt drho0,  S_p = S0 + dt dS0,
 ///               x = x0 + dt vhat0 + dt^2/2 a0   (particles move with the XSPH velocity; x is not corrected)
@@ -8,7 +10,57 @@
 /// with (a, drho, dS) = F(x, v_p, rho_p, S_p). Two rate evaluations per step. Second order in dt without XSPH; with
 /// XSPH, d^2x/dt^2 = d vhat/dt is not a0, so GMS's uncorrected x is FIRST order
 /// (tests/growth/rate_form_spectrum_test.cpp measures 1.25). PositionUpdate::Trapezoid corrects x like the rest, x = x0
-/// + dt/2 (vhat0 + vhat_p) (Heun for the whole state), which is second order with XSPH too.
+/// + dt/2 (vhat0 + vhat_p), which is second order with XSPH too; its predictor keeps GMS's x_p, so the step is Heun's
+/// for the whole state only where a does not depend on x (at rest without pre-stress, Jvx = 0). There, for
+/// y' = lambda y, both steps multiply by R(z) = 1 + z + z^2/2, z = dt lambda; on the imaginary axis
+/// |R(i theta)|^2 = 1 + theta^4/4 > 1, so an undamped oscillation grows for every dt (slowly: ln|R|/dt ~
+/// dt^3 |lambda|^4 / 8); see integrate/time_step.hpp. With pre-stress the dt^2/2 a0 of x_p adds dt^3/4 Jvx a0 to v
+/// (measured, 1D, h = 1.3, xi = 0.9, dt max|Im lambda| = 0.96: spectral radius of the step 1.0823, max |R| 1.1011).
+///
+/// **Leap-frog** (RateFormIntegrator::Leapfrog): the staggered scheme of Powell's MCM code [Powell2012, algorithm
+/// 1.1, (1.40)]: x, rho and S at whole steps t_n = n dt, v at half steps ("f^n = f^{n-1} + dt f'^{n-1/2},
+/// f^{n+1/2} = f^{n-1/2} + dt f'^n"). Step n -> n+1 holds x^n, q^n, v^{n+1/2} and the rates of the whole-step
+/// evaluation E_n = F(x^n, v*^n, q^n) (xdot^n = vhat, qdot^n, a^n):
+///   1. leapfrog_xsph > 0: v^{n+1/2} <- v^{n+1/2} + eps sum_j (v_j - v_i) W_ij(x^n)    Powell (2.71), the velocity
+///      itself (the literal reading; xsph.hpp: W_ij = W(r_ij) V_j), before the position update; (2.71) prints the
+///      sum over i in N(j), an index typo for j in N(i)
+///   2. H = F(x^n + dt/2 (v^{n+1/2} + xdot^n - v*^n), v^{n+1/2}, q^n + dt/2 qdot^n)     alg. 1.1 "Calculate
+///      <D>^{n-1/2} and <rhodot>^{n-1/2}", "Calculate <sigmadot>^{n-1/2}" (1.32), (1.33), one step on
+///   3. x^{n+1} = x^n + dt xdot^{n+1/2},  q^{n+1} = q^n + dt qdot^{n+1/2}  (rates of H) "Update density", "Update
+///      stress", and the last line "x^n <- x^{n-1} + dt^{n+1/2} v^{n+1/2}" read as x^{n+1} <- x^n + ... (see below);
+///      then the radial return of S^{n+1} when yield_stress is finite
+///   4. E_{n+1} = F(x^{n+1}, v*^{n+1}, q^{n+1}), v*^{n+1} = v^{n+1/2} + dt/2 a^n        "Calculate a_i^n" (1.36)
+///   5. v^{n+3/2} = v^{n+1/2} + dt a^{n+1}                                       "v^{n+1/2} <- v^{n-1/2} + dt^n a^n"
+/// Start: E_0 = F(y0), v^{1/2} = v^0 + dt/2 a^0. The recorded and returned state is synchronised,
+/// y^n = (x^n, v^n, q^n) with v^n = v^{n-1/2} + dt/2 a^n (velocity Verlet's velocity, second order); the kinetic
+/// energy is 1/2 sum m |v^n|^2 of that velocity.
+/// Why two rate evaluations per step (like the predictor-corrector, and like MCM's two particle loops): a^{n+1}
+/// needs S^{n+1}, which needs the stress rate at v^{n+1/2}, which needs a^n; F evaluates every rate at one state,
+/// so one call cannot serve both (a single call per step must lag one of them by a step: first order, and no longer
+/// the staggered map). H's acceleration is discarded; E's rates of x and q only predict the half-step state, and its
+/// velocity v* enters only the viscosity.
+/// Why the half-step state: the rates of x and q depend on x and q nonlinearly (kernel gradients at the current
+/// positions, volumes m/rho, the Jaumann rotation), so a midpoint step needs them at t_{n+1/2} to O(dt^2); xdot^n -
+/// v*^n is the scheme's own XSPH increment vhat - v (zero without it). At rest these dependences vanish
+/// (growth/rate_form_spectrum.hpp: J = [[0, X, 0], [Jvx, Jvv, Jvq], [0, Jqv, 0]]), so with Jvv = 0 (no viscosity) the
+/// linearised step is exactly the classic staggered map v^{n+3/2} - 2 v^{n+1/2} + v^{n-1/2} = dt^2 B v^{n+1/2},
+/// stable iff dt <= 2 / max |Im lambda| (growth/rate_form_time_step.hpp). Second order in dt (observed orders 2.00 in
+/// 1D, 2.01-2.03 in 2D, tests/integrate/rate_form_leapfrog_test.cpp), except with both XSPHs at once (the midpoint
+/// position is then first order in their product). Powell's literal ordering evaluates <D>^{n-1/2} at the newest
+/// positions and at rho^{n-1}, S^{n-1}: the same linearised map, first order in the nonlinear terms.
+/// \note Powell's XSPH smooths by a fixed epsilon per STEP, not per unit time, so a run with it does not converge as
+///       dt -> 0 (halving dt doubles the smoothing per unit time; the test measures orders -0.9). The dt-consistent
+///       XSPH is the scheme's drift-only one, RateFormOptions::xsph [GMS2001, (3.6)], which the leap-frog also runs.
+/// \note [Powell2012, algorithm 1.1], last line: "x^n <- x^{n-1} + dt^{n+1/2} v^{n+1/2}" pairs the step
+///       dt^{n+1/2} and v^{n+1/2} with x^{n-1} -> x^n; (1.40) gives x^{n+1} = x^n + dt^{n+1/2} xdot^{n+1/2}, and
+///       only that reading makes the next pass's <D>^{n+1/2} use the positions the velocity v^{n+1/2} reached.
+/// \note Momentum: the pair forces of the plain gradient's momentum equation are antisymmetric, sum_i m_i a_i = 0,
+///       so sum m v^{n+1/2} and sum m v^n are conserved to rounding; Powell's XSPH conserves it for equal masses
+///       without fixed neighbours (xsph.hpp).
+///
+/// **Plasticity** (yield_stress finite): after every completed step, every particle that carries a stress (free, and
+/// fixed ones when they evolve) gets the von Mises radial return (models/von_mises.hpp). The initial state is not
+/// returned.
 ///
 /// An unstable run is a result, not an exception: the run stops at the first non-finite state, non-positive density
 /// or kinetic-energy growth beyond the limit, and reports the step, time and particle (RunStatus, message), keeping
@@ -25,15 +77,26 @@
 namespace sphstab {
 
 enum class PositionUpdate { Gms, Trapezoid };
+enum class RateFormIntegrator {
+  PredictorCorrector,  ///< [GMS2001, (6.14)-(6.18)] (default)
+  Leapfrog             ///< [Powell2012, algorithm 1.1, (1.40)], staggered
+};
 
 struct RateFormRunOptions {
-  double dt = 0;                                   ///< > 0
-  PositionUpdate positions = PositionUpdate::Gms;  ///< GMS (6.15) uncorrected, or trapezoid-corrected (see above)
-  double t_end = 0;                                ///< > 0; dt is reduced to t_end / ceil(t_end / dt)
+  double dt = 0;  ///< > 0
+  /// Predictor-corrector only: GMS (6.15) uncorrected, or trapezoid-corrected (see above).
+  PositionUpdate positions = PositionUpdate::Gms;
+  double t_end = 0;      ///< > 0; dt is reduced to t_end / ceil(t_end / dt)
   int record_every = 1;  ///< kinetic energy recorded every k steps (>= 1), and at the last step
   double energy_growth = std::numeric_limits<double>::infinity();  ///< stop when KE > energy_growth * KE(0)
   /// Called at every record with (step, time, state); may be empty.
   std::function<void(long, double, const Eigen::VectorXd&)> observer;
+  RateFormIntegrator integrator = RateFormIntegrator::PredictorCorrector;
+  /// Leap-frog only: epsilon of Powell's XSPH (2.71), >= 0 (Powell 0.1); 0: off. The predictor-corrector's XSPH is
+  /// the scheme's own, RateFormOptions::xsph [GMS2001, (3.6)].
+  double leapfrog_xsph = 0;
+  /// Von Mises yield stress Y > 0 of the radial return after each step; +infinity (default): elastic.
+  double yield_stress = std::numeric_limits<double>::infinity();
 };
 
 struct RateFormRunResult {
@@ -49,8 +112,9 @@ struct RateFormRunResult {
   bool completed() const { return status == RunStatus::Completed; }
 };
 
-/// Runs the GMS predictor-corrector from y0 (size scheme.size()). Throws std::invalid_argument for dt <= 0,
-/// t_end <= 0, record_every < 1 or a state of the wrong size.
+/// Runs the chosen integrator from y0 (size scheme.size()). Throws std::invalid_argument for dt <= 0, t_end <= 0,
+/// record_every < 1, a state of the wrong size, leapfrog_xsph < 0 (or > 0 with the predictor-corrector) or
+/// yield_stress <= 0.
 template <int Dim>
 RateFormRunResult run_rate_form(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y0,
                                 const RateFormRunOptions& options);

@@ -1,7 +1,9 @@
 #pragma once
 /// \file time_step.hpp
 /// Time-step rules for explicit leap-frog: the CFL rule dt = C h / c and the linear stability limit
-/// dt < 2 / sqrt(lambda_max(A)) of ü = -A u.
+/// dt < 2 / sqrt(lambda_max(A)) of ü = -A u; for first-order systems y' = F(y) (the rate form), the staggered
+/// leap-frog limit 2 / max |Im lambda(J)| and Heun's amplification (below; growth/rate_form_time_step.hpp applies
+/// them to the rate-form spectrum).
 ///
 /// \note CFL constant. The default C = 0.3 is the Courant factor customary in SPH since Monaghan's time-step
 ///       criterion dt = 0.3 min h / (c + ...) (Monaghan 1992, Annu. Rev. Astron. Astrophys. 30:543; quoted from
@@ -13,6 +15,7 @@
 ///       1.245 for the ghost-free corrected gradient, so C = 0.3 is 16-24 % of the limit. Leap-frog for ü = -A u
 ///       with real A-eigenvalue mu > 0 is stable iff dt <= 2 / sqrt(mu) (the amplification factors of the mode then
 ///       have modulus 1).
+#include <Eigen/Core>
 #include <complex>
 #include <string>
 
@@ -59,5 +62,36 @@ struct StabilityEstimate {
 /// std::invalid_argument for ndof < 1 or a missing callable.
 StabilityEstimate estimate_stability_limit(const AccelerationFunction& accel, long ndof,
                                            const StabilityOptions& options = {});
+
+/// First-order systems y' = F(y) (the rate form) from the eigenvalues lambda of J = dF/dy.
+///
+/// Staggered leap-frog [Powell2012, (1.40)] on y = (Q, v), Q' = P v, v' = K Q (J = [[0, P], [K, 0]], the rate form at
+/// rest without viscosity: Q = (x, rho, S)): v^{n+3/2} - 2 v^{n+1/2} + v^{n-1/2} = dt^2 B v^{n+1/2}, B = K P. A mode
+/// B w = mu w multiplies by z with z + 1/z = 2 + dt^2 mu; the roots have product 1, so |z| = 1 (stable, undamped)
+/// iff mu is real and -4 <= dt^2 mu <= 0. The eigenvalues of J are lambda = +-sqrt(mu), so for oscillatory modes
+/// (lambda = +-i omega) the limit is
+///     dt_max = 2 / max |Im lambda|.
+/// Modes with Re lambda != 0 grow (or, for mu > 0, track the physical growth) at any dt, as they should.
+///
+/// Heun / the predictor-corrector (rate_form_run.hpp) multiplies by R(z) = 1 + z + z^2/2, z = dt lambda, and
+///     |R(z)|^2 - 1 = t [2a + 2a^2 t + a |lambda|^2 t^2 + |lambda|^4 t^3 / 4],   lambda = a + ib, t = dt.
+/// For a = 0 (every mode of the conservative rate form at rest) this is t^4 |lambda|^4 / 4 > 0: there is NO stable
+/// dt; the growth per unit time is ln|R| / dt ~ dt^3 |lambda|^4 / 8. Only damping (a < 0, e.g. the always-on
+/// viscosity) gives a finite limit: the first positive root of the cubic bracket.
+
+/// dt_max = 2 / max |Im lambda| (infinity when every lambda is real or there are none).
+double leapfrog_time_step_limit(const Eigen::VectorXcd& eigenvalues);
+
+/// |R(z)| = |1 + z + z^2/2|, Heun's amplification factor.
+double heun_amplification(std::complex<double> z);
+
+/// Largest dt with |R(t lambda)| <= 1 for every eigenvalue and every t in (0, dt]: 0 when some lambda != 0 has
+/// Re lambda >= -1e-12 |lambda| (undamped or growing: unstable at every dt), infinity for no non-zero eigenvalue.
+double heun_time_step_limit(const Eigen::VectorXcd& eigenvalues);
+
+/// Spurious growth rate of Heun at dt: max over lambda of ln|R(dt lambda)| / dt - Re lambda (the numerical excess
+/// over the exact growth; dt^3 max|lambda|^4 / 8 to leading order for imaginary lambda). Throws
+/// std::invalid_argument unless dt is finite and > 0.
+double heun_excess_growth_rate(const Eigen::VectorXcd& eigenvalues, double dt);
 
 }  // namespace sphstab
