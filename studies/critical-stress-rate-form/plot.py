@@ -1,0 +1,53 @@
+#!/usr/bin/env python3
+"""Plot of the rate-form critical-stress study: critical tension sigma0/M versus h/dx per kernel (1D bar), the
+rate-form formulations beside the §3.3 plus and conservative forms (Powell Fig. 3.2 layout). Usage: plot.py
+RESULTS_DIR (reads bar_1d.csv, writes critical_stress_1d.png)."""
+import math
+import os
+import sys
+from collections import defaultdict
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from plot_common import num, plt, read  # noqa: E402
+
+STYLE = {"sph": ("C0", "-"), "sph-as": ("C1", "-"), "ncsph-anti": ("C2", "-"), "ssph": ("C3", "-"),
+         "ssph-printed": ("C4", ":")}
+
+
+def main(out):
+    rows = [r for r in read(os.path.join(out, "bar_1d.csv")) if r["direction"] == "tension"]
+    kernels = list(dict.fromkeys(r["kernel"] for r in rows))
+    fig, axes = plt.subplots(1, len(kernels), figsize=(4.2 * len(kernels), 3.8), sharey=True, squeeze=False)
+    for ax, kernel in zip(axes[0], kernels):
+        series = defaultdict(lambda: ([], []))
+        ref = defaultdict(lambda: ([], []))
+        for r in rows:
+            if r["kernel"] != kernel:
+                continue
+            h = num(r["h_over_dx"])
+            s = series[r["formulation"]]
+            s[0].append(h)
+            s[1].append(num(r["stress_over_modulus"]))
+            if r["formulation"] == "sph":
+                for key in ("t_plus_33", "t_conservative_33"):
+                    ref[key][0].append(h)
+                    ref[key][1].append(num(r[key]))
+        for key, label in (("t_plus_33", "§3.3 plus"), ("t_conservative_33", "§3.3 conservative (Fig. 3.2)")):
+            ax.semilogy(*ref[key], color="0.5", ls="--" if "plus" in key else "-.", lw=1, label=label)
+        for form, (colour, ls) in STYLE.items():
+            h, t = series.get(form, ([], []))
+            # inf (stable to the search limit) and 0 (unstable at zero load) are off the log axis
+            pts = [(a, b) for a, b in zip(h, t) if math.isfinite(b) and b > 0]
+            if pts:
+                ax.semilogy(*zip(*pts), color=colour, ls=ls, lw=1.4, marker=".", ms=3, label="rate form " + form)
+        ax.set_title(f"{kernel}: ncsph, cij stable (inf)")
+        ax.set_xlabel("h / dx")
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0][0].set_ylabel("critical tension sigma0 / M")
+    axes[0][0].legend(fontsize=7, loc="lower left")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "critical_stress_1d.png"), dpi=130)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1] if len(sys.argv) > 1 else "results/critical-stress-rate-form")
