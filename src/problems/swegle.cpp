@@ -44,6 +44,9 @@ SwegleScene make_swegle_scene(const SwegleOptions& o) {
   if (!(o.velocity > 0) || !std::isfinite(o.velocity) || !std::isfinite(o.direction_angle))
     throw std::invalid_argument(std::string(who) + ": velocity must be finite and > 0 (got " +
                                 std::to_string(o.velocity) + ")");
+  if (o.layer_supports < 1)
+    throw std::invalid_argument(std::string(who) + ": layer_supports must be >= 1 (got " +
+                                std::to_string(o.layer_supports) + ")");
   SwegleScene s;
   s.options = o;
   s.material = plane_strain_material(o.youngs_modulus, o.poisson_ratio, o.density);
@@ -52,7 +55,7 @@ SwegleScene make_swegle_scene(const SwegleOptions& o) {
   Kernel<2> kernel(o.kernel);
   LatticeOptions lo;
   lo.spacing = o.spacing;
-  lo.support_radius = kernel.support_radius(s.h);
+  lo.support_radius = o.layer_supports * kernel.support_radius(s.h);
   ParticleSet<2> set = make_lattice<2>(LatticeType::Square, o.n, lo);
   s.discretisation = make_discretisation(std::move(set), kernel, s.h);
   const Discretisation<2>& d = *s.discretisation;

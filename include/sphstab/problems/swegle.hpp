@@ -42,6 +42,9 @@ struct SwegleOptions {
   double area_ratio = 1.0;     ///< xi = V/V0 (> 0): > 1 tension, < 1 compression
   double velocity = 1e-10;     ///< initial speed of the centre particle (cm/us)
   double direction_angle = 0;  ///< direction of v0 from +x (radians)
+  /// Fixed layers reach layer_supports x 2h (>= 1): 1 completes the free particles' neighbourhoods; the corrected
+  /// rate forms read neighbours of neighbours (NCSPH antisymmetrised, C_ij: 2; S-SPH: 3).
+  int layer_supports = 1;
 };
 
 struct SwegleScene {

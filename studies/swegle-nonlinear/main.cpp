@@ -1,0 +1,230 @@
+// Study: is the growth of the rate-form Swegle runs linear, nonlinear or made by the time integrator? For each
+// (formulation, xi) the full-state linear growth rate (growth/rate_form_spectrum.hpp) is compared with the fitted
+// kinetic-energy growth of runs kicked at four amplitudes v0, with the GMS predictor-corrector and with Powell's
+// leap-frog (integrate/rate_form_run.hpp), and, for the predictor-corrector at the smallest kick, at dt and dt/2
+// (integrator-made growth falls as dt^3). See README.md; the prose of the summary is summary.md.in.
+//
+// Writes to --out DIR: runs.csv, summary.json. Units g, cm, us (stress in Mbar).
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "common/study.hpp"
+#include "sphstab/growth/growth_fit.hpp"
+#include "sphstab/growth/mirror_symmetry.hpp"
+#include "sphstab/growth/rate_form_spectrum.hpp"
+#include "sphstab/integrate/rate_form_run.hpp"
+#include "sphstab/integrate/time_step.hpp"
+#include "sphstab/io/csv.hpp"
+#include "sphstab/problems/swegle.hpp"
+
+using namespace sphstab;
+
+namespace {
+
+struct Formulation {
+  std::string name;
+  RateFormOptions options;
+};
+
+std::vector<Formulation> formulations() {
+  const RateFormOptions ncsph{.continuity = ContinuityForm::Divergence, .gradient = RateFormGradient::Ncsph};
+  RateFormOptions anti = ncsph;
+  anti.momentum = RateFormMomentum::Antisymmetric;
+  const RateFormOptions ssph{.xsph = 0.5, .momentum = RateFormMomentum::StabilisedSph};
+  RateFormOptions printed = ssph;
+  printed.switch_rule = SwitchRule::AsPrinted;
+  return {{"sph", {}}, {"ncsph", ncsph}, {"ncsph-anti", anti}, {"ssph", ssph}, {"ssph-printed", printed}};
+}
+
+std::string integrator_name(RateFormIntegrator integrator) {
+  return integrator == RateFormIntegrator::Leapfrog ? "leapfrog" : "predictor-corrector";
+}
+
+struct Measured {
+  RateFormRunResult run;
+  ExponentialGrowthFit fit;
+  double ke_max = 0;  // max KE / KE0
+  // Fit over the pre-saturation window only: it ends when KE first reaches 1e-2 of its maximum (growth, if any, is
+  // then still exponential). Separates a growth RATE that depends on v0 from a growth that saturates.
+  ExponentialGrowthFit early;
+  std::string status;  // run_status_name, or "exception"
+  double wall = 0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Swegle test, rate-form scheme: linear, nonlinear or integrator-made growth?"};
+  std::string out = "results/swegle-nonlinear";
+  int n = 11;
+  double t_end = 30, onset = 100, stop_growth = 1e10;
+  app.add_option("--out", out, "output directory");
+  app.add_option("--n", n, "free particles per side (odd)")->check(CLI::Range(5, 101));
+  app.add_option("--t-end", t_end, "run length (us)")->check(CLI::PositiveNumber);
+  CLI11_PARSE(app, argc, argv);
+  const auto t0 = study::Clock::now();
+  std::filesystem::create_directories(out);
+
+  const std::vector<double> xis = {0.98, 1.02};
+  const std::vector<double> v0s = {1e-10, 1e-4, 1e-2};  // 1e-7 dropped for run time (it matched 1e-10)
+  const std::vector<RateFormIntegrator> integrators = {RateFormIntegrator::PredictorCorrector,
+                                                       RateFormIntegrator::Leapfrog};
+  SwegleOptions so;
+  so.n = n;
+  so.layer_supports = 3;  // S-SPH reads neighbours of neighbours: every corrected form starts in exact equilibrium
+  const SwegleScene scene = make_swegle_scene(so);
+  const auto& disc = scene.discretisation;
+  // Mirror class (px, py) = (-1, +1) of the free velocity DOFs: the one a +x kick at the centre excites.
+  Eigen::VectorXd pos(2 * disc->free_count());
+  for (int f = 0; f < disc->free_count(); ++f) pos.segment<2>(2 * f) = disc->particles.x.row(disc->free[f]).transpose();
+  const Eigen::Vector2d centre = disc->particles.x.row(scene.centre).transpose();
+  const Eigen::MatrixXd excited = symmetry_basis(mirror_symmetry(pos, centre, 1e-9 * so.spacing), -1, 1);
+
+  const RateFormMaterial steel = RateFormMaterial::from_youngs(2.1, 0.3, 7.8);
+  const double cp = steel.p_wave_speed(), dt = 0.3 * scene.h / cp;
+
+  const auto measure = [&](const RateFormScheme<2>& scheme, double v0, RateFormIntegrator integrator, double step) {
+    Eigen::VectorXd y = scheme.uniform_state();
+    scheme.set_velocity(y, scene.centre, Eigen::Vector2d(v0, 0));
+    Measured m;
+    const auto tr = study::Clock::now();
+    // A run can end in an exception (the NCSPH moment matrix turns singular when particles clump at large v0): the
+    // observer keeps the kinetic-energy series up to the last record before it.
+    std::vector<double> times, kinetic;
+    try {
+      m.run = run_rate_form(scheme, y,
+                            {.dt = step,
+                             .t_end = t_end,
+                             .record_every = 10,
+                             .energy_growth = stop_growth,
+                             .observer =
+                                 [&](long, double t, const Eigen::VectorXd& state) {
+                                   times.push_back(t);
+                                   kinetic.push_back(scheme.kinetic_energy(state));
+                                 },
+                             .integrator = integrator});
+      m.status = run_status_name(m.run.status);
+    } catch (const std::exception& e) {
+      std::printf("  run ended by an exception: %s\n", e.what());
+      m.status = "exception";
+      m.run.times = times;
+      m.run.kinetic_energy = kinetic;
+      m.run.time = times.back();
+      m.run.dt = step;
+    }
+    m.wall = study::seconds_since(tr);
+    const double ke0 = m.run.kinetic_energy.front();
+    m.fit = fit_exponential_growth(m.run.times, m.run.kinetic_energy, ke0, m.run.times.back(), {.onset_factor = onset});
+    for (double e : m.run.kinetic_energy) m.ke_max = std::max(m.ke_max, e / ke0);
+    double t_sat = m.run.times.back();
+    for (std::size_t k = 0; k < m.run.times.size(); ++k)
+      if (m.run.kinetic_energy[k] >= 1e-2 * m.ke_max * ke0) {
+        t_sat = m.run.times[k];
+        break;
+      }
+    m.early = fit_exponential_growth(m.run.times, m.run.kinetic_energy, ke0, t_sat, {.onset_factor = onset});
+    return m;
+  };
+
+  std::ofstream runs_csv(out + "/runs.csv");
+  runs_csv << "formulation,xi,v0,integrator,dt,gamma_linear,gamma_measured,grew,status,t_stop,ke_max_over_ke0,"
+              "gamma_linear_class,heun_excess,ratio,fit_r2,fit_t_begin,fit_t_end,gamma_bound,gamma_presaturation,"
+              "presaturation_t_end,wall\n";
+  const auto write_row = [&](const std::string& form, double xi, double v0, RateFormIntegrator integrator,
+                             const RateFormSpectrum& all, const RateFormSpectrum& cls, const Measured& m) {
+    runs_csv << csv_line({form,
+                          format_number(xi),
+                          format_number(v0),
+                          integrator_name(integrator),
+                          format_number(m.run.dt, 8),
+                          format_number(all.growth_rate, 8),
+                          format_number(m.fit.gamma, 8),
+                          m.fit.grew ? "1" : "0",
+                          m.status,
+                          format_number(m.run.time, 6),
+                          format_number(m.ke_max, 6),
+                          format_number(cls.growth_rate, 8),
+                          format_number(integrator == RateFormIntegrator::PredictorCorrector
+                                            ? heun_excess_growth_rate(all.eigenvalues, m.run.dt)
+                                            : 0.0,
+                                        6),
+                          format_number(m.fit.grew ? m.fit.gamma / all.growth_rate : NAN, 6),
+                          format_number(m.fit.fit.r2, 8),
+                          format_number(m.fit.fit.t_begin, 6),
+                          format_number(m.fit.fit.t_end, 6),
+                          format_number(m.fit.gamma_bound, 6),
+                          format_number(m.early.gamma, 8),
+                          format_number(m.early.fit.t_end, 6),
+                          format_number(m.wall, 3)});
+    runs_csv.flush();
+  };
+
+  std::string table, dt_table;
+  double wall_linear = 0, wall_runs = 0;
+  for (const Formulation& form : formulations()) {
+    for (double xi : xis) {
+      const RateFormScheme<2> scheme(disc, steel, form.options, steel.density / xi);
+      const Eigen::VectorXd y_rest = scheme.uniform_state();
+      auto tl = study::Clock::now();
+      const RateFormSpectrum all = rate_form_spectrum(scheme, y_rest);
+      const RateFormSpectrum cls = rate_form_spectrum(scheme, y_rest, {.basis = excited});
+      wall_linear += study::seconds_since(tl);
+      std::vector<std::string> row{"**" + form.name + "**", study::fixed(xi, 2), study::sig(all.growth_rate, 4)};
+      double pc_small = NAN;
+      for (RateFormIntegrator integrator : integrators)
+        for (double v0 : v0s) {
+          const Measured m = measure(scheme, v0, integrator, dt);
+          wall_runs += m.wall;
+          write_row(form.name, xi, v0, integrator, all, cls, m);
+          if (integrator == RateFormIntegrator::PredictorCorrector && v0 == v0s.front()) pc_small = m.fit.gamma;
+          std::string cell = m.fit.grew ? study::sig(m.fit.gamma, 4) : "S";
+          if (m.early.grew && (!m.fit.grew || std::abs(m.early.gamma / m.fit.gamma - 1) > 0.05))
+            cell += " [" + study::sig(m.early.gamma, 4) + "]";
+          if (m.status != "completed") cell += " (" + m.status + ")";
+          row.push_back(cell);
+          std::printf(
+              "%-12s xi %.2f %-19s v0 %.0e: gamma linear %.5g (class %.5g), measured %.5g (%s), pre-saturation %.5g, "
+              "%s t %.3g "
+              "(%.1f s)\n",
+              form.name.c_str(), xi, integrator_name(integrator).c_str(), v0, all.growth_rate, cls.growth_rate,
+              m.fit.gamma, m.fit.grew ? "grew" : "bounded", m.early.gamma, m.status.c_str(), m.run.time, m.wall);
+          std::fflush(stdout);
+        }
+      study::md_row(table, row);
+      // dt dependence, predictor-corrector at the smallest kick: dt/2.
+      const Measured half = measure(scheme, v0s.front(), RateFormIntegrator::PredictorCorrector, 0.5 * dt);
+      wall_runs += half.wall;
+      write_row(form.name, xi, v0s.front(), RateFormIntegrator::PredictorCorrector, all, cls, half);
+      study::md_row(dt_table, {"**" + form.name + "**", study::fixed(xi, 2), study::sig(all.growth_rate, 4),
+                               study::sig(pc_small, 4), study::sig(half.fit.gamma, 4),
+                               study::sig(heun_excess_growth_rate(all.eigenvalues, dt), 3),
+                               study::sig(heun_excess_growth_rate(all.eigenvalues, 0.5 * dt), 3)});
+      std::printf("%-12s xi %.2f dt/2: measured %.5g (%s)\n", form.name.c_str(), xi, half.fit.gamma,
+                  half.fit.grew ? "grew" : "bounded");
+    }
+  }
+
+  study::Summary s;
+  s.set("n", n);
+  s.set("particles", disc->size());
+  s.set("c_P", cp, 4);
+  s.set("dt", dt, 4);
+  s.set("t_end", t_end, 4);
+  s.set("onset", onset, 3);
+  s.set("stop_growth", stop_growth, 3);
+  s.set("table", table);
+  s.set("dt_table", dt_table);
+  s.set("wall_linear", wall_linear, 3);
+  s.set("wall_runs", wall_runs, 3);
+  s.set("wall_total", study::seconds_since(t0), 3);
+  s.write(out);
+  std::printf("wall: linear %.1f s, runs %.1f s, total %.1f s\n", wall_linear, wall_runs, study::seconds_since(t0));
+  return 0;
+}
