@@ -29,20 +29,47 @@ namespace {
 struct Formulation {
   std::string name, label;
   RateFormOptions options;
+  int layer_supports = 1;  // fixed layers (in supports) the formulation needs for an exact equilibrium
 };
 
 /// The terms of the scheme practitioners switch on, one at a time and together (MCM deck viscosity 0.06 / 1.5;
 /// GMS XSPH 1/2 and artificial stress 0.3, n = 4).
 std::vector<Formulation> formulations() {
   const RateFormOptions visc{.viscosity = ViscositySwitch::Compression};
-  return {{"sph", "basic SPH (continuity by summation, rho^2 momentum)", {}},
-          {"sph-xsph", "SPH + XSPH (GMS 3.6, eps = 1/2)", {.xsph = 0.5}},
-          {"sph-visc", "SPH + artificial viscosity (compression switch, alpha 0.06, beta 1.5)", visc},
-          {"sph-as", "SPH + GMS artificial stress (eps = 0.3, n = 4)", {.artificial_stress = 0.3}},
-          {"sph-div", "SPH with continuity -rho tr L (GMS 3.9)", {.continuity = ContinuityForm::Divergence}},
-          {"sph-all",
-           "SPH + XSPH + viscosity + artificial stress",
-           {.xsph = 0.5, .viscosity = ViscositySwitch::Compression, .artificial_stress = 0.3}}};
+  return {
+      {"sph", "basic SPH (continuity by summation, rho^2 momentum)", {}},
+      {"sph-xsph", "SPH + XSPH (GMS 3.6, eps = 1/2)", {.xsph = 0.5}},
+      {"sph-visc", "SPH + artificial viscosity (compression switch, alpha 0.06, beta 1.5)", visc},
+      {"sph-as", "SPH + GMS artificial stress (eps = 0.3, n = 4)", {.artificial_stress = 0.3}},
+      {"sph-div", "SPH with continuity -rho tr L (GMS 3.9)", {.continuity = ContinuityForm::Divergence}},
+      {"sph-all",
+       "SPH + XSPH + viscosity + artificial stress",
+       {.xsph = 0.5, .viscosity = ViscositySwitch::Compression, .artificial_stress = 0.3}},
+      // Kernel corrections (Powell 1.19, 4.10, algorithm 4.2). MCM's continuity (1.32) is -rho tr L of the
+      // corrected velocity gradient.
+      {"ncsph",
+       "NCSPH (1.19) in L and in the row momentum (1.36), continuity -rho tr L (MCM)",
+       {.continuity = ContinuityForm::Divergence, .gradient = RateFormGradient::Ncsph},
+       2},
+      {"ncsph-xsph",
+       "NCSPH + XSPH (eps = 1/2)",
+       {.continuity = ContinuityForm::Divergence, .xsph = 0.5, .gradient = RateFormGradient::Ncsph},
+       2},
+      {"ncsph-anti",
+       "NCSPH with antisymmetrised pair forces (momentum conserving)",
+       {.continuity = ContinuityForm::Divergence,
+        .gradient = RateFormGradient::Ncsph,
+        .momentum = RateFormMomentum::Antisymmetric},
+       2},
+      {"cij", "C_ij momentum (4.10), local polish (4.9) with actual counts", {.momentum = RateFormMomentum::Cij}, 2},
+      {"ssph",
+       "S-SPH (algorithm 4.2), switch on in tension (4.15)-(4.17), + XSPH",
+       {.xsph = 0.5, .momentum = RateFormMomentum::StabilisedSph},
+       3},
+      {"ssph-printed",
+       "S-SPH with the switch as printed in algorithm 4.2 (on in compression), + XSPH",
+       {.xsph = 0.5, .momentum = RateFormMomentum::StabilisedSph, .switch_rule = SwitchRule::AsPrinted},
+       3}};
 }
 
 std::string verdict(bool unstable) { return unstable ? "U" : "S"; }
@@ -76,39 +103,68 @@ int main(int argc, char** argv) {
   const std::vector<double> xis = {0.96, 0.98, 0.99, 1.0, 1.01, 1.02, 1.04};
   SwegleOptions so;
   so.n = n;
-  const SwegleScene scene = make_swegle_scene(so);  // block, fixed layers, centre particle, kick direction
+  // Scenes with fixed layers of 1, 2, 3 supports (block, centre particle, kick direction) and, for each, the mirror
+  // class (px, py) = (-1, +1) of the free velocity DOFs, where the kick (+x at the centre) lies.
+  struct SceneClass {
+    SwegleScene scene;
+    Eigen::MatrixXd excited;
+  };
+  std::vector<SceneClass> scenes;
+  for (int layers = 1; layers <= 3; ++layers) {
+    SwegleOptions sl = so;
+    sl.layer_supports = layers;
+    SceneClass sc{make_swegle_scene(sl), {}};
+    const auto& d = sc.scene.discretisation;
+    Eigen::VectorXd pos(2 * d->free_count());
+    for (int f = 0; f < d->free_count(); ++f) pos.segment<2>(2 * f) = d->particles.x.row(d->free[f]).transpose();
+    const Eigen::Vector2d centre = d->particles.x.row(sc.scene.centre).transpose();
+    sc.excited = symmetry_basis(mirror_symmetry(pos, centre, 1e-9 * so.spacing), -1, 1);
+    scenes.push_back(std::move(sc));
+  }
+  const SwegleScene& scene = scenes[0].scene;
   const auto& disc = scene.discretisation;
+  const Eigen::MatrixXd& excited = scenes[0].excited;
   const RateFormMaterial steel = RateFormMaterial::from_youngs(so.youngs_modulus, so.poisson_ratio, so.density);
   const double cp = steel.p_wave_speed(), dt = 0.3 * scene.h / cp;
   const double detect = std::log(onset) / (2 * t_end);  // slowest growth that reaches the onset within t_end
 
-  // The kick (+x at the centre) lies in the mirror class (px, py) = (-1, +1) of the free velocity DOFs.
-  Eigen::VectorXd pos(2 * disc->free_count());
-  for (int f = 0; f < disc->free_count(); ++f) pos.segment<2>(2 * f) = disc->particles.x.row(disc->free[f]).transpose();
-  const Eigen::Vector2d centre = disc->particles.x.row(scene.centre).transpose();
-  const MirrorSymmetry sym = mirror_symmetry(pos, centre, 1e-9 * so.spacing);
-  const Eigen::MatrixXd excited = symmetry_basis(sym, -1, 1);
-
   std::ofstream runs_csv(out + "/runs.csv"), ke_csv(out + "/ke.csv");
   runs_csv << "formulation,xi,density,pressure,gamma_linear_class,lambda_imag_class,gamma_linear_all,gamma_map_class,"
-              "invariance_residual,structure_residual,gamma_measured,grew,fit_t_begin,fit_t_end,fit_r2,ratio,"
-              "linear_verdict,measured_verdict,status,steps,t_stop,ke_max_over_ke0,wall_linear,wall_run\n";
+              "invariance_residual,structure_residual,equilibrium_residual,gamma_measured,grew,fit_t_begin,fit_t_end,"
+              "fit_r2,ratio,"
+              "linear_verdict,measured_verdict,status,steps,t_stop,ke_max_over_ke0,wall_linear,wall_run,layer_supports,"
+              "particles\n";
   ke_csv << "formulation,xi,t,kinetic\n";
   std::string table, ratios_table;
   double ratio_min = 1e300, ratio_max = -1e300, smooth_min = 1e300, smooth_max = -1e300, wall_linear = 0, wall_runs = 0;
   int agree = 0, cases = 0, comparable = 0;
+  double eq_res_max = 0;  // largest equilibrium residual over the kick's accelerations
   for (const Formulation& form : formulations()) {
     std::vector<std::string> row{"**" + form.name + "**"};
     for (double xi : xis) {
       const double rho = so.density / xi;
-      const RateFormScheme<2> scheme(disc, steel, form.options, rho);
+      const SceneClass& sc = scenes[form.layer_supports - 1];
+      const auto& fdisc = sc.scene.discretisation;
+      const RateFormScheme<2> scheme(fdisc, steel, form.options, rho);
       Eigen::VectorXd y = scheme.uniform_state();
       auto tl = study::Clock::now();
       const RateFormSpectrum all = rate_form_spectrum(scheme, y);
-      const RateFormSpectrum cls = rate_form_spectrum(scheme, y, {.basis = excited});
+      const RateFormSpectrum cls = rate_form_spectrum(scheme, y, {.basis = sc.excited});
       const double w_lin = study::seconds_since(tl);
       wall_linear += w_lin;
-      scheme.set_velocity(y, scene.centre, scene.v0.segment<2>(2 * disc->free_slot[scene.centre]));
+      // Residual of the unkicked state against the kick's own accelerations: the run measures growth from the kick
+      // only if the block starts in equilibrium.
+      Eigen::VectorXd f_eq, f_kick;
+      scheme.rate(y, f_eq);
+      scheme.set_velocity(y, sc.scene.centre, sc.scene.v0.segment<2>(2 * fdisc->free_slot[sc.scene.centre]));
+      scheme.rate(y, f_kick);
+      double eq_res = 0, kick_acc = 0;
+      for (int i = 0; i < fdisc->size(); ++i)
+        if (scheme.velocity_offset(i) >= 0) {
+          eq_res = std::max(eq_res, f_eq.segment<2>(scheme.velocity_offset(i)).cwiseAbs().maxCoeff());
+          kick_acc = std::max(kick_acc, (f_kick - f_eq).segment<2>(scheme.velocity_offset(i)).cwiseAbs().maxCoeff());
+        }
+      eq_res_max = std::max(eq_res_max, eq_res / kick_acc);
       tl = study::Clock::now();
       const RateFormRunResult run =
           run_rate_form(scheme, y, {.dt = dt, .t_end = t_end, .record_every = 10, .energy_growth = stop_growth});
@@ -146,6 +202,7 @@ int main(int argc, char** argv) {
                             format_number(heun_map_growth(cls.eigenvalues, dt), 8),
                             format_number(cls.invariance_residual, 3),
                             format_number(all.structure_residual, 3),
+                            format_number(eq_res / kick_acc, 3),
                             format_number(fit.gamma, 8),
                             fit.grew ? "1" : "0",
                             format_number(fit.fit.t_begin, 6),
@@ -159,7 +216,9 @@ int main(int argc, char** argv) {
                             format_number(run.time, 6),
                             format_number(ke_max, 6),
                             format_number(w_lin, 3),
-                            format_number(w_run, 3)});
+                            format_number(w_run, 3),
+                            std::to_string(form.layer_supports),
+                            std::to_string(fdisc->size())});
       row.push_back(measured_unstable ? "**U** " + study::sig(fit.gamma) : "S");
       std::printf("%-9s xi %.2f: gamma linear %.4g (all %.4g), measured %.4g (%s), ratio %.3f, %s (%.1f + %.1f s)\n",
                   form.name.c_str(), xi, cls.growth_rate, all.growth_rate, fit.gamma, fit.grew ? "grew" : "bounded",
@@ -221,6 +280,7 @@ int main(int argc, char** argv) {
   s.set("ratio_max", comparable ? ratio_max : NAN, 3);
   s.set("smooth_ratio_min", smooth_min, 3);
   s.set("smooth_ratio_max", smooth_max, 3);
+  s.set("equilibrium_residual", eq_res_max, 2);
   s.set("wall_linear", wall_linear, 3);
   s.set("wall_runs", wall_runs, 3);
   s.set("wall_total", study::seconds_since(t0), 3);
