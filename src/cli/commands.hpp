@@ -8,12 +8,14 @@ void register_kernels_command(CLI::App& app);
 void register_operators_command(CLI::App& app);
 void register_tcrit_command(CLI::App& app);
 void register_spectrum_command(CLI::App& app);
+void register_run_command(CLI::App& app);
 
 inline void register_commands(CLI::App& app) {
   register_kernels_command(app);
   register_operators_command(app);
   register_tcrit_command(app);
   register_spectrum_command(app);
+  register_run_command(app);
 }
 
 }  // namespace sphstab::cli

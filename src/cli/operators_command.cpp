@@ -55,12 +55,6 @@ int lattice_dimension(LatticeType t) {
   }
 }
 
-NeighbourCounting parse_counting(const std::string& name) {
-  if (name == "actual") return NeighbourCounting::Actual;
-  if (name == "boundary-level") return NeighbourCounting::BoundaryLevel;
-  throw std::invalid_argument("unknown neighbour counting '" + name + "' (valid: actual, boundary-level)");
-}
-
 std::string number(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.9g", v);
@@ -109,7 +103,7 @@ void run(const OperatorsArgs& args, const std::string& command_line) {
     throw std::invalid_argument("--fixed-layers " + std::to_string(args.fixed_layers) +
                                 " does not apply to --periodic (a periodic lattice has no fixed layers)");
   const Correction correction = parse_correction(args.correction);
-  const NeighbourCounting counting = parse_counting(args.counting);
+  const NeighbourCounting counting = parse_neighbour_counting(args.counting);
   const Kernel<Dim> kernel(parse_kernel_type(args.kernel));
   const double h = args.h_over_dx * args.dx;
 

@@ -52,7 +52,8 @@ std::string violation(const std::vector<std::string>& args, const test::CliOutco
   if (r.exit_code == 1) {
     if (err.size() != 1 || err[0].rfind("sphstab: error: ", 0) != 0) return "exit 1 without exactly one error line";
     if (err[0].size() < 24) return "error line too short to name the problem";
-    if (!r.out.empty() && (args[0] == "tcrit" || args[0] == "spectrum")) return "printed rows before failing";
+    if (!r.out.empty() && (args[0] == "tcrit" || args[0] == "spectrum" || args[0] == "run"))
+      return "printed rows before failing";
     return "";
   }
   if (r.exit_code != 0) return "exit code " + std::to_string(r.exit_code);
@@ -74,6 +75,20 @@ std::string violation(const std::vector<std::string>& args, const test::CliOutco
     try {
       const CsvTable t = read_csv(r.out_path);
       if (t.rows.empty()) return "spectrum: a CSV without rows";
+    } catch (const std::exception& e) {
+      return std::string("malformed CSV: ") + e.what();
+    }
+  } else if (args[0] == "run") {
+    try {  // rows "running" at increasing steps, then one row with the final status
+      const CsvTable t = read_csv(r.out_path);
+      if (t.rows.empty()) return "run: a CSV without rows";
+      const std::vector<std::string> status = t.text_column("status");
+      const std::vector<double> step = t.numeric_column("step");
+      for (std::size_t k = 0; k < status.size(); ++k) {
+        if ((k + 1 < status.size()) != (status[k] == "running"))
+          return "run: status '" + status[k] + "' in row " + std::to_string(k);
+        if (k > 0 && !(step[k] > step[k - 1])) return "run: steps not increasing";
+      }
     } catch (const std::exception& e) {
       return std::string("malformed CSV: ") + e.what();
     }
@@ -261,11 +276,76 @@ TEST(CliFuzz, SeededRandomArgumentListsKeepTheContract) {
   std::printf("cli fuzz: %d successful, %d one-line errors\n", ok, errors);
 }
 
+/// One random `sphstab run` argument list. The pools keep every accepted run short (a few hundred particles, at most
+/// ~1000 steps): the contract is checked, not the solver's speed.
+std::vector<std::string> random_run_case(std::mt19937_64& rng, const std::string& out) {
+  auto pick = [&](const std::vector<std::string>& pool) {
+    return pool[std::uniform_int_distribution<size_t>(0, pool.size() - 1)(rng)];
+  };
+  auto coin = [&](double p) { return std::uniform_real_distribution<double>(0, 1)(rng) < p; };
+  const std::vector<std::string> bad = {"0", "-1", "nan", "inf", "1e999", "abc", "", ",", "1,2", " 1", "1e-320"};
+  std::vector<std::string> a = {"run"};
+  const bool two = coin(0.4);
+  a.insert(a.end(), {"--dim", coin(0.95) ? (two ? "2" : "1") : pick({"3", "0", "x", ""})});
+  if (two || coin(0.8))  // 2D without --n is the 21 x 21 default: seconds, not milliseconds
+    a.insert(a.end(), {"--n", coin(0.9) ? (two ? pick({"3", "5", "7"}) : pick({"3", "5", "9", "20"}))
+                                        : pick({"2", "1", "-3", "2147483648", "x", ""})});
+  if (coin(0.3)) a.push_back("--periodic");
+  if (coin(0.05)) a.push_back("--block");
+  if (coin(0.1)) a.insert(a.end(), {"--lattice", pick({"line", "square", "hex", "face-centred", "cubic"})});
+  if (coin(0.3)) a.insert(a.end(), {"--h", coin(0.85) ? pick({"1.3", "1.0", "2", "0.3"}) : pick({"1.3,1.5", "1e10"})});
+  if (coin(0.2)) a.insert(a.end(), {"--kernel", pick({"cubic", "quintic", "wendland-c2", "gaussian", "nope"})});
+  if (coin(0.6)) a.insert(a.end(), {"--xi", coin(0.85) ? pick({"0.98", "1", "1.02"}) : pick(bad)});
+  if (coin(0.1)) a.insert(a.end(), {"--poisson", pick({"0.3", "0.5", "-1", "0.49", "nan"})});
+  if (coin(0.3)) a.insert(a.end(), {"--integrator", coin(0.9) ? pick({"pc", "leapfrog"}) : pick({"rk4", ""})});
+  if (coin(0.3))
+    a.insert(a.end(), {"--dt", coin(0.8) ? pick({"0.001", "0.01", "0.06"}) : pick({"1e-61", "1e-300", "-0.01"})});
+  else if (coin(0.2))
+    a.insert(a.end(), {"--cfl", coin(0.8) ? pick({"0.5", "1.5"}) : pick(bad)});
+  if (coin(0.6)) a.insert(a.end(), {"--t-end", coin(0.85) ? pick({"0.05", "0.2", "1"}) : pick(bad)});
+  if (coin(0.3)) a.insert(a.end(), {"--record-every", pick({"1", "5", "10", "0", "x"})});
+  if (coin(0.3)) a.insert(a.end(), {"--kick", pick({"1e-10", "0", "-1e-3", "0.01", "nan"})});
+  if (coin(0.1)) a.insert(a.end(), {"--yield", pick({"0.001", "0.01", "0", "x"})});
+  if (coin(0.1)) a.insert(a.end(), {"--energy-growth", pick({"10", "1e6", "1", "x"})});
+  if (coin(0.1)) a.insert(a.end(), {"--max-displacement", pick({"1e-6", "off", "0.5", "0"})});
+  if (coin(0.1)) a.insert(a.end(), {"--gradient", pick({"plain", "ncsph", "x"})});
+  if (coin(0.1)) a.insert(a.end(), {"--momentum", pick({"symmetric", "antisymmetric", "cij", "ssph", "x"})});
+  if (coin(0.1)) a.insert(a.end(), {"--continuity", pick({"summation", "divergence", "x"})});
+  if (coin(0.1)) a.insert(a.end(), {"--viscosity", pick({"off", "compression", "always", "on"})});
+  if (coin(0.1)) a.insert(a.end(), {"--xsph", pick({"0", "0.5", "-1"})});
+  if (coin(0.1)) a.insert(a.end(), {"--artificial-stress", pick({"0", "0.3", "-0.3"})});
+  if (coin(0.1)) a.insert(a.end(), {"--out", out});
+  if (coin(0.05)) a.insert(a.begin() + std::uniform_int_distribution<long>(1, a.size())(rng), pick({"--bogus", "--"}));
+  return a;
+}
+
+TEST(CliFuzz, SeededRandomRunArgumentListsKeepTheContract) {
+  std::mt19937_64 rng(20261202);
+  const std::string out = scratch("run").string();
+  int ok = 0, errors = 0;
+  for (int k = 0; k < 60; ++k) {
+    const std::vector<std::string> args = random_run_case(rng, out);
+    const test::CliOutcome r = test::run_cli_in_child(args, scratch("runcase"), kMemoryLimit, kTimeLimit);
+    const std::string v = violation(args, r);
+    EXPECT_EQ(v, "") << "case " << k << ": sphstab " << test::join_args(args) << "\nstdout: " << r.out.substr(0, 300)
+                     << "\nstderr: " << r.err.substr(0, 300);
+    (r.exit_code == 0 ? ok : errors) += 1;
+    if (std::getenv("SPHSTAB_FUZZ_VERBOSE"))
+      std::printf(
+          "%d %.2fs sphstab %s\n    -> %s\n", r.exit_code, r.seconds, test::join_args(args).c_str(),
+          r.exit_code ? r.err.substr(0, 220).c_str() : r.out.substr(r.out.rfind('\n', r.out.size() - 2) + 1).c_str());
+  }
+  EXPECT_GT(ok, 10);
+  EXPECT_GT(errors, 15);
+  std::printf("cli fuzz (run): %d successful, %d one-line errors\n", ok, errors);
+}
+
 TEST(CliFuzz, OutputIsDeterministic) {
   const std::string out = scratch("det").string();
   for (const std::string c :
        {"tcrit --h 1.2,1.5 --kernel cubic,wendland-c4 --form plus,conservative",
-        "tcrit --dim 2 --n 6 --h 1.3 --form plus,conservative", "tcrit --h 1.3 --correction shepard --form plus"}) {
+        "tcrit --dim 2 --n 6 --h 1.3 --form plus,conservative", "tcrit --h 1.3 --correction shepard --form plus",
+        "run --n 5 --xi 1.02 --t-end 1 --record-every 7"}) {
     const test::CliOutcome a = test::run_cli_in_child(words(c), scratch("det1"), kMemoryLimit, kTimeLimit);
     const test::CliOutcome b = test::run_cli_in_child(words(c), scratch("det2"), kMemoryLimit, kTimeLimit);
     ASSERT_EQ(a.exit_code, 0) << c << ": " << a.err;

@@ -1,0 +1,118 @@
+#include "rate_form_args.hpp"
+
+#include <stdexcept>
+
+#include "parse.hpp"
+#include "sphstab/core/format.hpp"
+#include "sphstab/core/length_scale.hpp"
+#include "sphstab/forms/stabilised_sph.hpp"
+#include "sphstab/operators/local_polish.hpp"
+
+namespace sphstab::cli {
+
+namespace {
+
+/// The items of a value-or-list option; with lists = false exactly one.
+std::vector<std::string> items(const std::string& text, bool lists, const std::string& what) {
+  std::vector<std::string> out = split_list(text, ',', what);
+  if (!lists && out.size() != 1)
+    throw std::invalid_argument(what + " takes one value here (got '" + text + "'; `sphstab spectrum` sweeps lists)");
+  return out;
+}
+
+}  // namespace
+
+void add_rate_form_options(CLI::App& cmd, RateFormArgs& a, bool lists) {
+  const std::string list = lists ? " or comma list" : "", value_list = lists ? ", value or comma list" : "";
+  cmd.add_option("--dim", a.dim, "1 or 2 (default " + a.dim + ")");
+  cmd.add_option("--lattice", a.lattice, "line (1D); square, hex, face-centred (2D; default square)");
+  cmd.add_option("--n", a.n, "free particles per side (default " + a.n + "; fixed layers added unless --periodic)");
+  cmd.add_flag("--periodic", a.periodic, "periodic lattice (no fixed layers)");
+  cmd.add_option("--kernel", a.kernel, "kernel name" + list + " (default " + a.kernel + ")");
+  cmd.add_option("--h", a.h, "h/dx" + value_list + " (default " + a.h + ")");
+  cmd.add_option("--xi", a.xi, "volume strain V/V0 > 0" + value_list + " (default " + a.xi + "; > 1 tension)");
+  cmd.add_option("--dx", a.dx, "lattice spacing (default " + a.dx + ")");
+  cmd.add_option("--youngs", a.youngs, "Young's modulus E > 0 (default " + a.youngs + ", Mbar)");
+  cmd.add_option("--poisson", a.poisson, "Poisson's ratio in (-1, 1/2) (default " + a.poisson + ")");
+  cmd.add_option("--density", a.density, "rho0 > 0 at zero pressure (default " + a.density + ")");
+  cmd.add_option("--continuity", a.continuity, "summation (GMS 3.8) | divergence (-rho tr L)");
+  cmd.add_option("--xsph", a.xsph, "XSPH epsilon (GMS 3.6), >= 0 (default " + a.xsph + ")");
+  cmd.add_option("--viscosity", a.viscosity, "off | compression | always");
+  cmd.add_option("--alpha", a.alpha, "viscosity alpha (default " + a.alpha + ")");
+  cmd.add_option("--beta", a.beta, "viscosity beta (default " + a.beta + ")");
+  cmd.add_option("--artificial-stress", a.artificial_stress,
+                 "GMS artificial stress epsilon, >= 0 (default " + a.artificial_stress + ")");
+  cmd.add_option(
+      "--gradient", a.gradient,
+      "kernel gradient of L, continuity and momentum: plain | ncsph (Powell 1.19) (default " + a.gradient + ")");
+  cmd.add_option("--momentum", a.momentum,
+                 "momentum equation: symmetric (Powell 1.36) | antisymmetric | cij (4.10) | ssph (S-SPH, algorithm "
+                 "4.2) (default " +
+                     a.momentum + "; fixed layers: 2 supports for ncsph, antisymmetric, cij, 3 for ssph)");
+  cmd.add_option("--switch-rule", a.switch_rule,
+                 "S-SPH switch: tension (4.15-4.17) | as-printed | always | never (default " + a.switch_rule + ")");
+  cmd.add_option("--counting", a.counting,
+                 "n_i of the cij/ssph means: actual | boundary-level (Powell Fig. 4.3) (default " + a.counting + ")");
+}
+
+RateFormSetup parse_rate_form_args(const RateFormArgs& a, const std::string& command, bool lists, long min_n,
+                                   long max_n_1d, long max_n_2d) {
+  const std::string c = command + ": ";
+  RateFormSetup s;
+  s.dim = static_cast<int>(parse_integer(a.dim, 1, 2, c + "--dim"));
+  s.lattice = parse_lattice_type(a.lattice.empty() ? (s.dim == 1 ? "line" : "square") : a.lattice);
+  if ((s.dim == 1) != (s.lattice == LatticeType::Line) || s.lattice == LatticeType::Cubic)
+    throw std::invalid_argument(c + "--lattice " + lattice_name(s.lattice) + " does not exist in " +
+                                std::to_string(s.dim) + "D (1D: line; 2D: square, hex, face-centred)");
+  s.n = static_cast<int>(parse_integer(a.n, min_n, s.dim == 1 ? max_n_1d : max_n_2d, c + "--n"));
+  s.periodic = a.periodic;
+  for (const auto& k : items(a.kernel, lists, c + "--kernel")) s.kernels.push_back(parse_kernel_type(k));
+  for (const auto& v : items(a.h, lists, c + "--h")) s.h_over_dx.push_back(parse_double(v, c + "--h"));
+  for (const auto& v : items(a.xi, lists, c + "--xi")) s.xi.push_back(parse_double(v, c + "--xi"));
+  s.dx = parse_double(a.dx, c + "--dx");
+  check_length(s.dx, c + "--dx");
+  for (double h : s.h_over_dx) check_length(h * s.dx, c + "--h x --dx");
+  for (double xi : s.xi)
+    if (!(xi > 0)) throw std::invalid_argument(c + "--xi must be > 0 (got " + format_number(xi, 10) + ")");
+  s.material =
+      RateFormMaterial::from_youngs(parse_double(a.youngs, c + "--youngs"), parse_double(a.poisson, c + "--poisson"),
+                                    parse_double(a.density, c + "--density"));
+  RateFormOptions& o = s.options;
+  o.continuity = parse_continuity_form(a.continuity);
+  o.xsph = parse_double(a.xsph, c + "--xsph");
+  o.viscosity = parse_viscosity_switch(a.viscosity);
+  o.viscosity_alpha = parse_double(a.alpha, c + "--alpha");
+  o.viscosity_beta = parse_double(a.beta, c + "--beta");
+  o.artificial_stress = parse_double(a.artificial_stress, c + "--artificial-stress");
+  o.gradient = parse_rate_form_gradient(a.gradient);
+  o.momentum = parse_rate_form_momentum(a.momentum);
+  o.switch_rule = parse_switch_rule(a.switch_rule);
+  o.counting = parse_neighbour_counting(a.counting);
+  return s;
+}
+
+int rate_form_layer_supports(const RateFormOptions& o) {
+  if (o.momentum == RateFormMomentum::StabilisedSph) return 3;
+  if (o.gradient == RateFormGradient::Ncsph || o.momentum != RateFormMomentum::Symmetric) return 2;
+  return 1;
+}
+
+template <int Dim>
+std::shared_ptr<const Discretisation<Dim>> make_rate_form_discretisation(const RateFormSetup& s, KernelType type,
+                                                                         double h_over_dx) {
+  const Kernel<Dim> kernel(type);
+  const double h = h_over_dx * s.dx;
+  const ParticleSet<Dim> set =
+      make_lattice<Dim>(s.lattice, s.n,
+                        {.spacing = s.dx,
+                         .support_radius = rate_form_layer_supports(s.options) * kernel.support_radius(h),
+                         .periodic = s.periodic});
+  return make_discretisation(set, kernel, h);
+}
+
+template std::shared_ptr<const Discretisation<1>> make_rate_form_discretisation<1>(const RateFormSetup&, KernelType,
+                                                                                   double);
+template std::shared_ptr<const Discretisation<2>> make_rate_form_discretisation<2>(const RateFormSetup&, KernelType,
+                                                                                   double);
+
+}  // namespace sphstab::cli

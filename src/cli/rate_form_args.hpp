@@ -1,0 +1,65 @@
+#pragma once
+// The options of the rate-form scheme (forms/rate_form.hpp) shared by `sphstab spectrum` and `sphstab run`: the
+// lattice, the kernel, the material and the switchable terms, registered on a subcommand as text and converted by
+// strict parsing (parse.hpp) into a RateFormSetup. One definition of every option, its help text and its checks, so
+// that the two commands cannot drift apart.
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sphstab/forms/discretisation.hpp"
+#include "sphstab/forms/rate_form.hpp"
+#include "sphstab/kernel/kernel.hpp"
+#include "sphstab/particles/lattice.hpp"
+
+namespace sphstab::cli {
+
+/// The options as typed (parsed by parse_rate_form_args). A command sets its own defaults before registering them
+/// (the help text quotes the values found here).
+struct RateFormArgs {
+  std::string dim = "2", lattice, n = "12", kernel = "cubic", h = "1.3", xi = "1.02", youngs = "2.1", poisson = "0.3",
+              density = "7.8", dx = "0.01", xsph = "0", viscosity = "off", alpha = "0.06", beta = "1.5",
+              artificial_stress = "0", continuity = "summation", gradient = "plain", momentum = "symmetric",
+              switch_rule = "tension", counting = "actual";
+  bool periodic = false;
+};
+
+/// Registers --dim, --lattice, --n, --periodic, --kernel, --h, --xi, --dx, --youngs, --poisson, --density,
+/// --continuity, --xsph, --viscosity, --alpha, --beta, --artificial-stress, --gradient, --momentum, --switch-rule and
+/// --counting on `cmd`, bound to `a` (which must outlive the parse). `lists`: --kernel, --h and --xi accept comma
+/// lists (a sweep) rather than one value.
+void add_rate_form_options(CLI::App& cmd, RateFormArgs& a, bool lists);
+
+/// The parsed options. kernels, h_over_dx and xi hold one entry each unless the command accepts lists.
+struct RateFormSetup {
+  int dim = 2;
+  LatticeType lattice = LatticeType::Square;
+  int n = 0;  ///< free particles per side
+  bool periodic = false;
+  std::vector<KernelType> kernels;
+  std::vector<double> h_over_dx, xi;
+  double dx = 0;
+  RateFormMaterial material;
+  RateFormOptions options;
+};
+
+/// Parses and checks `a`; every error is a one-line std::invalid_argument prefixed "<command>: --option" (or the
+/// library's own message for an unknown name or a material outside its range). --n must lie in [min_n, max_n_1d] in
+/// 1D and [min_n, max_n_2d] in 2D. With lists = false, a comma list in --kernel, --h or --xi is an error.
+RateFormSetup parse_rate_form_args(const RateFormArgs& a, const std::string& command, bool lists, long min_n,
+                                   long max_n_1d, long max_n_2d);
+
+/// Thickness of the fixed layers in kernel supports that makes the uniform lattice an exact equilibrium of the
+/// formulation (as the Swegle scene, problems/swegle.hpp, and studies/swegle-rate-form choose it): 1 for the plain
+/// gradient with the symmetric momentum; 2 for NCSPH, the antisymmetrised momentum and C_ij, which read neighbours
+/// of neighbours; 3 for S-SPH.
+int rate_form_layer_supports(const RateFormOptions& options);
+
+/// The lattice of `setup` with spacing dx, h = h_over_dx dx, fixed layers of rate_form_layer_supports() supports
+/// (none when periodic), and its discretisation (neighbour list of radius 2h).
+template <int Dim>
+std::shared_ptr<const Discretisation<Dim>> make_rate_form_discretisation(const RateFormSetup& setup, KernelType kernel,
+                                                                         double h_over_dx);
+
+}  // namespace sphstab::cli
