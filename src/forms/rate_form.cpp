@@ -7,6 +7,7 @@
 #include <complex>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "sphstab/core/format.hpp"
 #include "sphstab/models/artificial_stress.hpp"
@@ -210,7 +211,7 @@ void RateFormScheme<Dim>::set_velocity(Eigen::VectorXd& y, int particle, const E
 
 template <int Dim>
 double RateFormScheme<Dim>::min_density(const Eigen::VectorXd& y) const {
-  double m = m_density;
+  double m = std::numeric_limits<double>::infinity();
   for (int i = 0; i < m_disc->size(); ++i)
     if (m_rho_off[i] >= 0) m = std::min(m, y[m_rho_off[i]]);
   return m;
@@ -244,10 +245,23 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
   const double h = d.h, rho0 = m_material.density, K = m_material.bulk_modulus, mu = m_material.shear_modulus;
   const RateFormOptions& o = m_options;
 
+  // Scratch kept between calls (rate_form.hpp: one scheme object is not evaluated from two threads at once).
+  Workspace<Scalar>& ws = [this]() -> Workspace<Scalar>& {
+    if constexpr (std::is_same_v<Scalar, double>)
+      return m_work_real;
+    else
+      return m_work_complex;
+  }();
+
   // Unpack: fixed particles sit at their initial positions at rest; frozen ones keep the initial rho and S.
-  std::vector<Vec> x(n), v(n), vhat(n);
-  std::vector<Scalar> rho(n);
-  std::vector<Eigen::Matrix<Scalar, kStress, 1>> S(n);
+  std::vector<Vec>&x = ws.x, &v = ws.v, &vhat = ws.vhat;
+  std::vector<Scalar>& rho = ws.rho;
+  std::vector<Eigen::Matrix<Scalar, kStress, 1>>& S = ws.S;
+  x.resize(n);
+  v.resize(n);
+  vhat.resize(n);
+  rho.resize(n);
+  S.resize(n);
   for (int i = 0; i < n; ++i) {
     if (m_x_off[i] >= 0) {
       x[i] = y.template segment<Dim>(m_x_off[i]);
@@ -265,46 +279,67 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
     }
   }
 
-  // Pair geometry, once: r_ij (minimum image decided on the real part), W_ij and grad_i W_ij.
-  const long nnz = nl.nonzeros();
-  std::vector<Vec> rij(nnz), grad(nnz);
-  std::vector<Scalar> w(nnz), r2s(nnz);
+  // Pair geometry: r_ij (minimum image decided on the real part), |r_ij|^2 and |r_ij|.
   Vec box;
   for (int a = 0; a < Dim; ++a) box[a] = Scalar(p.box_hi[a] - p.box_lo[a]);
-  for (int i = 0; i < n; ++i)
-    for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
-      const int j = nl.indices[k];
-      if (j == i) {
-        rij[k].setZero();
-        grad[k].setZero();
-        w[k] = Scalar(kernel.value(0.0, h));
-        r2s[k] = Scalar(0);
-        continue;
+  const auto geometry = [&](int i, int j, Vec& r, Scalar& r2, Scalar& rr) {
+    r = x[i] - x[j];
+    for (int a = 0; a < Dim; ++a)
+      if (p.periodic[a]) {
+        const double L = p.box_hi[a] - p.box_lo[a], dr = detail::re(r[a]);
+        if (dr > 0.5 * L)
+          r[a] -= box[a];
+        else if (dr < -0.5 * L)
+          r[a] += box[a];
       }
-      Vec r = x[i] - x[j];
-      for (int a = 0; a < Dim; ++a)
-        if (p.periodic[a]) {
-          const double L = p.box_hi[a] - p.box_lo[a], dr = detail::re(r[a]);
-          if (dr > 0.5 * L)
-            r[a] -= box[a];
-          else if (dr < -0.5 * L)
-            r[a] += box[a];
+    r2 = Scalar(0);
+    for (int a = 0; a < Dim; ++a) r2 += r[a] * r[a];
+    rr = sqrt(r2);
+  };
+
+  // Per-pair arrays only where a pass other than the main loop reads them: the NCSPH gradient (grad W, W, r) and the
+  // local means of C_ij / S-SPH (grad W); then also r and r^2 for the viscosity and W for XSPH and artificial
+  // stress. The plain symmetric/antisymmetric forms keep no per-pair arrays: the main loop computes grad_i W_ij (and
+  // r, r^2, W where the pair terms read them) one row at a time, XSPH computes W_ij where it uses it, with the same
+  // operations.
+  const bool plain = o.gradient == RateFormGradient::Plain;
+  const bool pair_arrays = !plain || uses_local_means(o.momentum);
+  const bool viscous = o.viscosity != ViscositySwitch::Off;
+  const bool keep_r = pair_arrays && (!plain || viscous), keep_r2 = pair_arrays && viscous;
+  const bool keep_w = pair_arrays && (!plain || o.xsph > 0 || o.artificial_stress > 0);
+  const long nnz = nl.nonzeros();
+  std::vector<Vec>&rij = ws.rij, &grad = ws.grad, &gh = ws.gh;
+  std::vector<Scalar>&w = ws.w, &r2s = ws.r2s;
+  if (pair_arrays) {
+    grad.resize(nnz);
+    if (keep_r) rij.resize(nnz);
+    if (keep_r2) r2s.resize(nnz);
+    if (keep_w) w.resize(nnz);
+    for (int i = 0; i < n; ++i)
+      for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
+        const int j = nl.indices[k];
+        if (j == i) {
+          if (keep_r) rij[k].setZero();
+          grad[k].setZero();
+          if (keep_w) w[k] = Scalar(kernel.value(0.0, h));
+          if (keep_r2) r2s[k] = Scalar(0);
+          continue;
         }
-      Scalar r2(0);
-      for (int a = 0; a < Dim; ++a) r2 += r[a] * r[a];
-      const Scalar rr = sqrt(r2);
-      rij[k] = r;
-      r2s[k] = r2;
-      w[k] = kernel.value(rr, h);
-      grad[k] = (kernel.d1(rr, h) / rr) * r;
-    }
+        Vec r;
+        Scalar r2, rr;
+        geometry(i, j, r, r2, rr);
+        if (keep_r) rij[k] = r;
+        if (keep_r2) r2s[k] = r2;
+        if (keep_w) w[k] = kernel.value(rr, h);
+        grad[k] = (kernel.d1(rr, h) / rr) * r;
+      }
+  }
 
   // Current volumes and the gradient Ghat_ij with V_j included (plain or NCSPH).
-  std::vector<Scalar> vol(n);
+  std::vector<Scalar>& vol = ws.vol;
+  vol.resize(n);
   for (int i = 0; i < n; ++i) vol[i] = m_mass[i] / rho[i];
-  const bool plain = o.gradient == RateFormGradient::Plain;
-  std::vector<Vec> gh;
-  if (!plain || uses_local_means(o.momentum)) {
+  if (pair_arrays) {
     gh.resize(nnz);
     for (int i = 0; i < n; ++i)
       for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) gh[k] = vol[nl.indices[k]] * grad[k];
@@ -325,6 +360,10 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
         M -= rij[k] * gh[k].transpose();
       }
       const Eigen::Matrix<double, Dim, Dim> Mr = M.unaryExpr([](const Scalar& z) { return detail::re(z); });
+      // JacobiSVD stops early on a non-finite matrix and leaves its singular values unset: refuse first.
+      if (!Mr.allFinite())
+        throw std::domain_error("RateFormScheme: NCSPH moment matrix of particle " + std::to_string(i) +
+                                " is not finite (non-finite positions or densities in the state)");
       const Eigen::JacobiSVD<Eigen::Matrix<double, Dim, Dim>> svd(Mr);
       const double smax = svd.singularValues()(0), smin = svd.singularValues()(Dim - 1);
       if (!(smin > 1e-12 * smax))
@@ -341,12 +380,23 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
       for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
         const int j = nl.indices[k];
         if (j == i) continue;
-        vhat[i] += (o.xsph * m_mass[j] * w[k] / (0.5 * (rho[i] + rho[j]))) * (v[j] - v[i]);
+        Scalar wk;
+        if (keep_w) {
+          wk = w[k];
+        } else {
+          Vec r;
+          Scalar r2, rr;
+          geometry(i, j, r, r2, rr);
+          wk = kernel.value(rr, h);
+        }
+        vhat[i] += (o.xsph * m_mass[j] * wk / (0.5 * (rho[i] + rho[j]))) * (v[j] - v[i]);
       }
   }
 
   // Stress, artificial stress.
-  std::vector<Mat> sigma(n), R(n);
+  std::vector<Mat>&sigma = ws.sigma, &R = ws.R;
+  sigma.resize(n);
+  R.resize(n);
   for (int i = 0; i < n; ++i) {
     const Scalar pressure = K * (rho[i] / rho0 - 1.0);
     Mat s;
@@ -370,8 +420,8 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
 
   // Local means of algorithm 4.1 of P_ij = V_j grad W_ij (C_ij, S-SPH): row mean r_i, column mean c_j =
   // (1/n_j) sum_k P_kj = -(V_j / n_j) sum_k grad W_jk, mean of column means m_i; and the S-SPH switch.
-  std::vector<Vec> row_mean, col_mean, mean_mean;
-  std::vector<Eigen::Matrix<bool, Dim, 1>> on;
+  std::vector<Vec>&row_mean = ws.row_mean, &col_mean = ws.col_mean, &mean_mean = ws.mean_mean;
+  std::vector<Eigen::Matrix<bool, Dim, 1>>& on = ws.on;
   if (uses_local_means(o.momentum)) {
     row_mean.assign(n, Vec::Zero());
     col_mean.assign(n, Vec::Zero());
@@ -428,7 +478,48 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
     Scalar drho(0);
     Vec acc = Vec::Zero();
     const Mat si = sigma[i] / (rho[i] * rho[i]);
-    for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
+    // grad_i W_ij (and r_ij, r_ij^2, W_ij where the pair terms read them) of row i: the pair arrays, or computed for
+    // this row first, in a short loop of independent pairs, with the same operations.
+    const long k0 = nl.offsets[i], k1 = nl.offsets[i + 1];
+    const Vec *gp, *rp = nullptr;
+    const Scalar *r2p = nullptr, *wp = nullptr;
+    if (pair_arrays) {
+      gp = grad.data() + k0;
+      if (keep_r) rp = rij.data() + k0;
+      if (keep_r2) r2p = r2s.data() + k0;
+      if (keep_w) wp = w.data() + k0;
+    } else {
+      const std::size_t len = static_cast<std::size_t>(k1 - k0);
+      if (ws.row_grad.size() < len) {
+        ws.row_grad.resize(len);
+        ws.row_r.resize(len);
+        ws.row_r2.resize(len);
+        ws.row_w.resize(len);
+      }
+      Vec* g = ws.row_grad.data();
+      Vec* rv = ws.row_r.data();
+      Scalar* r2v = ws.row_r2.data();
+      Scalar* wv = ws.row_w.data();
+      const bool want_w = free && o.artificial_stress > 0;
+      for (long k = k0; k < k1; ++k) {
+        const int j = nl.indices[k];
+        if (j == i) continue;
+        Vec r;
+        Scalar r2, rr;
+        geometry(i, j, r, r2, rr);
+        g[k - k0] = (kernel.d1(rr, h) / rr) * r;
+        if (viscous) {
+          rv[k - k0] = r;
+          r2v[k - k0] = r2;
+        }
+        if (want_w) wv[k - k0] = kernel.value(rr, h);
+      }
+      gp = g;
+      rp = rv;
+      r2p = r2v;
+      wp = wv;
+    }
+    for (long k = k0; k < k1; ++k) {
       const int j = nl.indices[k];
       if (j == i) {  // only a corrected gradient has a self term (it makes the rows sum to zero)
         if (free && o.momentum == RateFormMomentum::Symmetric && !plain) acc += (2.0 / rho[i]) * (sigma[i] * gh[k]);
@@ -436,11 +527,12 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
           acc += (sigma[i] / rho[i]) * (gh[k] - row_mean[i] - col_mean[i] + mean_mean[i]);
         continue;
       }
+      const Vec& gk = gp[k - k0];
       const Vec dv = vhat[j] - vhat[i];
       // L^ab = dv^a/dx^b [GMS2001, (3.10)]; continuity [GMS2001, (3.8)] (not dot(): it conjugates complex steps).
       if (plain) {
-        L += (vol[j] * dv) * grad[k].transpose();
-        if (o.continuity == ContinuityForm::Summation) drho -= m_mass[j] * dv.cwiseProduct(grad[k]).sum();
+        L += (vol[j] * dv) * gk.transpose();
+        if (o.continuity == ContinuityForm::Summation) drho -= m_mass[j] * dv.cwiseProduct(gk).sum();
       } else {
         L += dv * gh[k].transpose();
         if (o.continuity == ContinuityForm::Summation) drho -= rho[j] * dv.cwiseProduct(gh[k]).sum();
@@ -448,41 +540,40 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
       if (!free) continue;
       // Pair terms on the plain gradient: viscosity and artificial stress (every momentum form).
       Mat pair = Mat::Zero();
-      if (o.viscosity != ViscositySwitch::Off) {
+      if (viscous) {
         const Vec vij = v[i] - v[j];
-        const Scalar vr = vij.cwiseProduct(rij[k]).sum();
+        const Scalar vr = vij.cwiseProduct(rp[k - k0]).sum();
         if (o.viscosity == ViscositySwitch::Always || detail::re(vr) < 0) {
-          const Scalar mu_ij = h * vr / (r2s[k] + eta2), rho_bar = 0.5 * (rho[i] + rho[j]);
+          const Scalar mu_ij = h * vr / (r2p[k - k0] + eta2), rho_bar = 0.5 * (rho[i] + rho[j]);
           Scalar pi = -o.viscosity_alpha * c0 * mu_ij;
           if (o.viscosity == ViscositySwitch::Compression) pi += o.viscosity_beta * mu_ij * mu_ij;
           pair -= (pi / rho_bar) * Mat::Identity();
         }
       }
       if (o.artificial_stress > 0) {
-        const Scalar f = artificial_stress_pair_factor<Scalar>(w[k], m_w_dp, o.artificial_stress_exponent);
+        const Scalar f = artificial_stress_pair_factor<Scalar>(wp[k - k0], m_w_dp, o.artificial_stress_exponent);
         pair += f * (R[i] + R[j]);
       }
       const Mat sj = sigma[j] / (rho[j] * rho[j]);
       switch (o.momentum) {
         case RateFormMomentum::Symmetric:  // Powell (1.36): m_j grad W_ij = rho_j Ghat_ij
           if (plain) {
-            acc += m_mass[j] * ((si + sj + pair) * grad[k]);
+            acc += m_mass[j] * ((si + sj + pair) * gk);
           } else {
-            acc += rho[j] * ((si + sj) * gh[k]) + m_mass[j] * (pair * grad[k]);
+            acc += rho[j] * ((si + sj) * gh[k]) + m_mass[j] * (pair * gk);
           }
           break;
         case RateFormMomentum::Antisymmetric: {
           if (plain) {  // grad W_ji = -grad W_ij: the symmetric form
-            acc += m_mass[j] * ((si + sj + pair) * grad[k]);
+            acc += m_mass[j] * ((si + sj + pair) * gk);
           } else {
             const Vec ga = 0.5 * (gh[k] / vol[j] - gh[m_transpose[k]] / vol[i]);
-            acc += m_mass[j] * ((si + sj) * ga + pair * grad[k]);
+            acc += m_mass[j] * ((si + sj) * ga + pair * gk);
           }
           break;
         }
         case RateFormMomentum::Cij:  // Powell (4.10), C_ij of (4.9)
-          acc +=
-              (sigma[j] / rho[j]) * (gh[k] - row_mean[i] - col_mean[j] + mean_mean[i]) + m_mass[j] * (pair * grad[k]);
+          acc += (sigma[j] / rho[j]) * (gh[k] - row_mean[i] - col_mean[j] + mean_mean[i]) + m_mass[j] * (pair * gk);
           break;
         case RateFormMomentum::StabilisedSph: {  // Powell algorithm 4.2: a_i += (f_ij + g_ij - f_ji - g_ji) / 2
           const Mat Sij = sigma[i] / rho[i] + sigma[j] / rho[j];
@@ -492,7 +583,7 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
             if (!on[i][a]) gij[a] = Scalar(0);
             if (!on[j][a]) gji[a] = Scalar(0);
           }
-          acc += 0.5 * ((vol[i] + vol[j]) * (Sij * grad[k]) + gij - gji) + m_mass[j] * (pair * grad[k]);
+          acc += 0.5 * ((vol[i] + vol[j]) * (Sij * gk) + gij - gji) + m_mass[j] * (pair * gk);
           break;
         }
       }

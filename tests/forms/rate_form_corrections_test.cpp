@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "forms_fixture.hpp"
@@ -293,6 +294,30 @@ TEST(RateFormCorrections, SsphNeverIsBasicSphAndBadInput) {
   const auto flat = make_discretisation(line, disc->kernel, disc->h);
   const RateFormScheme<2> bad(flat, kGms, {.gradient = RateFormGradient::Ncsph});
   EXPECT_THROW(bad.rate(bad.uniform_state(), f1), std::domain_error);
+  // A non-finite state: the NCSPH moment matrix is refused before its SVD (which would leave garbage), every time.
+  const RateFormScheme<2> ncsph(disc, kGms, {.gradient = RateFormGradient::Ncsph}, 1.0 / 1.02);
+  Eigen::VectorXd nan_state = ncsph.uniform_state();
+  nan_state[ncsph.position_offset(disc->free[3])] = std::numeric_limits<double>::quiet_NaN();
+  for (int repeat = 0; repeat < 3; ++repeat) {
+    try {
+      ncsph.rate(nan_state, f1);
+      ADD_FAILURE() << "no exception for a NaN position";
+    } catch (const std::domain_error& e) {
+      EXPECT_NE(std::string(e.what()).find("not finite"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(RateFormCorrections, MinDensityIsTheSmallestCarriedDensity) {
+  const auto disc = test::lattice_discretisation<2>({.n = 4, .h = 1.3});
+  const RateFormScheme<2> s(disc, kGms, {}, 1.0 / 0.98);  // compressed: every density above rho0
+  Eigen::VectorXd y = s.uniform_state();
+  EXPECT_EQ(s.min_density(y), 1.0 / 0.98);
+  y[s.density_offset(disc->free[2])] = 1.05;
+  y[s.density_offset(disc->free[0])] = 1.03;
+  for (int i = 0; i < disc->size(); ++i)
+    if (s.density_offset(i) >= 0 && i != disc->free[0] && i != disc->free[2]) y[s.density_offset(i)] = 1.2;
+  EXPECT_EQ(s.min_density(y), 1.03);
 }
 
 }  // namespace

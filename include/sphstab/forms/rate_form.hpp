@@ -43,6 +43,7 @@
 /// auto spectrum = sphstab::system_spectrum(scheme, y);              // full-state growth rate
 /// \endcode
 #include <Eigen/Core>
+#include <complex>
 #include <limits>
 #include <memory>
 #include <string>
@@ -128,6 +129,9 @@ ViscositySwitch parse_viscosity_switch(const std::string& name);
 RateFormGradient parse_rate_form_gradient(const std::string& name);
 RateFormMomentum parse_rate_form_momentum(const std::string& name);
 
+/// Not thread-safe: rate() reuses scratch buffers owned by the object (kept between calls, one set per scalar type),
+/// so one scheme object must not be evaluated from two threads at once; give each thread its own copy (a copy starts
+/// with empty buffers of its own).
 template <int Dim>
 class RateFormScheme final : public SemiDiscreteSystem {
   static_assert(Dim == 1 || Dim == 2, "RateFormScheme: Dim must be 1 or 2");
@@ -183,6 +187,30 @@ class RateFormScheme final : public SemiDiscreteSystem {
   void evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& y,
                 Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& dydt) const;
 
+  /// evaluate()'s scratch arrays, kept between calls (std::vector::resize reallocates only when the particle or pair
+  /// count grows). Every entry evaluate() reads is written earlier in the same call. Copying a scheme does not copy
+  /// them: the copy starts empty.
+  template <class Scalar>
+  struct Workspace {
+    Workspace() = default;
+    Workspace(const Workspace&) {}
+    Workspace(Workspace&&) = default;
+    Workspace& operator=(const Workspace&) { return *this; }
+    Workspace& operator=(Workspace&&) = default;
+    // Per particle.
+    std::vector<Eigen::Matrix<Scalar, Dim, 1>> x, v, vhat, row_mean, col_mean, mean_mean;
+    std::vector<Scalar> rho, vol;
+    std::vector<Eigen::Matrix<Scalar, kStress, 1>> S;
+    std::vector<Eigen::Matrix<Scalar, Dim, Dim>> sigma, R;
+    std::vector<Eigen::Matrix<bool, Dim, 1>> on;
+    // Per pair (only the arrays the options need; none for the plain symmetric/antisymmetric forms).
+    std::vector<Eigen::Matrix<Scalar, Dim, 1>> rij, grad, gh;
+    std::vector<Scalar> w, r2s;
+    // Per pair of one row (the plain symmetric/antisymmetric forms): grad W, r, r^2, W.
+    std::vector<Eigen::Matrix<Scalar, Dim, 1>> row_grad, row_r;
+    std::vector<Scalar> row_r2, row_w;
+  };
+
   std::shared_ptr<const Discretisation<Dim>> m_disc;
   RateFormMaterial m_material;
   RateFormOptions m_options;
@@ -194,6 +222,8 @@ class RateFormScheme final : public SemiDiscreteSystem {
   Eigen::VectorXd m_counts;             // n_i of the local means (Cij, StabilisedSph)
   std::vector<bool> m_excluded;         // StabilisedSph: particles that never get the correction
   int m_size = 0;
+  mutable Workspace<double> m_work_real;                   // rate(VectorXd)
+  mutable Workspace<std::complex<double>> m_work_complex;  // rate(VectorXcd): complex-step Jacobians
 };
 
 }  // namespace sphstab
