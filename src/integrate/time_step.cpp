@@ -137,6 +137,14 @@ double heun_time_step_limit(const Eigen::VectorXcd& eigenvalues) {
   return limit;
 }
 
+double heun_growth_rate(const Eigen::VectorXcd& eigenvalues, double dt) {
+  if (!(dt > 0) || !std::isfinite(dt))
+    throw std::invalid_argument("heun_growth_rate: dt must be finite and > 0 (got " + std::to_string(dt) + ")");
+  double g = 0;
+  for (const auto& l : eigenvalues) g = std::max(g, std::log(heun_amplification(dt * l)) / dt);
+  return g;
+}
+
 double heun_excess_growth_rate(const Eigen::VectorXcd& eigenvalues, double dt) {
   if (!(dt > 0) || !std::isfinite(dt))
     throw std::invalid_argument("heun_excess_growth_rate: dt must be finite and > 0 (got " + std::to_string(dt) + ")");

@@ -211,7 +211,37 @@ int main(int argc, char** argv) {
     }
   }
 
+  // Block size: the full-state growth rate at rest of each formulation against n (same fixed layers, same h). A
+  // verdict of "neutral" on the n x n block of the runs can be a finite-size effect: the critical tension of a
+  // block falls towards the infinite lattice's (studies/dispersion-rate-form) as n grows.
+  std::ofstream size_csv(out + "/block_size.csv");
+  size_csv << "formulation,xi,n,gamma_linear,lambda_imag\n";
+  const std::vector<int> sizes = {9, 11, 13, 15, 17, 21};
+  std::string size_table;
+  for (const Formulation& form : formulations())
+    for (double xi : xis) {
+      std::vector<std::string> row{"**" + form.name + "**", study::fixed(xi, 2)};
+      for (int m : sizes) {
+        SwegleOptions sm = so;
+        sm.n = m;
+        const SwegleScene sc = make_swegle_scene(sm);
+        const RateFormScheme<2> scheme(sc.discretisation, steel, form.options, steel.density / xi);
+        const auto tl = study::Clock::now();
+        const RateFormSpectrum all = rate_form_spectrum(scheme, scheme.uniform_state());
+        wall_linear += study::seconds_since(tl);
+        // Growth below 1e-9 of the largest |lambda| is rounding of a neutral spectrum.
+        const bool grows = all.growth_rate > 1e-9 * all.eigenvalues.cwiseAbs().maxCoeff();
+        size_csv << csv_line({form.name, format_number(xi), std::to_string(m), format_number(all.growth_rate, 8),
+                              format_number(std::abs(all.lambda.imag()), 8)});
+        row.push_back(grows ? study::sig(all.growth_rate, 3) : "0");
+      }
+      study::md_row(size_table, row);
+      std::printf("%-12s xi %.2f block sizes done (%.0f s)\n", form.name.c_str(), xi, study::seconds_since(t0));
+      std::fflush(stdout);
+    }
+
   study::Summary s;
+  s.set("size_table", size_table);
   s.set("n", n);
   s.set("particles", disc->size());
   s.set("c_P", cp, 4);

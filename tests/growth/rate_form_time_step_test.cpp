@@ -174,6 +174,19 @@ TEST(TimeStepLimits, LeapfrogAndHeunFormulas) {
   EXPECT_LT(heun_amplification(0.99 * t * damped[0]), 1.0);
   EXPECT_GT(heun_amplification(1.01 * t * damped[0]), 1.0);
   EXPECT_THROW(heun_excess_growth_rate(damped, 0.0), std::invalid_argument);
+  EXPECT_THROW(heun_growth_rate(damped, -1.0), std::invalid_argument);
+  // The map's growth: ln(1 + theta^4/4) / (2 dt) on the imaginary axis; a growing real lambda = 0.3 gives
+  // ln(1 + 0.3 dt + 0.045 dt^2) / dt; excess = growth - Re lambda for a single eigenvalue.
+  for (double dt : {0.1, 0.7}) {
+    Eigen::VectorXcd w(2);
+    w << std::complex<double>(0, 1.3), std::complex<double>(0, -1.3);
+    EXPECT_NEAR(heun_growth_rate(w, dt), std::log(1 + std::pow(1.3 * dt, 4) / 4) / (2 * dt), 1e-14);
+    Eigen::VectorXcd r(1);
+    r << 0.3;
+    EXPECT_NEAR(heun_growth_rate(r, dt), std::log(1 + 0.3 * dt + 0.045 * dt * dt) / dt, 1e-14);
+    EXPECT_NEAR(heun_growth_rate(r, dt) - 0.3, heun_excess_growth_rate(r, dt), 1e-15);
+  }
+  EXPECT_EQ(heun_growth_rate(Eigen::VectorXcd(0), 1.0), 0.0);
 }
 
 }  // namespace

@@ -89,6 +89,11 @@ double heun_amplification(std::complex<double> z);
 /// Re lambda >= -1e-12 |lambda| (undamped or growing: unstable at every dt), infinity for no non-zero eigenvalue.
 double heun_time_step_limit(const Eigen::VectorXcd& eigenvalues);
 
+/// Growth rate of Heun's one-step map y1 = (I + dt J + dt^2 J^2 / 2) y0 on the eigenvalues of J: max over lambda of
+/// ln|R(dt lambda)| / dt (on the imaginary axis |R|^2 = 1 + (omega dt)^4 / 4 > 1: Heun amplifies undamped
+/// oscillations). Throws std::invalid_argument unless dt is finite and > 0; 0 for no eigenvalues.
+double heun_growth_rate(const Eigen::VectorXcd& eigenvalues, double dt);
+
 /// Spurious growth rate of Heun at dt: max over lambda of ln|R(dt lambda)| / dt - Re lambda (the numerical excess
 /// over the exact growth; dt^3 max|lambda|^4 / 8 to leading order for imaginary lambda). Throws
 /// std::invalid_argument unless dt is finite and > 0.
