@@ -3,7 +3,7 @@
 // run. The engine is stability/rate_form_critical_stress.hpp (bisection on the full-state spectrum at rest); the §3.3
 // values come from critical_tension_1d / critical_load on the analytic Jacobians in the same run.
 //
-// Writes to --out DIR: bar_1d.csv, block_2d.csv, summary.json.
+// Writes to --out DIR: bar_1d.csv, block_2d.csv (square), block_2d_hex.csv (hexagonal), summary.json.
 #include <CLI/CLI.hpp>
 #include <array>
 #include <cmath>
@@ -123,44 +123,50 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
   }
 
-  // 2D square block, cubic spline: the rate form beside the §3.3 plus and conservative forms at isotropic pre-strain
-  // e (plane strain: sigma0 = 2 (lambda + mu) e in-plane, so sigma0 / M = 2 (lambda + mu) e / M).
-  std::ofstream block(out + "/block_2d.csv");
-  block << "h_over_dx,direction,formulation,stress_over_modulus,xi,growth_above,evaluations,equilibrium_residual,"
-           "plus_33,conservative_33,status,reason\n";
+  // 2D square and hexagonal blocks, cubic spline: the rate form beside the §3.3 plus and conservative forms at
+  // isotropic pre-strain e (plane strain: sigma0 = 2 (lambda + mu) e in-plane, so sigma0 / M = 2 (lambda + mu) e / M).
   const double lambda = material.bulk_modulus - 2 * material.shear_modulus / 3, mu = material.shear_modulus;
   const ElasticMaterial elastic{.lambda = lambda, .mu = mu, .rho = material.density};
   const Kernel<2> k2(KernelType::CubicSpline);
-  std::string block_table;
-  for (double h : {1.0, 1.2, 1.3, 1.5, 2.0}) {
-    const auto disc = make_discretisation(strain_lattice_2d(LatticeType::Square, k2, h, n2), k2, h);
-    for (LoadDirection dir : dirs) {
-      double s33[2];
-      int q = 0;
-      for (MomentumForm form : {MomentumForm::Plus, MomentumForm::Conservative}) {
-        const CriticalLoad e = critical_load(analytic_jacobian_2d(*disc, elastic, form, PreStrainKind::Isotropic), dir,
-                                             CriticalLoadOptions::strain_2d());
-        s33[q++] = 2 * (lambda + mu) * e.load / M;
+  auto blocks = [&](LatticeType type, const std::string& file) {
+    std::ofstream block(out + "/" + file);
+    block << "h_over_dx,direction,formulation,stress_over_modulus,xi,growth_above,evaluations,equilibrium_residual,"
+             "plus_33,conservative_33,status,reason\n";
+    std::string table;
+    for (double h : {1.0, 1.2, 1.3, 1.5, 2.0}) {
+      const auto disc = make_discretisation(strain_lattice_2d(type, k2, h, n2), k2, h);
+      for (LoadDirection dir : dirs) {
+        double s33[2];
+        int q = 0;
+        for (MomentumForm form : {MomentumForm::Plus, MomentumForm::Conservative}) {
+          const CriticalLoad e = critical_load(analytic_jacobian_2d(*disc, elastic, form, PreStrainKind::Isotropic),
+                                               dir, CriticalLoadOptions::strain_2d());
+          s33[q++] = 2 * (lambda + mu) * e.load / M;
+        }
+        std::vector<std::string> cells{study::fixed(h, 1), load_direction_name(dir), study::sig(s33[0], 4),
+                                       study::sig(s33[1], 4)};
+        for (const Formulation& f : formulations()) {
+          if (f.name == "ncsph-anti" || f.name == "ssph-printed") continue;  // 1D shows them; keep 2D short
+          const RateFormCriticalStress r =
+              rate_form_critical_stress<2>(disc, material, f.options, {.direction = dir, .max = 0.7, .rtol = 1e-6});
+          const double res = equilibrium_residual(
+              RateFormScheme<2>(disc, material, f.options, material.density / (1 + 0.01 * load_sign(dir))));
+          block << csv_line({format_number(h, 4), load_direction_name(dir), f.name,
+                             format_number(r.stress_over_modulus, 10), format_number(r.xi, 10),
+                             format_number(r.growth_above, 6), std::to_string(r.evaluations), format_number(res, 3),
+                             format_number(s33[0], 10), format_number(s33[1], 10), status_name(r.status), r.reason});
+          cells.push_back(study::sig(r.stress_over_modulus, 4) + (res > 1e-12 ? " (r)" : ""));
+        }
+        study::md_row(table, cells);
+        std::printf("2D %s h %.1f %s done (%.1f s)\n", lattice_name(type).c_str(), h, load_direction_name(dir).c_str(),
+                    study::seconds_since(t0));
+        std::fflush(stdout);
       }
-      std::vector<std::string> cells{study::fixed(h, 1), load_direction_name(dir), study::sig(s33[0], 4),
-                                     study::sig(s33[1], 4)};
-      for (const Formulation& f : formulations()) {
-        if (f.name == "ncsph-anti" || f.name == "ssph-printed") continue;  // 1D shows them; keep 2D short
-        const RateFormCriticalStress r =
-            rate_form_critical_stress<2>(disc, material, f.options, {.direction = dir, .max = 0.7, .rtol = 1e-6});
-        const double res = equilibrium_residual(
-            RateFormScheme<2>(disc, material, f.options, material.density / (1 + 0.01 * load_sign(dir))));
-        block << csv_line({format_number(h, 4), load_direction_name(dir), f.name,
-                           format_number(r.stress_over_modulus, 10), format_number(r.xi, 10),
-                           format_number(r.growth_above, 6), std::to_string(r.evaluations), format_number(res, 3),
-                           format_number(s33[0], 10), format_number(s33[1], 10), status_name(r.status), r.reason});
-        cells.push_back(study::sig(r.stress_over_modulus, 4) + (res > 1e-12 ? " (r)" : ""));
-      }
-      study::md_row(block_table, cells);
-      std::printf("2D h %.1f %s done (%.1f s)\n", h, load_direction_name(dir).c_str(), study::seconds_since(t0));
-      std::fflush(stdout);
     }
-  }
+    return table;
+  };
+  const std::string block_table = blocks(LatticeType::Square, "block_2d.csv");
+  const std::string hex_table = blocks(LatticeType::Hexagonal, "block_2d_hex.csv");
 
   study::Summary s;
   s.set("n1", n1);
@@ -169,6 +175,7 @@ int main(int argc, char** argv) {
   s.set("worst_prediction", worst_prediction, 2);
   s.set("cubic_table", cubic_table);
   s.set("block_table", block_table);
+  s.set("hex_table", hex_table);
   s.set("wall_total", study::seconds_since(t0), 3);
   s.write(out);
   std::printf("1D sph against T_plus/(1 - T_plus): worst relative difference %.2g\n", worst_prediction);
