@@ -1,9 +1,15 @@
 // Speed of one rate-form SPH right-hand side y' = F(y) (RateFormScheme<2>::rate, plain SPH: continuity by
 // summation, no XSPH, viscosity or artificial stress) on periodic 2D square lattices, N = 1e4, 99 856, 1e6,
-// h = 1.3 and 1.5 dx, cubic spline, steel at volume strain 1.02, against
-//   - FusedPrealloc: a copy of the library's algorithm (per-pair arrays r, grad W, W, r^2, then the pair loop)
-//     with buffers kept between calls: the difference to Fused is the per-call allocation (page faults, zeroing);
-//   - FusedOnePass: one pass, grad W computed where it is used, no per-pair arrays and no W;
+// h = 1.3 and 1.5 dx, cubic spline, steel at volume strain 1.02. The library (route Fused) keeps its scratch between
+// calls (a mutable workspace) and, for these plain forms, no per-pair arrays: it computes grad W one neighbour row at
+// a time into a short row buffer, then runs the row's pair loop on unpacked per-particle arrays. Against it:
+//   - FusedPrealloc: the reference copy of the library's OLD algorithm (before commit 01c0a1c: per-pair arrays r,
+//     grad W, W, r^2 for every stored pair in a first pass, then the pair loop), with its buffers kept between calls
+//     (the old library allocated them on every call). Fused vs FusedPrealloc is what dropping the per-pair arrays
+//     gained, both without per-call allocation; the old library's allocation cost is in the committed run before
+//     that commit (results/rate-form-speed/benchmark_before.json);
+//   - FusedOnePass: one pass, grad W computed where it is used, no per-pair arrays and no W, the particle data
+//     packed into one 64 B record per particle with sigma / rho^2 precomputed;
 //   - FusedOnePassCubic: the same with the cubic spline's gradient written out (no Kernel::d1 family switch);
 //   - FusedHalfPairs: the same visiting each unordered pair once and scattering to both particles;
 //   - Operator: the operator-matrix route: G^a re-assembled at the current positions into fixed storage
@@ -13,13 +19,14 @@
 //
 //   build/bin/rate_form_step_benchmark [--self-check] [--max-side N] [google-benchmark flags]
 //   (results/rate-form-speed: --benchmark_out=.../benchmark.json --benchmark_out_format=json, then
-//    benchmarks/rate_form_step_report.py writes benchmark.md; the whole run takes ~4 min on 2 shared cores)
+//    benchmarks/rate_form_step_report.py writes benchmark.md; the whole run takes ~3 min on 2 cores)
 //
 // Every route is checked against RateFormScheme::rate on a perturbed state (both continuity forms) before it is
 // timed; a difference above 1e-12 (relative, per state block) skips the benchmark with an error. --self-check runs
 // the same checks on small lattices and exits 0 / 1. Counters: particles, h_over_dx, pairs (ordered i != j),
 // nl_bytes (index structure read per step: neighbour list and CSR indices) and model_bytes (all data read or
-// written per step, each array once per pass that touches it); bytes_per_second = model_bytes / time.
+// written per step, each array once per pass that touches it); bytes_per_second = model_bytes / time; page_faults
+// and system_s (getrusage minor faults and system CPU seconds per step, the cost of fresh allocations).
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 
@@ -83,7 +90,10 @@ void write_jaumann(const Scheme& s, const Eigen::VectorXd& y, int ro, const Mat2
   dydt[ro + 3] = ds(0, 1);
 }
 
-/// The library's algorithm for the plain subset (RateFormScheme::evaluate, double, Dim 2), buffers kept.
+/// The library's OLD algorithm for the plain subset (RateFormScheme::evaluate, double, Dim 2, before commit 01c0a1c):
+/// per-pair arrays r, grad W, W, r^2 filled for every stored pair, then the pair loop reading grad W back. Kept as
+/// the reference copy of that algorithm, with its buffers kept between calls (the old library allocated them on
+/// every call); the library itself no longer materialises per-pair arrays for these forms.
 class FusedPrealloc {
  public:
   explicit FusedPrealloc(const Scheme& s) : m_s(s) {
@@ -508,12 +518,17 @@ struct Traffic {
 
 Traffic traffic(Route r, double N, double E) {
   const double nl = 8 * N + 4 * E;  // offsets (long) + indices (int)
+  // Per particle in both fused library algorithms: y read, x, v, vhat, rho, vol, S, sigma, R written and re-read,
+  // dydt zeroed and written.
+  const double unpacked = (64 + 2 * (48 + 16 + 24 + 64) + 2 * 64) * N;
   switch (r) {
     case Route::Fused:
+      // The library: one pass over the list (a row's indices are read again by its pair loop, from cache); grad W
+      // of one row goes to a row buffer of at most ~25 entries that stays in cache, so no per-pair traffic.
+      return {nl, nl + unpacked};
     case Route::FusedPrealloc:
-      // Two passes over the list; rij, grad (16 B), W, r^2 (8 B) written, grad read back; per particle: y read,
-      // x, v, vhat, rho, vol, S, sigma, R written and re-read, dydt zeroed and written.
-      return {2 * nl, 2 * nl + 64 * E + (64 + 2 * (48 + 16 + 24 + 64) + 2 * 64) * N};
+      // The old algorithm: two passes over the list; rij, grad (16 B), W, r^2 (8 B) written, grad read back.
+      return {2 * nl, 2 * nl + 64 * E + unpacked};
     case Route::FusedOnePass:
     case Route::FusedOnePassCubic:
       return {nl, nl + (64 + 2 * 64 + 64) * N};  // y read, 64 B record written and read, dydt written
