@@ -17,8 +17,11 @@ STYLE = {"sph": ("C0", "-"), "sph-as": ("C1", "-"), "ncsph-anti": ("C2", "-"), "
 def main(out):
     rows = [r for r in read(os.path.join(out, "bar_1d.csv")) if r["direction"] == "tension"]
     kernels = list(dict.fromkeys(r["kernel"] for r in rows))
-    fig, axes = plt.subplots(1, len(kernels), figsize=(4.2 * len(kernels), 3.8), sharey=True, squeeze=False)
-    for ax, kernel in zip(axes[0], kernels):
+    ncol = 3
+    nrow = math.ceil((len(kernels) + 1) / ncol)  # one panel more for the legend
+    fig, axes = plt.subplots(nrow, ncol, figsize=(4.6 * ncol, 3.6 * nrow), sharey=True, squeeze=False)
+    flat = [ax for row in axes for ax in row]
+    for ax, kernel in zip(flat, kernels):
         series = defaultdict(lambda: ([], []))
         ref = defaultdict(lambda: ([], []))
         for r in rows:
@@ -40,11 +43,16 @@ def main(out):
             pts = [(a, b) for a, b in zip(h, t) if math.isfinite(b) and b > 0]
             if pts:
                 ax.semilogy(*zip(*pts), color=colour, ls=ls, lw=1.4, marker=".", ms=3, label="rate form " + form)
-        ax.set_title(f"{kernel}: ncsph, cij stable (inf)")
+        stable = [f for f, (h, t) in series.items() if t and all(math.isinf(b) and b > 0 for b in t)]
+        ax.set_title(f"{kernel}" + (f": {', '.join(stable)} stable (inf)" if stable else ""), fontsize=10)
         ax.set_xlabel("h / dx")
         ax.grid(True, which="both", alpha=0.3)
-    axes[0][0].set_ylabel("critical tension sigma0 / M")
-    axes[0][0].legend(fontsize=7, loc="lower left")
+    for row in axes:
+        row[0].set_ylabel("critical tension sigma0 / M")
+    handles, labels = flat[0].get_legend_handles_labels()
+    for ax in flat[len(kernels):]:
+        ax.axis("off")
+    flat[len(kernels)].legend(handles, labels, fontsize=9, loc="center")
     fig.tight_layout()
     fig.savefig(os.path.join(out, "critical_stress_1d.png"), dpi=130)
 
