@@ -72,6 +72,21 @@ struct RunBook {
       stop(status, particle, step, status == RunStatus::NonFinite ? "non-finite state" : "density <= 0");
       return false;
     }
+    if (std::isfinite(o.max_displacement)) {
+      const auto& x0 = scheme.discretisation().particles.x;
+      for (int i = 0; i < scheme.discretisation().size(); ++i) {
+        const int xo = scheme.position_offset(i);
+        if (xo < 0) continue;
+        const double d = (r.y.segment(xo, Dim).transpose() - x0.row(i)).cwiseAbs().maxCoeff();
+        if (d > o.max_displacement) {
+          record(step);
+          stop(RunStatus::DisplacementLimit, i, step,
+               "moved " + format_number(d) + " > " + format_number(o.max_displacement) +
+                   " (the neighbour list is no longer valid)");
+          return false;
+        }
+      }
+    }
     const bool last = step == nsteps;
     if (step % o.record_every == 0 || last) record(step);
     if (std::isfinite(o.energy_growth) && scheme.kinetic_energy(r.y) > o.energy_growth * ke0) {
@@ -215,6 +230,9 @@ RateFormRunResult run_rate_form(const RateFormScheme<Dim>& scheme, const Eigen::
   if (!(o.yield_stress > 0))
     throw std::invalid_argument("run_rate_form: yield_stress must be > 0 (+infinity: elastic; got " +
                                 format_number(o.yield_stress) + ")");
+  if (!(o.max_displacement > 0))
+    throw std::invalid_argument("run_rate_form: max_displacement must be > 0 (+infinity: unchecked; got " +
+                                format_number(o.max_displacement) + ")");
   const VonMises plastic(o.yield_stress);
   const auto wall0 = std::chrono::steady_clock::now();
   const long nsteps =

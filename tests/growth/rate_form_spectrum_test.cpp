@@ -160,6 +160,16 @@ TEST(RateFormRun, StopsWithStatusAndBadInput) {
   const RateFormRunResult blow = run_rate_form(scheme, y0, {.dt = 5.0, .t_end = 5000.0});
   EXPECT_NE(blow.status, RunStatus::Completed);
   EXPECT_NE(blow.message.find("at step"), std::string::npos);
+  // The displacement check: the growing run stops when a particle has moved 1e-3 dx, naming it, with the failing
+  // state recorded; unchecked, the same run goes on to the energy limit.
+  const RateFormRunResult moved =
+      run_rate_form(scheme, y0, {.dt = 0.05, .t_end = 200.0, .energy_growth = 1e30, .max_displacement = 1e-3});
+  ASSERT_EQ(moved.status, RunStatus::DisplacementLimit) << moved.message;
+  ASSERT_GE(moved.particle, 0);
+  const int xo = scheme.position_offset(moved.particle);
+  EXPECT_GT((moved.y.segment<2>(xo).transpose() - disc->particles.x.row(moved.particle)).cwiseAbs().maxCoeff(), 1e-3);
+  EXPECT_EQ(moved.kinetic_energy.back(), scheme.kinetic_energy(moved.y));
+  EXPECT_THROW(run_rate_form(scheme, y0, {.dt = 0.1, .t_end = 1, .max_displacement = 0}), std::invalid_argument);
 }
 
 }  // namespace

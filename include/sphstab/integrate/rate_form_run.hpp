@@ -97,6 +97,11 @@ struct RateFormRunOptions {
   double leapfrog_xsph = 0;
   /// Von Mises yield stress Y > 0 of the radial return after each step; +infinity (default): elastic.
   double yield_stress = std::numeric_limits<double>::infinity();
+  /// Stop (RunStatus::DisplacementLimit, with the particle) when a free particle has moved more than this (max norm)
+  /// from its position in the discretisation, checked every step. The neighbour list is built once, at those
+  /// positions, so a run whose particles move by more than the list's margin is no longer the scheme: set this to
+  /// the margin. > 0; +infinity (default): unchecked.
+  double max_displacement = std::numeric_limits<double>::infinity();
 };
 
 struct RateFormRunResult {
@@ -104,7 +109,7 @@ struct RateFormRunResult {
   std::string message;
   long steps = 0;
   double time = 0, dt = 0;
-  int particle = -1;  ///< the particle that stopped the run (non-finite or non-positive density), or -1
+  int particle = -1;  ///< the particle that stopped the run (non-finite, non-positive density, displacement), or -1
   std::vector<double> times, kinetic_energy;
   Eigen::VectorXd y;  ///< the last state (the failing one for a stopped run)
   long rate_evaluations = 0;
@@ -113,8 +118,8 @@ struct RateFormRunResult {
 };
 
 /// Runs the chosen integrator from y0 (size scheme.size()). Throws std::invalid_argument for dt <= 0, t_end <= 0,
-/// record_every < 1, a state of the wrong size, leapfrog_xsph < 0 (or > 0 with the predictor-corrector) or
-/// yield_stress <= 0.
+/// record_every < 1, a state of the wrong size, leapfrog_xsph < 0 (or > 0 with the predictor-corrector),
+/// yield_stress <= 0 or max_displacement <= 0.
 template <int Dim>
 RateFormRunResult run_rate_form(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y0,
                                 const RateFormRunOptions& options);
