@@ -97,7 +97,7 @@ RateFormSpectrum rate_form_spectrum(const RateFormScheme<Dim>& scheme, const Eig
     M = B;
   }
   out.reduced = static_cast<int>(M.rows());
-  const DenseGeneralEigen e = general_eigen(M, want_mode);
+  const DenseGeneralEigen e = general_eigen(M, want_mode || options.mode_targets.size() > 0);
   if (e.status != Status::Successful) {
     out.status = e.status;
     out.reason = "dgeev failed (info " + std::to_string(e.lapack_info) + ")";
@@ -119,11 +119,26 @@ RateFormSpectrum rate_form_spectrum(const RateFormScheme<Dim>& scheme, const Eig
     if (out.eigenvalues[k].real() > out.eigenvalues[best].real()) best = k;
   out.lambda = out.eigenvalues[best];
   out.growth_rate = out.lambda.real();
-  if (want_mode) {
-    const long col = damped ? best : best / 2;
+  auto shape = [&](long k) {  // k indexes out.eigenvalues
+    const long col = damped ? k : k / 2;
     Eigen::VectorXcd v = e.vectors.col(col).head(m);  // companion: the top half is v
     if (Q.size()) v = Q.cast<std::complex<double>>() * v;
-    out.mode = real_mode_shape(v);
+    return real_mode_shape(v);
+  };
+  if (want_mode) out.mode = shape(best);
+  const long targets = options.mode_targets.size();
+  if (targets > 0) {
+    out.modes.resize(Q.size() ? Q.rows() : m, targets);
+    out.mode_eigenvalues.resize(targets);
+    for (long t = 0; t < targets; ++t) {
+      long near = 0;
+      for (long k = 1; k < out.eigenvalues.size(); ++k)
+        if (std::abs(out.eigenvalues[k] - options.mode_targets[t]) <
+            std::abs(out.eigenvalues[near] - options.mode_targets[t]))
+          near = k;
+      out.mode_eigenvalues[t] = out.eigenvalues[near];
+      out.modes.col(t) = shape(near);
+    }
   }
   out.status = Status::Successful;
   out.reason = std::string(damped ? "companion [[0, I], [B, Jvv]]" : "lambda = +-sqrt(eig(B))") +

@@ -1,5 +1,6 @@
 #include "sphstab/problems/cantilever_plate.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -38,6 +39,73 @@ double thin_plate_period(double youngs, double poisson, double density, double t
   const double k = cantilever_fundamental_kl() / length;
   const double omega2 = youngs * thickness * thickness * std::pow(k, 4) / (12 * density * (1 - poisson * poisson));
   return 2 * M_PI / std::sqrt(omega2);
+}
+
+namespace {
+
+/// The clamped-free boundary determinant of the Timoshenko beam at omega (its sign changes at a natural frequency).
+/// Harmonic w = W e^{i omega t}, phi = Phi e^{i omega t}; e^{s x} solves the pair when
+///   D I kGA s^4 + rho omega^2 (kGA I + A D I) s^2 + rho A omega^2 (rho I omega^2 - kGA) = 0   (kGA = kappa G A),
+/// with Phi = (s^2 + q) / s W, q = rho omega^2 / (kappa G). Below the cutoff the constant term is negative: one root
+/// s^2 = alpha^2 > 0, one s^2 = -beta^2 < 0, so W = A1 cosh ax + A2 sinh ax + A3 cos bx + A4 sin bx and
+/// Phi = pa (A1 sinh ax + A2 cosh ax) + pb (A3 sin bx - A4 cos bx), pa = (a^2 + q) / a, pb = (q - b^2) / b.
+double timoshenko_determinant(double omega, double D, double kG, double rho, double H, double L) {
+  const double A = H, I = H * H * H / 12, kGA = kG * A, w2 = omega * omega;
+  const double a4 = D * I * kGA, a2 = rho * w2 * (kGA * I + A * D * I), a0 = rho * A * w2 * (rho * I * w2 - kGA);
+  const double disc = std::sqrt(a2 * a2 - 4 * a4 * a0);
+  const double alpha = std::sqrt((-a2 + disc) / (2 * a4)), beta = std::sqrt((a2 + disc) / (2 * a4));
+  const double q = rho * w2 / kG, pa = (alpha * alpha + q) / alpha, pb = (q - beta * beta) / beta;
+  const double ch = std::cosh(alpha * L), sh = std::sinh(alpha * L), c = std::cos(beta * L), s = std::sin(beta * L);
+  Eigen::Matrix4d m;
+  m << 1, 0, 1, 0,                                                              // w(0) = 0
+      0, pa, 0, -pb,                                                            // phi(0) = 0
+      pa * alpha * ch, pa * alpha * sh, pb * beta * c, pb * beta * s,           // phi'(L) = 0 (moment)
+      (alpha - pa) * sh, (alpha - pa) * ch, -(beta + pb) * s, (beta + pb) * c;  // w'(L) - phi(L) = 0 (shear)
+  return m.determinant();
+}
+
+}  // namespace
+
+double timoshenko_cantilever_period(double bending_modulus, double shear_modulus, double shear_coefficient,
+                                    double density, double thickness, double length) {
+  const double D = bending_modulus, G = shear_modulus, kappa = shear_coefficient, rho = density, H = thickness,
+               L = length;
+  for (double v : {D, G, kappa, rho, H, L})
+    if (!(v > 0) || !std::isfinite(v))
+      throw std::invalid_argument("timoshenko_cantilever_period: every argument must be finite and > 0 (got D " +
+                                  format_number(D) + ", G " + format_number(G) + ", kappa " + format_number(kappa) +
+                                  ", rho " + format_number(rho) + ", H " + format_number(H) + ", L " +
+                                  format_number(L) + ")");
+  const double k = cantilever_fundamental_kl() / L;
+  const double omega_eb = std::sqrt(D * H * H * std::pow(k, 4) / (12 * rho));  // (7.1) with D for E / (1 - nu^2)
+  const double cutoff = std::sqrt(kappa * G * 12 / (rho * H * H));
+  if (!(omega_eb < cutoff))
+    throw std::invalid_argument("timoshenko_cantilever_period: H / L = " + format_number(H / L) +
+                                " is too thick (thin-plate frequency above the shear cutoff)");
+  // Shear and rotary inertia only soften the beam: the fundamental lies in (0, omega_eb]. Scan up for the first
+  // sign change of the determinant, then bisect to rounding.
+  auto f = [&](double w) { return timoshenko_determinant(w, D, kappa * G, rho, H, L); };
+  const int n = 400;
+  double lo = 1e-3 * omega_eb, flo = f(lo), hi = lo;
+  bool bracketed = false;
+  for (int i = 1; i <= n && !bracketed; ++i) {
+    hi = std::min(omega_eb * (1 + 1e-9), cutoff * (1 - 1e-12)) * i / n;
+    if (hi <= lo) continue;
+    const double fhi = f(hi);
+    if ((flo > 0) != (fhi > 0))
+      bracketed = true;
+    else
+      lo = hi, flo = fhi;
+  }
+  if (!bracketed) throw std::runtime_error("timoshenko_cantilever_period: no root below the thin-plate frequency");
+  for (int it = 0; it < 200 && hi - lo > 4 * std::numeric_limits<double>::epsilon() * hi; ++it) {
+    const double mid = 0.5 * (lo + hi), fm = f(mid);
+    if ((fm > 0) == (flo > 0))
+      lo = mid, flo = fm;
+    else
+      hi = mid;
+  }
+  return 2 * M_PI / (0.5 * (lo + hi));
 }
 
 double cantilever_mode_velocity(double x, double length, double tip_speed) {

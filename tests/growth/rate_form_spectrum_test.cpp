@@ -10,6 +10,7 @@
 #include "sphstab/growth/mirror_symmetry.hpp"
 #include "sphstab/growth/system_spectrum.hpp"
 #include "sphstab/integrate/rate_form_run.hpp"
+#include "sphstab/jacobian/complex_step_jacobian.hpp"
 
 namespace sphstab {
 namespace {
@@ -50,6 +51,45 @@ TEST(RateFormSpectrum, ReductionEqualsTheDenseSpectrumOfTheWholeJacobian) {
     expect_reduction_exact({.xsph = 0.25, .viscosity = ViscositySwitch::Always, .viscosity_alpha = 0.5}, xi, true);
     expect_reduction_exact({.continuity = ContinuityForm::Divergence, .evolve_fixed = false}, xi, false);
   }
+}
+
+TEST(RateFormSpectrum, ModeTargetsReturnEigenvectorsOfTheReducedProblem) {
+  // The returned shape v must satisfy B v = lambda^2 v, B = Jvx X + Jvq Jqv, applied with two products of the whole J:
+  // J (0, v, 0) = (X v, Jvv v, Jqv v), then J of that with the v block cleared = (0, B v, 0).
+  const auto disc = test::lattice_discretisation<2>({.n = 5, .h = 1.3, .periodic = false});
+  const RateFormScheme<2> scheme(disc, kGms, {.xsph = 0.5, .artificial_stress = 0.3}, 1.0 / 1.02);
+  const Eigen::VectorXd y = scheme.uniform_state();
+  const RateFormSpectrum all = rate_form_spectrum(scheme, y);
+  ASSERT_EQ(all.status, Status::Successful);
+  // Modes of real mu = lambda^2 have real shapes (a complex mu's real part is not an eigenvector).
+  std::vector<std::complex<double>> real_mu;
+  for (const auto& l : all.eigenvalues)
+    if (std::abs(std::imag(l * l)) <= 1e-12 * std::abs(l * l) && std::abs(l) > 0) real_mu.push_back(l);
+  ASSERT_GE(real_mu.size(), 10u);
+  Eigen::VectorXcd targets(3);  // the third slightly off its eigenvalue: the nearest is returned
+  targets << real_mu[0], real_mu[real_mu.size() / 2], real_mu.back() + std::complex<double>(1e-9, 0);
+  const RateFormSpectrum sp = rate_form_spectrum(scheme, y, {.mode_targets = targets});
+  ASSERT_EQ(sp.modes.cols(), 3);
+  const SparseMatrix<> J = jacobian(scheme, y);
+  for (int t = 0; t < 3; ++t) {
+    Eigen::VectorXd z = Eigen::VectorXd::Zero(scheme.size());
+    for (int f = 0; f < disc->free_count(); ++f)
+      z.segment<2>(scheme.velocity_offset(disc->free[f])) = sp.modes.col(t).segment<2>(2 * f);
+    Eigen::VectorXd w = J * z;
+    for (int f = 0; f < disc->free_count(); ++f) w.segment<2>(scheme.velocity_offset(disc->free[f])).setZero();
+    const Eigen::VectorXd Bw = J * w;
+    const double mu = std::real(sp.mode_eigenvalues[t] * sp.mode_eigenvalues[t]);
+    double res = 0, norm = 0;
+    for (int f = 0; f < disc->free_count(); ++f) {
+      const int o = scheme.velocity_offset(disc->free[f]);
+      res += (Bw.segment<2>(o) - mu * z.segment<2>(o)).squaredNorm();
+      norm += z.segment<2>(o).squaredNorm();
+    }
+    EXPECT_LT(std::sqrt(res / norm), 1e-9 * std::abs(all.eigenvalues.cwiseAbs2().maxCoeff())) << t;
+  }
+  // The nearest eigenvalue (an equal one up to the rounding of a +-sqrt pair's real part).
+  EXPECT_LT(std::abs(sp.mode_eigenvalues[0] - real_mu[0]), 1e-14);
+  EXPECT_LT(std::abs(sp.mode_eigenvalues[2] - real_mu.back()), 1e-14);
 }
 
 TEST(RateFormSpectrum, MirrorClassesPartitionTheSpectrum) {

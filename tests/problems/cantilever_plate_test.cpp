@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 
@@ -26,6 +27,55 @@ TEST(CantileverPlate, FundamentalRootAndTheNotesRecomputedPeriods) {
   EXPECT_NEAR(m.youngs / (1 + m.poisson), 0.44, 1e-13);
   // Period scales as L^2 / H.
   EXPECT_NEAR(thin_plate_period(1.0, 0.3, 1.0, 1.0, 40.0) / thin_plate_period(1.0, 0.3, 1.0, 2.0, 20.0), 8.0, 1e-12);
+}
+
+/// Fundamental angular frequency of a clamped-free Timoshenko beam by finite elements (an independent method): linear
+/// w and phi, one-point (reduced) shear integration, consistent mass, dense generalised eigenproblem.
+double timoshenko_fe_omega(double D, double kG, double rho, double H, double L, int elements) {
+  const double A = H, I = H * H * H / 12, le = L / elements;
+  const int n = 2 * elements;  // (w, phi) of nodes 1..elements; node 0 clamped
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n), M = Eigen::MatrixXd::Zero(n, n);
+  for (int e = 0; e < elements; ++e) {
+    const int dof[4] = {2 * e - 2, 2 * e - 1, 2 * e, 2 * e + 1};  // w1, phi1, w2, phi2 (negative: clamped)
+    Eigen::Matrix4d ke = Eigen::Matrix4d::Zero(), me = Eigen::Matrix4d::Zero();
+    const Eigen::Vector4d bs(-1 / le, -0.5, 1 / le, -0.5);  // w' - phi at the element centre
+    ke += kG * A * le * bs * bs.transpose();
+    const double kb = D * I / le;
+    ke(1, 1) += kb, ke(3, 3) += kb, ke(1, 3) -= kb, ke(3, 1) -= kb;
+    for (int a = 0; a < 2; ++a)  // w (a = 0) and phi (a = 1) consistent masses
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) me(2 * i + a, 2 * j + a) = rho * (a == 0 ? A : I) * le / 6 * (i == j ? 2 : 1);
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j)
+        if (dof[i] >= 0 && dof[j] >= 0) K(dof[i], dof[j]) += ke(i, j), M(dof[i], dof[j]) += me(i, j);
+  }
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(K, M);
+  return std::sqrt(es.eigenvalues()(0));
+}
+
+TEST(CantileverPlate, TimoshenkoPeriodAgreesWithFiniteElementsAndTendsToThinPlate) {
+  // The GMS plate, mu = 0.22: plane-strain bending modulus E / (1 - nu^2), G = mu, kappa = 5/6, H / L = 0.1.
+  const IsotropicModuli m = isotropic_moduli(1.0, 0.22);
+  const double D = m.youngs / (1 - m.poisson * m.poisson), kG = 5.0 / 6 * 0.22;
+  for (double H : {2.0, 1.0}) {
+    const double T = timoshenko_cantilever_period(D, 0.22, 5.0 / 6, 1.0, H, 20.0);
+    // Linear elements converge at order 2: Richardson from 200 and 400 elements.
+    const double w1 = timoshenko_fe_omega(D, kG, 1.0, H, 20.0, 200), w2 = timoshenko_fe_omega(D, kG, 1.0, H, 20.0, 400);
+    const double w_fe = (4 * w2 - w1) / 3;
+    EXPECT_NEAR(2 * M_PI / w_fe / T, 1.0, 1e-7) << H;
+    EXPECT_GT(T, thin_plate_period(m.youngs, m.poisson, 1.0, H, 20.0)) << H;  // shear and rotary inertia soften
+  }
+  // Thin limit: T_timoshenko / T_thin - 1 = c (H/L)^2 + O((H/L)^4).
+  auto excess = [&](double H) {
+    return timoshenko_cantilever_period(D, 0.22, 5.0 / 6, 1.0, H, 1.0) /
+               thin_plate_period(m.youngs, m.poisson, 1.0, H, 1.0) -
+           1;
+  };
+  EXPECT_NEAR(excess(0.01) / excess(0.005), 4.0, 1e-3);
+  EXPECT_LT(excess(0.001), 1e-4);
+  EXPECT_THROW(timoshenko_cantilever_period(D, 0.22, 5.0 / 6, 1.0, 0.0, 20.0), std::invalid_argument);
+  EXPECT_THROW(timoshenko_cantilever_period(D, -1.0, 5.0 / 6, 1.0, 2.0, 20.0), std::invalid_argument);
+  EXPECT_THROW(timoshenko_cantilever_period(D, 0.22, 5.0 / 6, 1.0, 30.0, 20.0), std::invalid_argument);
 }
 
 TEST(CantileverPlate, InitialVelocityIsTheClampedFreeModeShape) {

@@ -33,18 +33,23 @@ struct RateFormSpectrumOptions {
   /// a mirror class of a symmetric block (growth/mirror_symmetry.hpp): the spectrum of Q^T B Q (and Q^T Jvv Q) is
   /// then the part of J's spectrum whose modes lie in that class; invariance_residual says how well it holds.
   Eigen::MatrixXd basis;
+  /// Eigenvalues of J to return the modes of (the nearest eigenvalue to each, in `modes`); empty: none. E.g. the
+  /// lowest vibration modes of a structure, to identify the one a run excites.
+  Eigen::VectorXcd mode_targets;
 };
 
 struct RateFormSpectrum {
   static constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-  double growth_rate = nan;          ///< max Re lambda over the non-zero eigenvalues of J (>= 0: +-pairs)
-  std::complex<double> lambda;       ///< the eigenvalue attaining it
-  Eigen::VectorXcd eigenvalues;      ///< the non-zero part of the spectrum of J (2 per velocity DOF)
-  Eigen::VectorXd mode;              ///< real velocity shape of lambda's eigenvector, free DOFs interleaved (want_mode)
-  int states = 0;                    ///< size of J
-  int reduced = 0;                   ///< size of the reduced eigenproblem
-  double structure_residual = nan;   ///< max |zero blocks| / max |J|: the reduction's precondition (~1e-16)
-  double invariance_residual = nan;  ///< with a basis: ||B Q - Q Q^T B Q||_F / ||B||_F (~1e-16 for a true class)
+  double growth_rate = nan;      ///< max Re lambda over the non-zero eigenvalues of J (>= 0: +-pairs)
+  std::complex<double> lambda;   ///< the eigenvalue attaining it
+  Eigen::VectorXcd eigenvalues;  ///< the non-zero part of the spectrum of J (2 per velocity DOF)
+  Eigen::VectorXd mode;          ///< real velocity shape of lambda's eigenvector, free DOFs interleaved (want_mode)
+  Eigen::MatrixXd modes;         ///< one column per mode target: real velocity shape, as `mode`
+  Eigen::VectorXcd mode_eigenvalues;  ///< the eigenvalue of J each column of `modes` belongs to
+  int states = 0;                     ///< size of J
+  int reduced = 0;                    ///< size of the reduced eigenproblem
+  double structure_residual = nan;    ///< max |zero blocks| / max |J|: the reduction's precondition (~1e-16)
+  double invariance_residual = nan;   ///< with a basis: ||B Q - Q Q^T B Q||_F / ||B||_F (~1e-16 for a true class)
   Status status = Status::NotComputed;
   std::string reason;
   Status info() const { return status; }

@@ -33,6 +33,18 @@ IsotropicModuli isotropic_moduli(double bulk_modulus, double shear_modulus);
 /// Throws std::invalid_argument for non-positive E, rho, H, L or nu outside (-1, 1/2).
 double thin_plate_period(double youngs, double poisson, double density, double thickness, double length);
 
+/// Period 2 pi / omega of the fundamental of a clamped-free Timoshenko beam of rectangular section (per unit width:
+/// A = H, I = H^3 / 12) with shear deformation and rotary inertia:
+///   rho A w_tt = kappa G A (w'' - phi'),   rho I phi_tt = D I phi'' + kappa G A (w' - phi),
+/// clamped at x = 0 (w = phi = 0), free at x = L (phi' = 0, w' - phi = 0). D is the bending modulus (E / (1 - nu^2)
+/// for a plate in plane strain), G the shear modulus, kappa the shear coefficient (5/6 for a rectangle). omega is the
+/// lowest root of the 4 x 4 boundary determinant in the basis cosh, sinh, cos, sin (derivation in the .cpp), found by
+/// bisection below the Euler-Bernoulli value (7.1). Used as the thick-plate correction of [GMS2001, (7.1)] at
+/// H / L = 0.1. Throws std::invalid_argument for non-positive or non-finite arguments, or when the fundamental lies
+/// above the shear cutoff sqrt(kappa G A / (rho I)) (a beam too thick for the theory).
+double timoshenko_cantilever_period(double bending_modulus, double shear_modulus, double shear_coefficient,
+                                    double density, double thickness, double length);
+
 /// The initial velocity profile v_y(x) / c0 of [GMS2001, (7.3)-(7.4)] with tip speed V_f at x = L (x measured from
 /// the clamp; any x, but meaningful for 0 <= x <= L).
 double cantilever_mode_velocity(double x, double length, double tip_speed);
