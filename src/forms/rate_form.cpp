@@ -109,7 +109,26 @@ RateFormScheme<Dim>::RateFormScheme(std::shared_ptr<const Discretisation<Dim>> d
   if (uses_local_means(options.momentum)) {
     if (options.gradient != RateFormGradient::Plain)
       throw std::invalid_argument("RateFormScheme: the C_ij and S-SPH momentum forms use the plain gradient");
-    m_counts = neighbour_counts(p, nl, options.counting);
+    // The pattern of the local means: the list's pairs within the kernel support at these positions, by the neighbour
+    // search's own test, so that a list with a margin gives the same scheme (rate_form.hpp). A list of radius
+    // support passes every entry: m_in_support stays empty.
+    const double support = m_disc->kernel.support_radius(m_disc->h), s2 = support * support;
+    std::vector<char> in(nl.nonzeros(), 1);
+    NeighbourList pattern;
+    pattern.radius = support;
+    pattern.offsets.assign(n + 1, 0);
+    bool all = true;
+    for (int i = 0; i < n; ++i) {
+      for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
+        const int j = nl.indices[k];
+        in[k] = j == i || p.separation(i, j).squaredNorm() < s2;
+        all = all && in[k];
+        if (in[k]) pattern.indices.push_back(j);
+      }
+      pattern.offsets[i + 1] = static_cast<long>(pattern.indices.size());
+    }
+    m_counts = neighbour_counts(p, all ? nl : pattern, options.counting);
+    if (!all) m_in_support = std::move(in);
   }
   if (options.momentum == RateFormMomentum::StabilisedSph) {
     if (options.excluded_depth < -1)
@@ -151,6 +170,63 @@ RateFormScheme<Dim>::RateFormScheme(std::shared_ptr<const Discretisation<Dim>> d
 }
 
 template <int Dim>
+void RateFormScheme<Dim>::set_driven(std::vector<int> particles,
+                                     std::vector<Eigen::Matrix<double, Dim, 1>> accelerations) {
+  if (particles.size() != accelerations.size())
+    throw std::invalid_argument("RateFormScheme::set_driven: " + std::to_string(particles.size()) + " particles but " +
+                                std::to_string(accelerations.size()) + " accelerations (one per particle)");
+  const int n = m_disc->size();
+  std::vector<int> slot(n, -1);
+  for (std::size_t q = 0; q < particles.size(); ++q) {
+    const int i = particles[q];
+    const std::string who = "RateFormScheme::set_driven: particle " + std::to_string(i);
+    if (i < 0 || i >= n) throw std::invalid_argument(who + " is out of range [0, " + std::to_string(n) + ")");
+    if (m_x_off[i] < 0) throw std::invalid_argument(who + " is fixed (only free particles can be driven)");
+    if (slot[i] >= 0) throw std::invalid_argument(who + " is listed twice");
+    if (!accelerations[q].allFinite()) throw std::invalid_argument(who + " has a non-finite acceleration");
+    slot[i] = static_cast<int>(q);
+  }
+  if (particles.empty()) slot.clear();
+  m_driven = std::move(particles);
+  m_driven_acc = std::move(accelerations);
+  m_driven_slot = std::move(slot);
+}
+
+template <int Dim>
+RateFormScheme<Dim> RateFormScheme<Dim>::rebuilt(const Eigen::VectorXd& y, double neighbour_radius) const {
+  if (y.size() != m_size)
+    throw std::invalid_argument("RateFormScheme::rebuilt: state has " + std::to_string(y.size()) +
+                                " entries, expected " + std::to_string(m_size));
+  if (!std::isfinite(neighbour_radius))
+    throw std::invalid_argument("RateFormScheme::rebuilt: neighbour radius must be finite (got " +
+                                format_number(neighbour_radius) + ")");
+  const Discretisation<Dim>& d = *m_disc;
+  ParticleSet<Dim> p = d.particles;
+  for (int i = 0; i < p.size(); ++i) {
+    if (m_x_off[i] < 0) continue;  // fixed particles stay at their reference positions
+    for (int a = 0; a < Dim; ++a) {
+      double x = y[m_x_off[i] + a];
+      if (!std::isfinite(x))
+        throw std::invalid_argument("RateFormScheme::rebuilt: particle " + std::to_string(i) +
+                                    " has a non-finite position");
+      const double lo = p.box_lo[a], hi = p.box_hi[a];
+      if (p.periodic[a] && (x < lo || x > hi)) {  // the search needs the box; the state keeps its unwrapped x
+        x = lo + std::fmod(x - lo, hi - lo);
+        if (x < lo) x += hi - lo;
+        x = std::clamp(x, lo, hi);
+      }
+      p.x(i, a) = x;
+    }
+  }
+  RateFormScheme s(make_discretisation(std::move(p), d.kernel, d.h, neighbour_radius), m_material, m_options, m_density,
+                   m_deviator);
+  s.m_driven = m_driven;
+  s.m_driven_acc = m_driven_acc;
+  s.m_driven_slot = m_driven_slot;
+  return s;
+}
+
+template <int Dim>
 std::string RateFormScheme<Dim>::name() const {
   std::string s = "rate-form-" + std::to_string(Dim) + "d(" +
                   (m_options.continuity == ContinuityForm::Summation ? "summation" : "divergence");
@@ -174,6 +250,7 @@ std::string RateFormScheme<Dim>::name() const {
       s += ", S-SPH " + switch_rule_name(m_options.switch_rule);
       break;
   }
+  if (!m_driven.empty()) s += ", " + std::to_string(m_driven.size()) + " driven";
   return s + ")";
 }
 
@@ -376,7 +453,7 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
   // XSPH velocity [GMS2001, (3.6)].
   for (int i = 0; i < n; ++i) {
     vhat[i] = v[i];
-    if (o.xsph > 0 && m_x_off[i] >= 0)  // fixed particles do not move
+    if (o.xsph > 0 && m_x_off[i] >= 0 && !is_driven(i))  // fixed particles do not move; driven ones move with v
       for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
         const int j = nl.indices[k];
         if (j == i) continue;
@@ -420,6 +497,10 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
 
   // Local means of algorithm 4.1 of P_ij = V_j grad W_ij (C_ij, S-SPH): row mean r_i, column mean c_j =
   // (1/n_j) sum_k P_kj = -(V_j / n_j) sum_k grad W_jk, mean of column means m_i; and the S-SPH switch.
+  // The means' pattern is the list's pairs within the support at the discretisation's positions (rate_form.hpp):
+  // m_i and the C_ij / S-SPH terms skip the other entries; r_i and c_j are kernel sums over the whole list.
+  const char* in_support = m_in_support.empty() ? nullptr : m_in_support.data();
+  const auto in_pattern = [in_support](long k) { return !in_support || in_support[k]; };
   std::vector<Vec>&row_mean = ws.row_mean, &col_mean = ws.col_mean, &mean_mean = ws.mean_mean;
   std::vector<Eigen::Matrix<bool, Dim, 1>>& on = ws.on;
   if (uses_local_means(o.momentum)) {
@@ -436,7 +517,8 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
       col_mean[i] = (-vol[i] / m_counts[i]) * gs;
     }
     for (int i = 0; i < n; ++i) {
-      for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) mean_mean[i] += col_mean[nl.indices[k]];
+      for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k)
+        if (in_pattern(k)) mean_mean[i] += col_mean[nl.indices[k]];
       mean_mean[i] /= m_counts[i];
     }
   }
@@ -449,7 +531,8 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
       if (m_excluded[i]) continue;
       for (int a = 0; a < Dim; ++a) {
         double sum = 0;
-        for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) sum += detail::re(sigma[nl.indices[k]](a, a));
+        for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k)
+          if (in_pattern(k)) sum += detail::re(sigma[nl.indices[k]](a, a));
         if (std::abs(sum) <= tol) sum = 0;
         switch (o.switch_rule) {
           case SwitchRule::Tension:
@@ -572,16 +655,19 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
           }
           break;
         }
-        case RateFormMomentum::Cij:  // Powell (4.10), C_ij of (4.9)
-          acc += (sigma[j] / rho[j]) * (gh[k] - row_mean[i] - col_mean[j] + mean_mean[i]) + m_mass[j] * (pair * gk);
+        case RateFormMomentum::Cij:  // Powell (4.10), C_ij of (4.9); C_ij = P_ij outside the pattern
+          if (in_pattern(k))
+            acc += (sigma[j] / rho[j]) * (gh[k] - row_mean[i] - col_mean[j] + mean_mean[i]) + m_mass[j] * (pair * gk);
+          else
+            acc += (sigma[j] / rho[j]) * gh[k] + m_mass[j] * (pair * gk);
           break;
         case RateFormMomentum::StabilisedSph: {  // Powell algorithm 4.2: a_i += (f_ij + g_ij - f_ji - g_ji) / 2
           const Mat Sij = sigma[i] / rho[i] + sigma[j] / rho[j];
           Vec gij = -(Sij * (row_mean[i] + col_mean[j] - mean_mean[i]));
           Vec gji = -(Sij * (row_mean[j] + col_mean[i] - mean_mean[j]));
           for (int a = 0; a < Dim; ++a) {
-            if (!on[i][a]) gij[a] = Scalar(0);
-            if (!on[j][a]) gji[a] = Scalar(0);
+            if (!on[i][a] || !in_pattern(k)) gij[a] = Scalar(0);
+            if (!on[j][a] || !in_pattern(k)) gji[a] = Scalar(0);
           }
           acc += 0.5 * ((vol[i] + vol[j]) * (Sij * gk) + gij - gji) + m_mass[j] * (pair * gk);
           break;
@@ -591,7 +677,10 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
     if (o.continuity == ContinuityForm::Divergence) drho = -rho[i] * L.trace();
     if (free) {
       dydt.template segment<Dim>(m_x_off[i]) = vhat[i];
-      dydt.template segment<Dim>(m_x_off[i] + Dim) = acc;
+      if (is_driven(i))  // the prescribed acceleration replaces the SPH force
+        dydt.template segment<Dim>(m_x_off[i] + Dim) = m_driven_acc[m_driven_slot[i]].template cast<Scalar>();
+      else
+        dydt.template segment<Dim>(m_x_off[i] + Dim) = acc;
     }
     if (m_rho_off[i] < 0) continue;
     dydt[m_rho_off[i]] = drho;

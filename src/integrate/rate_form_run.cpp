@@ -43,18 +43,52 @@ void return_to_yield_surface(const RateFormScheme<Dim>& s, const VonMises& model
   }
 }
 
-/// Bookkeeping shared by the integrators: records, stops, the final message.
+/// Bookkeeping shared by the integrators: records, stops, the final message, the neighbour rebuilds.
 template <int Dim>
 struct RunBook {
-  const RateFormScheme<Dim>& scheme;
+  const RateFormScheme<Dim>& base;  // the caller's scheme
   const RateFormRunOptions& o;
   long nsteps;
   double dt, ke0;
   RateFormRunResult r;
+  const RateFormScheme<Dim>* scheme = nullptr;  // base, or `own` with a neighbour skin (replaced at every rebuild)
+  std::unique_ptr<RateFormScheme<Dim>> own{};
+  Eigen::MatrixXd x_build{};  // N x Dim: the positions of the last build (the discretisation's without a skin)
+
+  /// Builds the run's own list (radius support + skin) at the positions of y.
+  void build(const Eigen::VectorXd& y) {
+    const Discretisation<Dim>& d = base.discretisation();
+    own = std::make_unique<RateFormScheme<Dim>>(base.rebuilt(y, d.kernel.support_radius(d.h) + o.neighbour_skin));
+    scheme = own.get();
+    x_build = d.particles.x;
+    for (int i = 0; i < d.size(); ++i)
+      if (base.position_offset(i) >= 0) x_build.row(i) = y.segment(base.position_offset(i), Dim).transpose();
+    ++r.neighbour_builds;
+  }
+  /// Verlet rule: rebuilds at y when a free particle of y has moved more than skin / 2 (Euclidean) since the last
+  /// build. Non-finite positions are left to finish_step.
+  void maybe_rebuild(const Eigen::VectorXd& y) {
+    if (!(o.neighbour_skin > 0)) return;
+    const double limit2 = 0.25 * o.neighbour_skin * o.neighbour_skin;
+    bool move = false;
+    for (int i = 0; i < x_build.rows(); ++i) {
+      const int xo = base.position_offset(i);
+      if (xo < 0) continue;
+      const double d2 = (y.segment(xo, Dim).transpose() - x_build.row(i)).squaredNorm();
+      if (!std::isfinite(d2)) return;
+      move = move || d2 > limit2;
+    }
+    if (move) build(y);
+  }
+  /// F(y) on a list valid at y: every rate evaluation of the run goes through here.
+  void rate(const Eigen::VectorXd& y, Eigen::VectorXd& dydt) {
+    maybe_rebuild(y);
+    scheme->rate(y, dydt);
+  }
 
   void record(long step) {
     r.times.push_back(step * dt);
-    r.kinetic_energy.push_back(scheme.kinetic_energy(r.y));
+    r.kinetic_energy.push_back(base.kinetic_energy(r.y));
     if (o.observer) o.observer(step, step * dt, r.y);
   }
   void stop(RunStatus status, int particle, long step, const std::string& why) {
@@ -67,29 +101,30 @@ struct RunBook {
   }
   /// After step `step` has put its synchronised state in r.y: checks, records; false when the run ends.
   bool finish_step(long step) {
-    const auto [status, particle] = check_state(scheme, r.y);
+    const auto [status, particle] = check_state(base, r.y);
     if (status != RunStatus::Completed) {
       stop(status, particle, step, status == RunStatus::NonFinite ? "non-finite state" : "density <= 0");
       return false;
     }
     if (std::isfinite(o.max_displacement)) {
-      const auto& x0 = scheme.discretisation().particles.x;
-      for (int i = 0; i < scheme.discretisation().size(); ++i) {
-        const int xo = scheme.position_offset(i);
+      const auto& x0 = x_build;
+      for (int i = 0; i < x_build.rows(); ++i) {
+        const int xo = base.position_offset(i);
         if (xo < 0) continue;
         const double d = (r.y.segment(xo, Dim).transpose() - x0.row(i)).cwiseAbs().maxCoeff();
         if (d > o.max_displacement) {
           record(step);
           stop(RunStatus::DisplacementLimit, i, step,
                "moved " + format_number(d) + " > " + format_number(o.max_displacement) +
-                   " (the neighbour list is no longer valid)");
+                   (o.neighbour_skin > 0 ? " since the last neighbour build"
+                                         : " (the neighbour list is no longer valid)"));
           return false;
         }
       }
     }
     const bool last = step == nsteps;
     if (step % o.record_every == 0 || last) record(step);
-    if (std::isfinite(o.energy_growth) && scheme.kinetic_energy(r.y) > o.energy_growth * ke0) {
+    if (std::isfinite(o.energy_growth) && base.kinetic_energy(r.y) > o.energy_growth * ke0) {
       if (step % o.record_every != 0 && !last) record(step);
       stop(RunStatus::EnergyGrowth, -1, step,
            "kinetic energy grew by more than " + format_number(o.energy_growth) + "x");
@@ -107,33 +142,32 @@ struct RunBook {
 /// [GMS2001, (6.14)-(6.18)] (rate_form_run.hpp).
 template <int Dim>
 void predictor_corrector(RunBook<Dim>& b, const VonMises* plastic) {
-  const RateFormScheme<Dim>& scheme = b.scheme;
   const RateFormRunOptions& o = b.o;
   const double dt = b.dt;
-  const int n = scheme.discretisation().size();
+  const int n = b.base.discretisation().size();
   RateFormRunResult& r = b.r;
   Eigen::VectorXd f0, f1, yp;
   for (long step = 1; step <= b.nsteps; ++step) {
-    scheme.rate(r.y, f0);
+    b.rate(r.y, f0);
     yp = r.y + dt * f0;  // predictor for v, rho, S (and a first-order x, replaced below)
     for (int i = 0; i < n; ++i) {
-      const int xo = scheme.position_offset(i);
+      const int xo = b.base.position_offset(i);
       if (xo >= 0)  // x = x0 + dt vhat0 + dt^2/2 a0, not corrected [GMS2001, (6.15)]
         yp.segment(xo, Dim) =
             r.y.segment(xo, Dim) + dt * f0.segment(xo, Dim) + 0.5 * dt * dt * f0.segment(xo + Dim, Dim);
     }
-    scheme.rate(yp, f1);
+    b.rate(yp, f1);
     r.rate_evaluations += 2;
     Eigen::VectorXd y = yp + 0.5 * dt * (f1 - f0);
     for (int i = 0; i < n; ++i) {
-      const int xo = scheme.position_offset(i);
+      const int xo = b.base.position_offset(i);
       if (xo < 0) continue;
       if (o.positions == PositionUpdate::Gms)
         y.segment(xo, Dim) = yp.segment(xo, Dim);
       else
         y.segment(xo, Dim) = r.y.segment(xo, Dim) + 0.5 * dt * (f0.segment(xo, Dim) + f1.segment(xo, Dim));
     }
-    if (plastic) return_to_yield_surface(scheme, *plastic, y);
+    if (plastic) return_to_yield_surface(b.base, *plastic, y);
     r.y.swap(y);
     if (!b.finish_step(step)) break;
   }
@@ -142,46 +176,59 @@ void predictor_corrector(RunBook<Dim>& b, const VonMises* plastic) {
 /// [Powell2012, algorithm 1.1, (1.40)], staggered; the numbered steps are those of rate_form_run.hpp.
 template <int Dim>
 void leapfrog(RunBook<Dim>& b, const VonMises* plastic) {
-  const RateFormScheme<Dim>& scheme = b.scheme;
-  const Discretisation<Dim>& d = scheme.discretisation();
+  const Discretisation<Dim>& d0 = b.base.discretisation();  // free numbering and offsets: the same for every build
   const double dt = b.dt;
   RateFormRunResult& r = b.r;
   // State offsets of the free particles in DOF order (d.free): x at xoff, v at xoff + Dim.
-  std::vector<int> xoff(d.free_count());
-  for (int f = 0; f < d.free_count(); ++f) xoff[f] = scheme.position_offset(d.free[f]);
+  std::vector<int> xoff(d0.free_count());
+  for (int f = 0; f < d0.free_count(); ++f) xoff[f] = b.base.position_offset(d0.free[f]);
   auto set_velocities = [&](Eigen::VectorXd& y, const Eigen::VectorXd& v) {
-    for (int f = 0; f < d.free_count(); ++f) y.template segment<Dim>(xoff[f] + Dim) = v.template segment<Dim>(f * Dim);
+    for (int f = 0; f < d0.free_count(); ++f) y.template segment<Dim>(xoff[f] + Dim) = v.template segment<Dim>(f * Dim);
   };
   auto get_velocities = [&](const Eigen::VectorXd& y, Eigen::VectorXd& v) {
-    v.resize(d.dofs());
-    for (int f = 0; f < d.free_count(); ++f) v.template segment<Dim>(f * Dim) = y.template segment<Dim>(xoff[f] + Dim);
+    v.resize(d0.dofs());
+    for (int f = 0; f < d0.free_count(); ++f) v.template segment<Dim>(f * Dim) = y.template segment<Dim>(xoff[f] + Dim);
   };
-  // Powell (2.71) through the XSPH hook of the second-order integrator (one smoothing code, kernel at x^n).
+  // Powell (2.71) through the XSPH hook of the second-order integrator (one smoothing code, kernel at x^n), on the
+  // discretisation of the current list (attached again after a rebuild).
+  const Discretisation<Dim>* d = nullptr;
   VelocityHook smooth;
+  long attached = -1;  // the build d belongs to
+  auto attach = [&] {
+    if (attached == r.neighbour_builds) return;
+    attached = r.neighbour_builds;
+    d = &b.scheme->discretisation();
+    if (b.o.leapfrog_xsph > 0)
+      smooth = xsph_hook<Dim>(std::shared_ptr<const Discretisation<Dim>>(d, [](const Discretisation<Dim>*) {}),
+                              {.epsilon = b.o.leapfrog_xsph, .current_positions = true, .include_fixed = true});
+  };
   Eigen::VectorXd u, vs;
-  if (b.o.leapfrog_xsph > 0)
-    smooth = xsph_hook<Dim>(std::shared_ptr<const Discretisation<Dim>>(&d, [](const Discretisation<Dim>*) {}),
-                            {.epsilon = b.o.leapfrog_xsph, .current_positions = true, .include_fixed = true});
 
   // y holds the whole-step state (x^n, v*^n, q^n) of E_n and fe its rates; vh = v^{n+1/2}.
   Eigen::VectorXd y = r.y, fe, fh, yh, vh, ve;
-  scheme.rate(y, fe);
+  b.rate(y, fe);
   r.rate_evaluations += 1;
   get_velocities(y, vh);
   get_velocities(fe, ve);  // the velocity slots of F hold a: ve = a^0
   vh += 0.5 * dt * ve;     // v^{1/2} = v^0 + dt/2 a^0
   for (long step = 1; step <= b.nsteps; ++step) {
-    // 1. Powell's XSPH on v^{n+1/2}, at the positions x^n.
+    // 1. Powell's XSPH on v^{n+1/2}, at the positions x^n (the list of E_n); driven particles keep their velocity.
+    attach();
     if (smooth) {
-      u.resize(d.dofs());
-      for (int f = 0; f < d.free_count(); ++f)
-        u.template segment<Dim>(f * Dim) = y.template segment<Dim>(xoff[f]) - d.particles.x.row(d.free[f]).transpose();
+      u.resize(d->dofs());
+      for (int f = 0; f < d->free_count(); ++f)
+        u.template segment<Dim>(f * Dim) =
+            y.template segment<Dim>(xoff[f]) - d->particles.x.row(d->free[f]).transpose();
       smooth(u, vh, vs);
       vh.swap(vs);
+      for (int i : b.base.driven_particles()) {
+        const int f = d->free_slot[i];
+        vh.template segment<Dim>(f * Dim) = vs.template segment<Dim>(f * Dim);
+      }
     }
     // 2. The half-step state: q^n + dt/2 qdot^n, x^n + dt/2 (v^{n+1/2} + vhat^n - v*^n), v^{n+1/2}.
     yh = y + 0.5 * dt * fe;
-    for (int f = 0; f < d.free_count(); ++f) {
+    for (int f = 0; f < d0.free_count(); ++f) {
       const int xo = xoff[f];
       yh.template segment<Dim>(xo) =
           y.template segment<Dim>(xo) +
@@ -189,13 +236,13 @@ void leapfrog(RunBook<Dim>& b, const VonMises* plastic) {
               (vh.template segment<Dim>(f * Dim) + fe.template segment<Dim>(xo) - y.template segment<Dim>(xo + Dim));
     }
     set_velocities(yh, vh);
-    scheme.rate(yh, fh);
+    b.rate(yh, fh);
     // 3. x^{n+1}, q^{n+1} from the half-step rates (the velocity slots are overwritten below), radial return.
     y += dt * fh;
-    if (plastic) return_to_yield_surface(scheme, *plastic, y);
+    if (plastic) return_to_yield_surface(b.base, *plastic, y);
     // 4. E_{n+1} at v*^{n+1} = v^{n+1/2} + dt/2 a^n.
     set_velocities(y, vh + 0.5 * dt * ve);
-    scheme.rate(y, fe);
+    b.rate(y, fe);
     r.rate_evaluations += 2;
     get_velocities(fe, ve);  // a^{n+1}
     // Synchronised record y^{n+1} = (x^{n+1}, v^{n+1/2} + dt/2 a^{n+1}, q^{n+1}).
@@ -233,15 +280,24 @@ RateFormRunResult run_rate_form(const RateFormScheme<Dim>& scheme, const Eigen::
   if (!(o.max_displacement > 0))
     throw std::invalid_argument("run_rate_form: max_displacement must be > 0 (+infinity: unchecked; got " +
                                 format_number(o.max_displacement) + ")");
+  if (!(o.neighbour_skin >= 0) || !std::isfinite(o.neighbour_skin))
+    throw std::invalid_argument("run_rate_form: neighbour_skin must be finite and >= 0 (0: no rebuild; got " +
+                                format_number(o.neighbour_skin) + ")");
   const VonMises plastic(o.yield_stress);
   const auto wall0 = std::chrono::steady_clock::now();
   const long nsteps =
       std::max(1L, checked_floor_count(std::ceil(o.t_end / o.dt - 1e-9), 1L << 53, "run_rate_form: steps t_end / dt"));
   const double dt = o.t_end / static_cast<double>(nsteps);
 
-  RunBook<Dim> b{.scheme = scheme, .o = o, .nsteps = nsteps, .dt = dt, .ke0 = scheme.kinetic_energy(y0), .r = {}};
+  RunBook<Dim> b{.base = scheme, .o = o, .nsteps = nsteps, .dt = dt, .ke0 = scheme.kinetic_energy(y0), .r = {}};
   b.r.dt = dt;
   b.r.y = y0;
+  if (o.neighbour_skin > 0) {
+    b.build(y0);  // RateFormScheme::rebuilt rejects non-finite positions
+  } else {
+    b.scheme = &scheme;
+    b.x_build = scheme.discretisation().particles.x;
+  }
   b.record(0);
   const VonMises* yield = std::isfinite(o.yield_stress) ? &plastic : nullptr;
   if (o.integrator == RateFormIntegrator::Leapfrog)

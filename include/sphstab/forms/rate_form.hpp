@@ -30,9 +30,26 @@
 /// evolve by the same equations (their stress responds to the free particles, as in a block with fixed boundary
 /// particles), otherwise they stay at the state they were given.
 ///
+/// Driven particles (set_driven; [GMS2001, §7.3] pulls a slab by giving the particles near its ends a constant axial
+/// acceleration): free particles with a prescribed constant acceleration a_i. dv_i/dt = a_i (the SPH force, viscosity
+/// and artificial stress on them are ignored) and dx_i/dt = v_i (no XSPH of their own velocity), so that they follow
+/// x0 + v0 t + a t^2/2 exactly; their density and stress evolve by the equations above, and they act on their
+/// neighbours like any free particle (their v enters the neighbours' XSPH, L, continuity and viscosity). Both rate
+/// overloads do this, so a complex-step Jacobian has zero dv/dt rows and identity dx/dt = v rows for them.
+///
 /// State layout (size()): per particle in index order, free particles [x (Dim), v (Dim), rho, S (1 in 1D; xx, yy, xy
 /// in 2D)], fixed particles [rho, S] (or nothing when not evolving). The neighbour list is the discretisation's
-/// (built once at the initial positions): runs whose particles move by more than the list's margin must rebuild it.
+/// (built once at the initial positions): runs whose particles move by more than the list's margin must rebuild it
+/// (rebuilt(), RateFormRunOptions::neighbour_skin).
+///
+/// Neighbour list and kernel support: every kernel sum (all terms but the local means) reads only pairs with W != 0 or
+/// grad W != 0, so a list with a margin (radius > support) gives the same rates as long as it holds every pair within
+/// the support at the current positions. The local means of C_ij and S-SPH are sums over a pattern, not kernel sums
+/// (C_ij = P_ij - r_i - c_j + m_i is nonzero beyond the support): their pattern N(i), the counts n_i, the mean of the
+/// column means m_i, the correction terms and the S-SPH switch sums use the list's pairs within the kernel support at
+/// the discretisation's positions (the neighbour search's own test, |x_i - x_j| < support), so the list radius does not
+/// change the scheme. r_i and c_j sum P over the whole list (kernel sums, so that the rows of C_ij still sum to zero
+/// when a pair has entered the support since the build).
 ///
 /// \code{.cpp}
 /// auto disc = sphstab::make_discretisation(sphstab::make_lattice<2>(sphstab::LatticeType::Square, 16,
@@ -169,6 +186,28 @@ class RateFormScheme final : public SemiDiscreteSystem {
   int density_offset(int particle) const { return m_rho_off[particle]; }
   int stress_offset(int particle) const { return m_rho_off[particle] < 0 ? -1 : m_rho_off[particle] + 1; }
 
+  /// Declares driven particles (see the file comment), replacing any earlier declaration; empty vectors: none.
+  /// @param particles     free particle indices, distinct
+  /// @param accelerations one constant acceleration per entry of `particles`, finite
+  /// Throws std::invalid_argument for mismatched sizes, an index out of range, a fixed or repeated particle, or a
+  /// non-finite acceleration.
+  void set_driven(std::vector<int> particles, std::vector<Eigen::Matrix<double, Dim, 1>> accelerations);
+  const std::vector<int>& driven_particles() const { return m_driven; }
+  const std::vector<Eigen::Matrix<double, Dim, 1>>& driven_accelerations() const { return m_driven_acc; }
+  bool is_driven(int particle) const { return !m_driven_slot.empty() && m_driven_slot[particle] >= 0; }
+
+  /// The same scheme on a neighbour list built at the positions of state y (free particles; fixed particles keep
+  /// their reference positions), for runs with large motion (RateFormRunOptions::neighbour_skin). Keeps the masses
+  /// (volumes), initial density, deviator, material, options, driven particles and the state layout; what the
+  /// constructor derives from the list is recomputed at the new positions (the C_ij / S-SPH pattern and counts n_i,
+  /// pair transposes); volumes, depth, spacing, roles and the periodic box are copied. The new discretisation holds
+  /// the positions of y, wrapped into a periodic box (y may keep unwrapped ones: the rate takes the minimum image), so
+  /// the result's uniform_state() starts there.
+  /// @param y               state (size()), finite positions
+  /// @param neighbour_radius list radius >= the kernel support (0: the support)
+  /// Throws std::invalid_argument for a state of the wrong size, non-finite positions or a radius below the support.
+  RateFormScheme rebuilt(const Eigen::VectorXd& y, double neighbour_radius = 0) const;
+
   /// 1/2 sum over free particles of m_i |v_i|^2.
   double kinetic_energy(const Eigen::VectorXd& y) const;
   /// Sets the velocity of particle i (a free particle) in y.
@@ -217,10 +256,13 @@ class RateFormScheme final : public SemiDiscreteSystem {
   double m_density = 0;
   double m_w_dp = 1;  // W(dp) of the artificial stress
   Eigen::VectorXd m_mass, m_deviator;
-  std::vector<int> m_x_off, m_rho_off;  // per particle: offset of x (free only) and of rho (or -1)
-  std::vector<long> m_transpose;        // pair (i, j) -> pair (j, i) (antisymmetric momentum)
-  Eigen::VectorXd m_counts;             // n_i of the local means (Cij, StabilisedSph)
-  std::vector<bool> m_excluded;         // StabilisedSph: particles that never get the correction
+  std::vector<int> m_x_off, m_rho_off;       // per particle: offset of x (free only) and of rho (or -1)
+  std::vector<long> m_transpose;             // pair (i, j) -> pair (j, i) (antisymmetric momentum)
+  Eigen::VectorXd m_counts;                  // n_i of the local means (Cij, StabilisedSph)
+  std::vector<char> m_in_support;            // per list entry: in the local means' pattern (empty: every entry is)
+  std::vector<int> m_driven, m_driven_slot;  // driven particles; per particle: index into m_driven_acc or -1
+  std::vector<Eigen::Matrix<double, Dim, 1>> m_driven_acc;
+  std::vector<bool> m_excluded;  // StabilisedSph: particles that never get the correction
   int m_size = 0;
   mutable Workspace<double> m_work_real;                   // rate(VectorXd)
   mutable Workspace<std::complex<double>> m_work_complex;  // rate(VectorXcd): complex-step Jacobians

@@ -62,6 +62,18 @@
 /// fixed ones when they evolve) gets the von Mises radial return (models/von_mises.hpp). The initial state is not
 /// returned.
 ///
+/// **Neighbour rebuild** (neighbour_skin > 0; Verlet list): particles that move by many smoothing lengths (colliding
+/// bodies, a slab pulled apart) meet pairs the discretisation's list never held. The run then works on its own copy of
+/// the scheme (RateFormScheme::rebuilt) whose list has radius support + skin, built at y0 and rebuilt at the state
+/// about to be evaluated whenever one of its free particles has moved more than skin / 2 (Euclidean) from the last
+/// build. The check precedes every rate evaluation (stages included), so two particles have closed in by at most skin
+/// since the build and every pair within the support is in the list at every evaluation. Kernel sums do not depend
+/// on the list radius (rate_form.hpp), so the run is that of an exact all-pairs search, whatever the skin, to rounding;
+/// and a run that never rebuilds equals the skin-0 run to rounding while no pair enters the support. The C_ij / S-SPH
+/// local means use the pairs within the support at the last build, so for them the build instants are part of the
+/// scheme. Rates already evaluated are kept across a rebuild. Driven particles (RateFormScheme::set_driven) keep their
+/// prescribed acceleration, and Powell's XSPH (leapfrog_xsph) leaves their velocity alone too.
+///
 /// An unstable run is a result, not an exception: the run stops at the first non-finite state, non-positive density
 /// or kinetic-energy growth beyond the limit, and reports the step, time and particle (RunStatus, message), keeping
 /// the record written so far.
@@ -100,8 +112,14 @@ struct RateFormRunOptions {
   /// Stop (RunStatus::DisplacementLimit, with the particle) when a free particle has moved more than this (max norm)
   /// from its position in the discretisation, checked every step. The neighbour list is built once, at those
   /// positions, so a run whose particles move by more than the list's margin is no longer the scheme: set this to
-  /// the margin. > 0; +infinity (default): unchecked.
+  /// the margin. With a neighbour_skin it is measured from the positions of the last build (a guard on the list in
+  /// use, not on the whole motion). > 0; +infinity (default): unchecked.
   double max_displacement = std::numeric_limits<double>::infinity();
+  /// Verlet skin of the run's own neighbour list (a length, see above), >= 0. 0 (default): the discretisation's list,
+  /// built once, is kept (bit-for-bit the run without this option). > 0: list radius support + skin, rebuilt before a
+  /// rate evaluation at which a free particle has moved more than skin / 2 (Euclidean) since the last build. Cost: a
+  /// larger list (about ((support + skin) / support)^Dim pairs) against fewer builds.
+  double neighbour_skin = 0;
 };
 
 struct RateFormRunResult {
@@ -113,13 +131,16 @@ struct RateFormRunResult {
   std::vector<double> times, kinetic_energy;
   Eigen::VectorXd y;  ///< the last state (the failing one for a stopped run)
   long rate_evaluations = 0;
+  /// Neighbour lists the run built, the one at y0 included (0 without a neighbour_skin: the discretisation's list).
+  long neighbour_builds = 0;
   double wall_seconds = 0;
   bool completed() const { return status == RunStatus::Completed; }
 };
 
 /// Runs the chosen integrator from y0 (size scheme.size()). Throws std::invalid_argument for dt <= 0, t_end <= 0,
 /// record_every < 1, a state of the wrong size, leapfrog_xsph < 0 (or > 0 with the predictor-corrector),
-/// yield_stress <= 0 or max_displacement <= 0.
+/// yield_stress <= 0, max_displacement <= 0, a negative or non-finite neighbour_skin, or (with a skin) non-finite
+/// positions in y0 or a periodic box shorter than twice the list radius.
 template <int Dim>
 RateFormRunResult run_rate_form(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y0,
                                 const RateFormRunOptions& options);
