@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <fstream>
 #include <map>
 #include <random>
@@ -23,6 +24,22 @@ using Clock = std::chrono::steady_clock;
 
 /// Seconds of wall time since t0.
 inline double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// CPU seconds used so far by the calling thread (POSIX CLOCK_THREAD_CPUTIME_ID): the cost of a run on its own
+/// thread, independent of how many other jobs share the cores (unlike its wall time).
+inline double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+/// The machine's 1-minute load average (first field of /proc/loadavg), "-" where unavailable: the context of a wall
+/// time measured on shared cores.
+inline std::string load_average() {
+  std::ifstream f("/proc/loadavg");
+  std::string a;
+  return f >> a ? a : "-";
+}
 
 /// Least-squares slope of log|y| against log x over the points with x > 0 and finite non-zero y (the observed order
 /// or exponent of a power law); NaN with fewer than two such points.
