@@ -219,6 +219,8 @@ class RateFormScheme final : public SemiDiscreteSystem {
   const RateFormMaterial& material() const { return m_material; }
   const RateFormOptions& options() const { return m_options; }
   double initial_density() const { return m_density; }
+  /// The uniform initial deviator (kStress entries): the stress of fixed particles that do not evolve.
+  const Eigen::VectorXd& initial_deviator() const { return m_deviator; }
   const Eigen::VectorXd& mass() const { return m_mass; }
 
  private:

@@ -32,10 +32,10 @@ struct RateFormSpectrumOptions {
   /// Optional orthonormal columns Q (free velocity DOFs x m) spanning a subspace that B and Jvv leave invariant, e.g.
   /// a mirror class of a symmetric block (growth/mirror_symmetry.hpp): the spectrum of Q^T B Q (and Q^T Jvv Q) is
   /// then the part of J's spectrum whose modes lie in that class; invariance_residual says how well it holds.
-  Eigen::MatrixXd basis;
+  Eigen::MatrixXd basis = {};
   /// Eigenvalues of J to return the modes of (the nearest eigenvalue to each, in `modes`); empty: none. E.g. the
   /// lowest vibration modes of a structure, to identify the one a run excites.
-  Eigen::VectorXcd mode_targets;
+  Eigen::VectorXcd mode_targets = {};
 };
 
 struct RateFormSpectrum {
