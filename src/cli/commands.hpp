@@ -9,6 +9,7 @@ void register_operators_command(CLI::App& app);
 void register_tcrit_command(CLI::App& app);
 void register_spectrum_command(CLI::App& app);
 void register_run_command(CLI::App& app);
+void register_scene_command(CLI::App& app);
 
 inline void register_commands(CLI::App& app) {
   register_kernels_command(app);
@@ -16,6 +17,7 @@ inline void register_commands(CLI::App& app) {
   register_tcrit_command(app);
   register_spectrum_command(app);
   register_run_command(app);
+  register_scene_command(app);
 }
 
 }  // namespace sphstab::cli

@@ -64,7 +64,7 @@ struct WaveForm1DOptions {
   CorrectedOperator corrected = CorrectedOperator::Auto;
   /// Strain sum with the corrected K; default: the provider's preferred_strain_sum(). The plain strain always uses
   /// the difference sum (Powell 3.26).
-  std::optional<StrainSum> strain_sum;
+  std::optional<StrainSum> strain_sum = {};
 };
 
 class WaveForm1D final : public ForceFunction {

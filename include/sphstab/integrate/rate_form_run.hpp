@@ -102,7 +102,7 @@ struct RateFormRunOptions {
   int record_every = 1;  ///< kinetic energy recorded every k steps (>= 1), and at the last step
   double energy_growth = std::numeric_limits<double>::infinity();  ///< stop when KE > energy_growth * KE(0)
   /// Called at every record with (step, time, state); may be empty.
-  std::function<void(long, double, const Eigen::VectorXd&)> observer;
+  std::function<void(long, double, const Eigen::VectorXd&)> observer = {};
   RateFormIntegrator integrator = RateFormIntegrator::PredictorCorrector;
   /// Leap-frog only: epsilon of Powell's XSPH (2.71), >= 0 (Powell 0.1); 0: off. The predictor-corrector's XSPH is
   /// the scheme's own, RateFormOptions::xsph [GMS2001, (3.6)].

@@ -1,0 +1,214 @@
+// `sphstab scene plate|rings|slab`: the test cases of Gray, Monaghan & Swift [GMS2001, §7] run with their scheme
+// (forms/rate_form.hpp: continuity -rho tr L, XSPH 1/2, viscosity alpha = 1, beta = 2 with the compression switch,
+// artificial stress eps, n = 4; GMS predictor-corrector with a Verlet neighbour list), GMS units (rho0 = K = 1), its
+// time series printed as CSV: step, t, kinetic energy, bond-graph fragments (analysis/fragments.hpp, bonds < 1.5 dp)
+// and the scene's measure (plate: tip deflection; rings: largest fragment count of one ring; slab: narrowest width
+// between the driven zones, analysis/neck.hpp). A run that fractures is a result; one that stops (non-finite state,
+// density <= 0) keeps its rows and VTK frames and ends with a row naming the status, step, time and particle.
+// The studies gms-plate, gms-rings and gms-slab hold the validated runs; this command is for one-off runs.
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "commands.hpp"
+#include "parse.hpp"
+#include "sphstab/analysis/fragments.hpp"
+#include "sphstab/analysis/neck.hpp"
+#include "sphstab/core/format.hpp"
+#include "sphstab/forms/rate_form.hpp"
+#include "sphstab/forms/rate_form_state.hpp"
+#include "sphstab/integrate/rate_form_run.hpp"
+#include "sphstab/io/csv.hpp"
+#include "sphstab/io/rate_form_vtk.hpp"
+#include "sphstab/io/vtk.hpp"
+#include "sphstab/problems/cantilever_plate.hpp"
+#include "sphstab/problems/colliding_rings.hpp"
+#include "sphstab/problems/plastic_slab.hpp"
+
+namespace sphstab::cli {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::string num(double v) { return format_csv_cell(CsvCell(v)); }  // shortest round trip
+
+struct SceneArgs {
+  std::string scene, dp, across = "10", thickness = "2", length = "20", mu, nu, eps = "0.3", tip_speed = "0.01",
+                         speed = "0.059", yield, t_end, skin = "0.5", cfl = "0.5", record_every = "100", out;
+};
+
+double checked(const std::string& text, const std::string& what, double lo, bool lo_open, double hi, bool hi_open) {
+  const double v = parse_double(text, "scene: " + what);
+  const bool ok = (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+  if (!ok)
+    throw std::invalid_argument("scene: " + what + " must be in " + (lo_open ? "(" : "[") + format_number(lo) + ", " +
+                                format_number(hi) + (hi_open ? ")" : "]") + " (got " + text + ")");
+  return v;
+}
+double positive(const std::string& text, const std::string& what) { return checked(text, what, 0, true, kInf, true); }
+
+/// A scene ready to run: scheme, initial state, the measure of a record, the defaults that depend on the scene.
+struct Scene {
+  std::unique_ptr<RateFormScheme<2>> scheme;
+  Eigen::VectorXd y0;
+  double dp = 0, t_end = 0, yield = kInf;
+  std::string measure_name;
+  std::function<double(const Eigen::Matrix2Xd&, const Eigen::VectorXd&)> measure;
+};
+
+Scene make_scene(const SceneArgs& a) {
+  const std::string& s = a.scene;
+  if (s != "plate" && s != "rings" && s != "slab")
+    throw std::invalid_argument("scene: unknown scene '" + s + "' (valid: plate, rings, slab)");
+  if (!a.mu.empty() && !a.nu.empty()) throw std::invalid_argument("scene: give --mu or --nu, not both");
+  double mu = s == "slab" ? 0.3 : 0.22;  // GMS §7.2, §7.3; the plate's Table 1 first row
+  if (!a.mu.empty()) mu = checked(a.mu, "--mu", 0, false, kInf, true);
+  if (!a.nu.empty()) {  // K = 1: mu = 3 K (1 - 2 nu) / (2 (1 + nu))
+    const double nu = checked(a.nu, "--nu (Poisson's ratio)", -1, true, 0.5, true);
+    mu = 3 * (1 - 2 * nu) / (2 * (1 + nu));
+  }
+  const double eps = checked(a.eps, "--eps (artificial stress)", 0, false, kInf, true);
+  const RateFormMaterial mat{.density = 1, .bulk_modulus = 1, .shear_modulus = mu};
+  const RateFormOptions options{.continuity = ContinuityForm::Divergence,
+                                .xsph = 0.5,
+                                .viscosity = ViscositySwitch::Compression,
+                                .viscosity_alpha = 1,
+                                .viscosity_beta = 2,
+                                .artificial_stress = eps};
+  const Kernel<2> kernel(KernelType::CubicSpline);
+  Scene sc;
+  auto build = [&](ParticleSet<2> p) {
+    sc.dp = p.spacing;
+    sc.scheme =
+        std::make_unique<RateFormScheme<2>>(make_discretisation(std::move(p), kernel, 1.5 * sc.dp), mat, options);
+    sc.y0 = sc.scheme->uniform_state();
+  };
+  if (!a.yield.empty()) sc.yield = positive(a.yield, "--yield (von Mises yield stress)");
+  if (s == "plate") {
+    if (!a.dp.empty()) throw std::invalid_argument("scene: the plate takes --across (dp = H / across), not --dp");
+    const double H = positive(a.thickness, "--thickness H"), L = positive(a.length, "--length L");
+    const int across = static_cast<int>(parse_integer(a.across, 2, 1000, "scene: --across"));
+    const double vf = parse_double(a.tip_speed, "scene: --tip-speed");
+    build(make_cantilever_plate({.length = L, .thickness = H, .across = across}));
+    std::vector<int> tip;
+    const ParticleSet<2>& p = sc.scheme->discretisation().particles;
+    for (int i = 0; i < p.size(); ++i) {
+      if (p.role[i] == Role::Free)
+        sc.scheme->set_velocity(sc.y0, i, Eigen::Vector2d(0, cantilever_mode_velocity(p.x(i, 0), L, vf)));
+      if (p.x(i, 0) > L - sc.dp) tip.push_back(i);
+    }
+    const IsotropicModuli m = isotropic_moduli(1, mu);
+    sc.t_end = 1.25 * thin_plate_period(m.youngs, m.poisson, 1, H, L);
+    sc.measure_name = "tip_deflection";
+    sc.measure = [tip, p0 = p](const Eigen::Matrix2Xd& x, const Eigen::VectorXd&) {
+      double u = 0;
+      for (int i : tip) u += x(1, i) - p0.x(i, 1);
+      return u / static_cast<double>(tip.size());
+    };
+  } else if (s == "rings") {
+    const double dp = a.dp.empty() ? 0.1 : positive(a.dp, "--dp");
+    const double speed = parse_double(a.speed, "scene: --speed");
+    const CollidingRings r = make_colliding_rings({.spacing = dp, .speed = speed});
+    build(r.particles);
+    for (int i = 0; i < r.size(); ++i) sc.scheme->set_velocity(sc.y0, i, r.velocity.col(i));
+    sc.t_end = 100;
+    sc.measure_name = "ring_fragments";
+    const int n = r.per_ring;
+    sc.measure = [n, bond = 1.5 * dp](const Eigen::Matrix2Xd& x, const Eigen::VectorXd&) {
+      return static_cast<double>(
+          std::max(find_fragments(x.leftCols(n), bond).count(), find_fragments(x.rightCols(n), bond).count()));
+    };
+  } else {
+    const double dp = a.dp.empty() ? 0.04 : positive(a.dp, "--dp");
+    if (a.yield.empty()) sc.yield = 0.03;  // GMS §7.3
+    const PlasticSlab slab = make_plastic_slab({.spacing = dp});
+    build(slab.particles);
+    std::vector<Eigen::Vector2d> acc;
+    for (Eigen::Index k = 0; k < slab.driven_acceleration.cols(); ++k)
+      acc.emplace_back(slab.driven_acceleration.col(k));
+    sc.scheme->set_driven(slab.driven, acc);
+    sc.t_end = 200;
+    sc.measure_name = "min_width";
+    sc.measure = [slab, dp](const Eigen::Matrix2Xd& x, const Eigen::VectorXd&) {
+      const SlabNeck neck = slab_neck(x, slab.left_end, slab.right_end,
+                                      {.bin_width = 2 * dp, .particle_size = dp, .bond_radius = 1.5 * dp});
+      double w = kInf;
+      for (double v : neck.profile.width) w = std::min(w, v);
+      return w;
+    };
+  }
+  return sc;
+}
+
+void run_scene(const SceneArgs& a) {
+  Scene sc = make_scene(a);
+  const RateFormScheme<2>& scheme = *sc.scheme;
+  const double t_end = a.t_end.empty() ? sc.t_end : positive(a.t_end, "--t-end");
+  const double skin = positive(a.skin, "--skin") * sc.dp;
+  const double dt = positive(a.cfl, "--cfl") * scheme.discretisation().h / scheme.material().p_wave_speed();
+  const int every = static_cast<int>(parse_integer(a.record_every, 1, 1'000'000'000, "scene: --record-every"));
+  std::vector<std::pair<double, std::string>> frames;
+  if (!a.out.empty()) std::filesystem::create_directories(a.out);
+  const double bond = 1.5 * sc.dp;
+  std::printf("%s\n", csv_line({"step", "t", "kinetic", "fragments", sc.measure_name, "status", "particle"}).c_str());
+  RateFormRunOptions o{
+      .dt = dt, .t_end = t_end, .record_every = every, .yield_stress = sc.yield, .neighbour_skin = skin};
+  o.observer = [&](long step, double t, const Eigen::VectorXd& y) {
+    const Eigen::Matrix2Xd x = rate_form_positions(scheme, y);
+    std::printf("%s",
+                csv_line({std::to_string(step), num(t), num(scheme.kinetic_energy(y)),
+                          std::to_string(find_fragments(x, bond).count()), num(sc.measure(x, y)), "", ""})
+                    .c_str());
+    std::fflush(stdout);
+    if (!a.out.empty()) {
+      const std::string name = "scene_" + std::to_string(step) + ".vtp";
+      write_rate_form_vtp(a.out + "/" + name, scheme, y);
+      frames.emplace_back(t, name);
+      write_pvd(a.out + "/scene.pvd", frames);  // kept current, so a run that stops leaves a readable series
+    }
+  };
+  const RateFormRunResult r = run_rate_form(scheme, sc.y0, o);
+  std::printf("%s", csv_line({std::to_string(r.steps), num(r.time), "", "", "", run_status_name(r.status),
+                              std::to_string(r.particle)})
+                        .c_str());
+  if (!r.completed()) std::fprintf(stderr, "scene: stopped: %s\n", r.message.c_str());
+}
+
+}  // namespace
+
+void register_scene_command(CLI::App& app) {
+  auto a = std::make_shared<SceneArgs>();
+  auto* cmd = app.add_subcommand(
+      "scene",
+      "Run a GMS 2001 test case (plate | rings | slab) with GMS's scheme in GMS units; CSV rows of step, t, kinetic "
+      "energy, fragments and the scene's measure, and a final row with the run's status and particle");
+  cmd->add_option("scene", a->scene, "plate (§7.1 cantilever) | rings (§7.2) | slab (§7.3, von Mises)")->required();
+  cmd->add_option("--dp", a->dp, "rings / slab: grid spacing > 0 (default 0.1 / 0.04)");
+  cmd->add_option("--across", a->across, "plate: particles across H (default 10; dp = H / across)");
+  cmd->add_option("--thickness", a->thickness, "plate: H > 0 (default 2)");
+  cmd->add_option("--length", a->length, "plate: L > 0 (default 20)");
+  cmd->add_option("--mu", a->mu, "shear modulus >= 0 over K (default 0.22; slab 0.3)");
+  cmd->add_option("--nu", a->nu, "or Poisson's ratio in (-1, 0.5) (mu = 3 (1 - 2 nu) / (2 (1 + nu)))");
+  cmd->add_option("--eps", a->eps, "artificial stress >= 0 (default 0.3)");
+  cmd->add_option("--tip-speed", a->tip_speed, "plate: V_f of (7.3)-(7.4) (default 0.01)");
+  cmd->add_option("--speed", a->speed, "rings: speed of each ring over c0 (default 0.059)");
+  cmd->add_option("--yield", a->yield, "von Mises yield stress > 0 (slab default 0.03; others elastic)");
+  cmd->add_option("--t-end", a->t_end, "run length > 0 (default plate 1.25 thin-plate periods, rings 100, slab 200)");
+  cmd->add_option("--skin", a->skin, "Verlet skin of the neighbour list in dp, > 0 (default 0.5)");
+  cmd->add_option("--cfl", a->cfl, "dt = cfl h / c_P, > 0 (default 0.5)");
+  cmd->add_option("--record-every", a->record_every, "a row every k steps, and the last (default 100)");
+  cmd->add_option("--out", a->out, "also write VTK snapshots DIR/scene_<step>.vtp at every row and DIR/scene.pvd");
+  cmd->callback([a] { run_scene(*a); });
+}
+
+}  // namespace sphstab::cli

@@ -1,0 +1,133 @@
+// `sphstab scene` in-process (cli_harness.hpp): the printed series is the library's run of the same GMS scene set up
+// independently here, a run that stops keeps its rows and VTK frames and ends with its status and particle (exit 0),
+// and out-of-range scene parameters are one error line naming the option (exit 1).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cli_harness.hpp"
+#include "sphstab/analysis/fragments.hpp"
+#include "sphstab/forms/rate_form.hpp"
+#include "sphstab/forms/rate_form_state.hpp"
+#include "sphstab/integrate/rate_form_run.hpp"
+#include "sphstab/io/csv.hpp"
+#include "sphstab/io/vtk.hpp"
+#include "sphstab/problems/cantilever_plate.hpp"
+#include "sphstab/problems/colliding_rings.hpp"
+
+namespace sphstab {
+namespace {
+
+std::filesystem::path scratch(const std::string& name) {
+  return std::filesystem::temp_directory_path() / ("sphstab_scene_test_" + std::to_string(getpid())) / name;
+}
+
+test::CliOutcome run(const std::vector<std::string>& args, const std::string& tag = "case") {
+  return test::run_cli_in_child(args, scratch(tag), 2e9, 120);
+}
+
+const RateFormOptions kGms{.continuity = ContinuityForm::Divergence,
+                           .xsph = 0.5,
+                           .viscosity = ViscositySwitch::Compression,
+                           .viscosity_alpha = 1,
+                           .viscosity_beta = 2,
+                           .artificial_stress = 0.3};
+
+TEST(SceneCommand, PlateSeriesIsTheLibrarysRun) {
+  // GMS §7.1 at 4 across (dp = 0.5, h = 0.75), mu = 0.3, V_f = 0.02, dt = 0.5 h / c_P, skin 0.5 dp.
+  const double L = 20, H = 2, vf = 0.02, dp = 0.5, h = 1.5 * dp;
+  const RateFormMaterial mat{.density = 1, .bulk_modulus = 1, .shear_modulus = 0.3};
+  const RateFormScheme<2> scheme(make_discretisation(make_cantilever_plate({.length = L, .thickness = H, .across = 4}),
+                                                     Kernel<2>(KernelType::CubicSpline), h),
+                                 mat, kGms);
+  Eigen::VectorXd y0 = scheme.uniform_state();
+  const ParticleSet<2>& p = scheme.discretisation().particles;
+  std::vector<int> tip;
+  for (int i = 0; i < p.size(); ++i) {
+    if (p.role[i] == Role::Free)
+      scheme.set_velocity(y0, i, Eigen::Vector2d(0, cantilever_mode_velocity(p.x(i, 0), L, vf)));
+    if (p.x(i, 0) > L - dp) tip.push_back(i);
+  }
+  std::vector<double> deflection;
+  const RateFormRunResult direct = run_rate_form(scheme, y0,
+                                                 {.dt = 0.5 * h / mat.p_wave_speed(),
+                                                  .t_end = 150,
+                                                  .record_every = 40,
+                                                  .observer =
+                                                      [&](long, double, const Eigen::VectorXd& y) {
+                                                        const Eigen::Matrix2Xd x = rate_form_positions(scheme, y);
+                                                        double u = 0;
+                                                        for (int i : tip) u += x(1, i) - p.x(i, 1);
+                                                        deflection.push_back(u / static_cast<double>(tip.size()));
+                                                      },
+                                                  .neighbour_skin = 0.5 * dp});
+  ASSERT_TRUE(direct.completed());
+  const test::CliOutcome r = run({"scene", "plate", "--across", "4", "--mu", "0.3", "--tip-speed", "0.02", "--t-end",
+                                  "150", "--record-every", "40"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const CsvTable t = read_csv(r.out_path);
+  ASSERT_EQ(t.rows.size(), direct.times.size() + 1);  // + the status row
+  const std::vector<std::string> status = t.text_column("status");
+  EXPECT_EQ(status.back(), "completed");
+  for (std::size_t k = 0; k < direct.times.size(); ++k) {
+    EXPECT_EQ(std::stod(t.rows[k][1]), direct.times[k]) << k;
+    EXPECT_EQ(std::stod(t.rows[k][2]), direct.kinetic_energy[k]) << k;
+    EXPECT_EQ(std::stod(t.rows[k][4]), deflection[k]) << k;  // tip_deflection, shortest round-trip text
+    EXPECT_EQ(t.rows[k][3], "1") << k;                       // one fragment: the plate bends, it does not break
+  }
+  EXPECT_GT(std::abs(deflection.back()), 0.1);  // it has moved: V_f T / (2 pi) ~ 4 over the first quarter period
+}
+
+TEST(SceneCommand, RunThatStopsKeepsRowsAndFrames) {
+  // dt = 4 h / c_P is far beyond the step limit: the rings' densities collapse within a few steps.
+  const std::filesystem::path dir = scratch("frames");
+  const test::CliOutcome r = run(
+      {"scene", "rings", "--dp", "0.3", "--cfl", "4", "--t-end", "50", "--record-every", "1", "--out", dir.string()},
+      "stops");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const CsvTable t = read_csv(r.out_path);
+  ASSERT_GE(t.rows.size(), 2u);
+  const std::vector<std::string> status = t.text_column("status");
+  EXPECT_TRUE(status.back() == "non-positive-density" || status.back() == "non-finite") << status.back();
+  EXPECT_GE(std::stoi(t.rows.back()[6]), 0);  // the particle
+  EXPECT_LT(std::stod(t.rows.back()[1]), 50.0);
+  EXPECT_NE(r.err.find("scene: stopped:"), std::string::npos);
+  // Every printed row has its frame, and the collection lists them all.
+  const long frames = static_cast<long>(t.rows.size()) - 1;
+  for (long k = 0; k < frames; ++k) EXPECT_TRUE(std::filesystem::exists(dir / ("scene_" + t.rows[k][0] + ".vtp"))) << k;
+  const VtpData last = read_vtp((dir / ("scene_" + t.rows[frames - 1][0] + ".vtp")).string());
+  EXPECT_EQ(last.points.rows(), make_colliding_rings({.spacing = 0.3}).size());
+  EXPECT_TRUE(std::filesystem::exists(dir / "scene.pvd"));
+}
+
+TEST(SceneCommand, BadInputIsOneLine) {
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"scene", "plate", "--thickness", "0"}, "--thickness"},
+      {{"scene", "plate", "--thickness", "-2"}, "--thickness"},
+      {{"scene", "rings", "--dp", "0"}, "--dp"},
+      {{"scene", "slab", "--dp", "nan"}, "--dp"},
+      {{"scene", "slab", "--nu", "0.5"}, "--nu"},
+      {{"scene", "rings", "--nu", "-1"}, "--nu"},
+      {{"scene", "slab", "--yield", "0"}, "--yield"},
+      {{"scene", "plate", "--eps", "-0.1"}, "--eps"},
+      {{"scene", "plate", "--mu", "-1"}, "--mu"},
+      {{"scene", "disc"}, "unknown scene"},
+      {{"scene", "rings", "--mu", "0.2", "--nu", "0.3"}, "--mu or --nu"},
+      {{"scene", "plate", "--dp", "0.1"}, "--across"},
+      {{"scene", "plate", "--across", "1"}, "--across"},
+      {{"scene", "slab", "--t-end", "0"}, "--t-end"},
+      {{"scene", "rings", "--dp", "0.6"}, "spacing"},  // the builder: fewer than two particles across the ring
+  };
+  for (const auto& [args, what] : cases) {
+    const test::CliOutcome r = run(args, "bad");
+    EXPECT_EQ(r.exit_code, 1) << test::join_args(args);
+    EXPECT_NE(r.err.find(what), std::string::npos) << test::join_args(args) << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+}
+
+}  // namespace
+}  // namespace sphstab
