@@ -16,7 +16,9 @@ import os
 import statistics
 
 ROUTES = ["Fused", "FusedPrealloc", "FusedOnePass", "FusedOnePassCubic", "FusedHalfPairs", "Operator", "OperatorSpMV",
-          "Rebuild"]
+          "Rebuild", "LibraryBefore", "Gms", "GmsBefore"]
+# The library before (its reference copy) and after the row pipeline, in the same run: (label, before, after).
+BEFORE_AFTER = [("plain SPH", "LibraryBefore", "Fused"), ("GMS", "GmsBefore", "Gms")]
 UNIT = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
 BEFORE_LABEL = ("the run committed with the benchmark in bc182c6 (results/rate-form-speed/benchmark.json of that "
                 "commit), whose library allocated its per-pair scratch r, ∇W, W, r² on every call (the algorithm "
@@ -116,8 +118,9 @@ def main(src, out, peak_mb=None, before=None, before_label=BEFORE_LABEL):
          "(displacements 1e-2 dx, velocities 1e-2 c0, densities 1e-2 ρ, deviators 1e-2 K). Neighbour list radius 2h: "
          f"{pairs_txt} (ordered, self excluded).", "",
          "**Routes.** *Fused*: `RateFormScheme<2>::rate` (the library: scratch kept between calls in a workspace the "
-         "scheme owns, no per-pair arrays for these plain forms; ∇W of one neighbour row computed into a short row "
-         "buffer, then the row's pair loop on unpacked per-particle arrays). *FusedPrealloc*: the reference copy of "
+         "scheme owns, no per-pair arrays for these plain forms; r, |r|² of one neighbour row gathered into short row "
+         "arrays, |r| and the cubic spline's (dW/dr)/r computed over the row two pairs at a time (SSE2), then the "
+         "row's sums on unpacked per-particle arrays with σ/ρ² computed once per particle). *FusedPrealloc*: the reference copy of "
          "the library's old algorithm (before commit 01c0a1c: per-pair arrays r, ∇W, W, r² for every stored pair, "
          "then the pair loop) with its buffers kept between calls, which the old library did not do. *FusedOnePass*: "
          "one pass, ∇W where it is used, no per-pair arrays, no W, the particle data packed into one 64 B record with "
@@ -162,8 +165,9 @@ def main(src, out, peak_mb=None, before=None, before_label=BEFORE_LABEL):
             rss = f"; peak RSS of the whole run {peak_mb / 1e3:.2f} GB (of {total:.0f} GB)"
         L += ["", f"**Memory** at N = {nm}, h = {hm:g} dx ({e / nm:.0f} stored entries per particle incl. self): "
               f"neighbour list {(4 * e + 8 * nm) / 1e6:.0f} MB; the library's kept scratch: per-particle arrays "
-              f"(x, v, v̂, ρ, V, S, σ, R) {152 * nm / 1e6:.0f} MB and one row's ∇W, r, r², W (≈ {e / nm:.0f} "
-              f"entries × 48 B), no per-pair arrays; FusedPrealloc's kept per-pair arrays {48 * e / 1e6:.0f} MB (what "
+              f"(x, v, v̂, ρ, V, S, σ, σ/ρ², R) {184 * nm / 1e6:.0f} MB and one row's arrays (≈ {e / nm:.0f} "
+              f"entries × 88 B), no per-pair arrays (with XSPH: a ring of the pairs of the rows not yet summed, a few "
+              f"lattice rows); FusedPrealloc's kept per-pair arrays {48 * e / 1e6:.0f} MB (what "
               f"the old library allocated on every call) on top of the same per-particle arrays; G^x + G^y "
               f"{24 * e / 1e6:.0f} MB{rss}."]
     L += ["", "## Bandwidth against the STREAM triad", "",
@@ -176,7 +180,7 @@ def main(src, out, peak_mb=None, before=None, before_label=BEFORE_LABEL):
           "that touches it, gathered neighbour data assumed cached (lattice order keeps a row's neighbours within "
           "±3 lattice rows, ~0.7 MB at n = 1000). Neighbour list 8 B per row + 4 B per entry per pass (library: 1 "
           "pass, its pair loop re-reads the row's indices from cache; FusedPrealloc: 2 passes); library: no per-pair "
-          "traffic (the row buffer stays in cache); FusedPrealloc's per-pair arrays r, ∇W (16 B), W, r² (8 B) "
+          "traffic (the row arrays stay in cache); FusedPrealloc's per-pair arrays r, ∇W (16 B), W, r² (8 B) "
           "written and ∇W read back = 64 B per entry; operator route: list read + `set_pattern`'s comparison of "
           "list and both G patterns + 2 × 8 B of values written in assembly, then 2 × 12 B per entry (index + value) in the "
           "products; per-particle arrays (state 64 B, unpacked copies, dydt) as listed in `traffic()`.", "",
@@ -254,6 +258,32 @@ def main(src, out, peak_mb=None, before=None, before_label=BEFORE_LABEL):
                         max(control_ratios(n, h), default=float("inf")))
             L += ["", f"The library's before / now is {fmt_range(lib, suffix='×')}, the controls' {fmt_range(ctl)}; in "
                   f"{above} of {len(both)} cases the library's ratio exceeds every control's in the same case."]
+
+    # The library before and after the row pipeline, in this run.
+    ba = [(label, n, h, get(b, n, h), get(a, n, h), get(b, n, h, "check"), get(b, n, h, "values_compared"))
+          for label, b, a in BEFORE_AFTER for n, h in cases]
+    ba = [r for r in ba if r[3] and r[4]]
+    if ba:
+        L += ["", "## The library before and after its row pipeline (same run)", "",
+              "*Before*: LibraryBefore, the reference copy of `RateFormScheme<2>::evaluate` as it was before the row "
+              "pipeline (plain gradient, symmetric momentum, free particles): |r|, W and ∇W recomputed in every pass "
+              "that reads them, σ_j/ρ_j² and f_ij^n per pair, R_i through `artificial_stress()`. *After*: the library "
+              "(`RateFormScheme<2>::rate`). *plain SPH*: the case above (route Fused). *GMS*: the Gray–Monaghan–Swift "
+              "configuration of the plate, rings and slab scenes: divergence continuity, XSPH 0.5, viscosity on "
+              "compression (α 0.06, β 1.5), artificial stress 0.3 with n = 4, ρ0 = K = 1, μ = 0.22 at volume strain "
+              "1.02, h = 1.5 dx. Before timing, the two were compared bit for bit (memcmp) on perturbed states of each "
+              "lattice (plain and GMS options, both continuity forms each).", "",
+              "| configuration | N | h/dx | before (µs per particle-evaluation) | after | before / after | values "
+              "compared | values differing |", "|---|---|---|---|---|---|---|---|"]
+        for label, n, h, tb, ta, chk, cmp in ba:
+            L.append(f"| {label} | {n} | {h:g} | {tb / n * 1e6:.3g} | {ta / n * 1e6:.3g} | {tb / ta:.2f}× | "
+                     f"{f(cmp, '{:.0f}')} | {f(chk, '{:.0f}')} |")
+        for label, _, _ in BEFORE_AFTER:
+            r = [tb / ta for lab, n, h, tb, ta, _, _ in ba if lab == label]
+            if r:
+                L.append(f"{'' if label == BEFORE_AFTER[0][0] else ' '}{label}: before / after "
+                         f"{fmt_range(r, suffix='×')}.")
+        L[-len(BEFORE_AFTER):] = ["", " ".join(x.strip() for x in L[-len(BEFORE_AFTER):])]
 
     # Reading.
     nmax = max(n for n, _ in cases)
@@ -355,13 +385,14 @@ def main(src, out, peak_mb=None, before=None, before_label=BEFORE_LABEL):
           + (", against the old library see the comparison of the two runs above" if before else "") + ". Further "
           "changes, each measured on top of the previous one:", "",
           "1. Pack the per-particle data a neighbour contributes into one record (x, v, σ/ρ², V = m/ρ: one 64 B "
-          "cache line) instead of the separate unpacked arrays, compute σ_j/ρ_j² once per particle instead of once "
-          "per pair, skip the zero pair matrix when viscosity and artificial stress are off, and use ∇W where it is "
-          f"computed instead of through the row buffer (Fused → FusedOnePass): {span('Fused', 'FusedOnePass')}.",
+          "cache line) instead of the separate unpacked arrays, and use ∇W where it is computed instead of through "
+          "the row arrays (the library already computes σ_j/ρ_j² once per particle and skips the zero pair matrix) "
+          f"(Fused → FusedOnePass): {span('Fused', 'FusedOnePass')}.",
           "2. A fast kernel-gradient path: (dW/dr)/r per family with the constants (σ/h^(d+2)) precomputed, the "
-          "family chosen once outside the pair loop (a functor/template argument), no |s|/sign handling for r ≥ 0: "
-          f"{span('FusedOnePass', 'FusedOnePassCubic')}. The same helper would speed up `assemble_operators` "
-          f"({assembly} of the operator route).",
+          "family chosen once outside the pair loop (a functor/template argument), no |s|/sign handling for r ≥ 0 "
+          "(the library has it for the cubic spline only, bitwise equal to `Kernel::d1`, so FusedOnePass, which "
+          f"calls `Kernel::d1`, is the slower baseline here): {span('FusedOnePass', 'FusedOnePassCubic')}. The same "
+          f"helper would speed up `assemble_operators` ({assembly} of the operator route).",
           "3. Visit each unordered pair once (g_ji = -g_ij; scatter to j): "
           f"{span('FusedOnePassCubic', 'FusedHalfPairs')}; "
           "only for the symmetric plain forms, and it blocks a simple gather-parallel loop, so lowest priority.",

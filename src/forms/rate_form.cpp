@@ -3,11 +3,18 @@
 #include <Eigen/LU>
 #include <Eigen/SVD>
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <complex>
+#include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "sphstab/core/format.hpp"
 #include "sphstab/models/artificial_stress.hpp"
@@ -70,6 +77,238 @@ RateFormMomentum parse_rate_form_momentum(const std::string& name) {
 namespace {
 
 bool uses_local_means(RateFormMomentum m) { return m == RateFormMomentum::Cij || m == RateFormMomentum::StabilisedSph; }
+
+#if defined(__GNUC__)
+#define SPHSTAB_ALWAYS_INLINE __attribute__((always_inline))
+#else
+#define SPHSTAB_ALWAYS_INLINE
+#endif
+
+// The helpers below repeat operations of other files exactly (the same expressions on the same types, in the same
+// order), so that evaluate() gives bitwise the results it gave when it called those functions; they only drop work
+// whose result evaluate() does not read. Change them together with the originals.
+
+/// principal_frame() of models/artificial_stress.cpp without the angle theta (an atan2 that artificial_stress() does
+/// not read), and c^2, s^2, sc only where artificial_stress() reads them (one tensile principal stress).
+template <class Scalar>
+PrincipalFrame<Scalar> principal_frame_without_angle(const SymmetricTensor2<Scalar>& sigma) {
+  using detail::re;
+  using std::sqrt;
+  PrincipalFrame<Scalar> f;
+  const Scalar mean = 0.5 * (sigma.xx + sigma.yy);
+  const Scalar half_diff = 0.5 * (sigma.xx - sigma.yy);
+  const double scale = std::max(std::abs(re(half_diff)), std::abs(re(sigma.xy)));
+  if (!(scale > 0)) {
+    f.major = mean;
+    f.minor = mean;
+    return f;
+  }
+  const Scalar a = half_diff / scale, b = sigma.xy / scale;
+  const Scalar rho = sqrt(a * a + b * b);
+  const Scalar radius = scale * rho;
+  f.major = mean + radius;
+  f.minor = mean - radius;
+  if (re(f.minor) > 0 || !(re(f.major) > 0)) return f;  // artificial_stress() reads no rotation
+  if (re(a) >= 0) {
+    f.cc = (rho + a) / (2.0 * rho);
+    f.ss = b * b / (2.0 * rho * (rho + a));
+  } else {
+    f.ss = (rho - a) / (2.0 * rho);
+    f.cc = b * b / (2.0 * rho * (rho - a));
+  }
+  f.sc = b / (2.0 * rho);
+  return f;
+}
+
+/// artificial_stress(sigma, density, epsilon) of models/artificial_stress.cpp (GMS (6.1)-(6.7)) on
+/// principal_frame_without_angle(); epsilon >= 0 is checked by the constructor, the density here as there.
+template <class Scalar>
+SymmetricTensor2<Scalar> particle_artificial_stress(const SymmetricTensor2<Scalar>& sigma, const Scalar& density,
+                                                    double epsilon) {
+  using detail::re;
+  if (!(re(density) > 0) || !std::isfinite(re(density)))
+    throw std::invalid_argument("artificial_stress: density must be finite and > 0 (got " +
+                                std::to_string(re(density)) + ")");
+  const PrincipalFrame<Scalar> f = principal_frame_without_angle(sigma);
+  const bool major_tensile = re(f.major) > 0, minor_tensile = re(f.minor) > 0;
+  const Scalar k = -epsilon / (density * density);
+  if (minor_tensile) return {k * sigma.xx, k * sigma.yy, k * sigma.xy};
+  if (!major_tensile) return {};
+  return rotate_from_frame(f, Scalar(k * f.major), Scalar(0));
+}
+
+/// artificial_stress_pair_factor(w, w_dp, n) (models/artificial_stress.hpp/.cpp: f^n by repeated multiplication for
+/// integer n <= 1024, exp(n log f) otherwise, 0 for f <= 0) with the exponent's test done once; n >= 0 finite is
+/// checked by the constructor.
+class PairFactor {
+ public:
+  PairFactor(double w_dp, double n)
+      : m_w_dp(w_dp), m_n(n), m_integer(n == std::floor(n) && n <= 1024), m_int(m_integer ? static_cast<int>(n) : 0) {}
+  /// f[q] = (w[q] / W(dp))^n for q < len.
+  template <class Scalar>
+  void row(std::size_t len, const Scalar* __restrict w, Scalar* __restrict f) const {
+    if (m_int == 4) {
+      for (std::size_t q = 0; q < len; ++q) {
+        const Scalar x = Scalar(w[q] / m_w_dp);
+        if constexpr (std::is_same_v<Scalar, double>)
+          f[q] = (x * x) * (x * x);  // ipow(x, 4) = 1 * ((x * x) * (x * x)), and 1 * y = y for a real y
+        else
+          f[q] = detail::ipow(x, 4);
+      }
+    } else {
+      for (std::size_t q = 0; q < len; ++q) f[q] = (*this)(w[q]);
+    }
+  }
+  template <class Scalar>
+  Scalar operator()(const Scalar& w) const {
+    const Scalar x = Scalar(w / m_w_dp);
+    if (m_int == 4) return detail::ipow(x, 4);  // GMS's n = 4, unrolled
+    if (m_integer) return detail::ipow(x, m_int);
+    if (detail::re(x) <= 0) return Scalar(0);
+    using std::exp;
+    using std::log;
+    return exp(m_n * log(x));
+  }
+
+ private:
+  double m_w_dp, m_n;
+  bool m_integer;
+  int m_int;
+};
+
+/// W(r) and dW/dr(r) / r of a row of radii through the kernel's own functions.
+template <int Dim>
+struct KernelFunctions {
+  const Kernel<Dim>& kernel;
+  double h;
+  /// w[q] = W(r[q]) for q < len.
+  template <class Scalar>
+  void row_values(std::size_t len, const Scalar* r, Scalar* w) const {
+    for (std::size_t q = 0; q < len; ++q) w[q] = kernel.value(r[q], h);
+  }
+  /// gf[q] = (dW/dr)(r[q]) / r[q], and w[q] = W(r[q]) when Value.
+  template <bool Value, class Scalar>
+  void row_slopes(std::size_t len, const Scalar* r, Scalar* w, Scalar* gf) const {
+    for (std::size_t q = 0; q < len; ++q) {
+      if constexpr (Value) w[q] = kernel.value(r[q], h);
+      gf[q] = kernel.d1(r[q], h) / r[q];
+    }
+  }
+};
+
+/// The cubic spline's Kernel::value and Kernel::d1 written out (kernel.hpp, kernel_shapes.hpp: the CubicSpline branch
+/// of Kernel::shape, kappa = 1 and native support 2 in both scalings), the same operations, without the family switch
+/// and with W and dW/dr from one s = r / h.
+template <int Dim>
+class CubicFunctions {
+ public:
+  CubicFunctions(const Kernel<Dim>& kernel, double h)
+      : m_h(h),
+        m_cw(kernel.normalisation() / (Dim == 1 ? h : (Dim == 2 ? h * h : h * h * h))),
+        m_cd(m_cw * (1.0 / h)) {}
+  /// w[q] = W(r[q]) for q < len.
+  template <class Scalar>
+  void row_values(std::size_t len, const Scalar* r, Scalar* w) const {
+    if constexpr (std::is_same_v<Scalar, double>) {
+      row_real<true, false>(len, r, w, nullptr);
+    } else {
+      Scalar dw;
+      for (std::size_t q = 0; q < len; ++q) eval<true, false>(r[q], w[q], dw);
+    }
+  }
+  /// gf[q] = (dW/dr)(r[q]) / r[q], and w[q] = W(r[q]) when Value.
+  template <bool Value, class Scalar>
+  SPHSTAB_ALWAYS_INLINE void row_slopes(std::size_t len, const Scalar* r, Scalar* w, Scalar* gf) const {
+    if constexpr (std::is_same_v<Scalar, double>) {
+      row_real<Value, true>(len, r, w, gf);
+    } else {
+      for (std::size_t q = 0; q < len; ++q) {
+        Scalar wq, dw;
+        eval<Value, true>(r[q], wq, dw);
+        if constexpr (Value) w[q] = wq;
+        gf[q] = dw / r[q];
+      }
+    }
+  }
+
+ private:
+  /// eval() on real r[q] >= +0 (square roots): s = r / h >= +0 or NaN, so the branch on the sign of s is never taken
+  /// and the sign factors are 1 (1 * f = f). Both pieces are computed and one is selected (the values of eval()'s
+  /// branches, NaN included: it fails both tests, as there), two pairs at a time with SSE2 (the same IEEE operations
+  /// per lane).
+  template <bool Value, bool Slope>
+  SPHSTAB_ALWAYS_INLINE void row_real(std::size_t len, const double* __restrict r, double* __restrict w,
+                                      double* __restrict gf) const {
+    const double h = m_h, cw = m_cw, cd = m_cd;
+    std::size_t q = 0;
+#if defined(__SSE2__)
+    const __m128d vh = _mm_set1_pd(h), two = _mm_set1_pd(2.0), one = _mm_set1_pd(1.0);
+    for (; q + 2 <= len; q += 2) {
+      const __m128d rq = _mm_loadu_pd(r + q), s = _mm_div_pd(rq, vh), a = _mm_sub_pd(two, s);
+      // s >= 2 and s < 1: a NaN lane is neither (the outer piece, as in eval()).
+      const __m128d outside = _mm_cmpge_pd(s, two), near = _mm_cmplt_pd(s, one), aa = _mm_mul_pd(a, a);
+      if constexpr (Value) {
+        // 1 - 1.5 s s + 0.75 s s s = (1 - (1.5 s) s) + ((0.75 s) s) s; 0.25 (a (a a))
+        const __m128d inner = _mm_add_pd(_mm_sub_pd(one, _mm_mul_pd(_mm_mul_pd(_mm_set1_pd(1.5), s), s)),
+                                         _mm_mul_pd(_mm_mul_pd(_mm_mul_pd(_mm_set1_pd(0.75), s), s), s));
+        const __m128d outer = _mm_mul_pd(_mm_set1_pd(0.25), _mm_mul_pd(a, aa));
+        const __m128d f = _mm_andnot_pd(outside, _mm_or_pd(_mm_and_pd(near, inner), _mm_andnot_pd(near, outer)));
+        _mm_storeu_pd(w + q, _mm_mul_pd(_mm_set1_pd(cw), f));
+      }
+      if constexpr (Slope) {
+        // -3 s + 2.25 s s = (-3 s) + (2.25 s) s; 0.25 (-3 (a a))
+        const __m128d inner =
+            _mm_add_pd(_mm_mul_pd(_mm_set1_pd(-3.0), s), _mm_mul_pd(_mm_mul_pd(_mm_set1_pd(2.25), s), s));
+        const __m128d outer = _mm_mul_pd(_mm_set1_pd(0.25), _mm_mul_pd(_mm_set1_pd(-3.0), aa));
+        const __m128d f = _mm_andnot_pd(outside, _mm_or_pd(_mm_and_pd(near, inner), _mm_andnot_pd(near, outer)));
+        _mm_storeu_pd(gf + q, _mm_div_pd(_mm_mul_pd(_mm_set1_pd(cd), f), rq));
+      }
+    }
+#endif
+    for (; q < len; ++q) {
+      double wq, dw;
+      eval<Value, Slope>(r[q], wq, dw);
+      if constexpr (Value) w[q] = wq;
+      if constexpr (Slope) gf[q] = dw / r[q];
+    }
+  }
+
+  template <bool Value, bool Slope, class Scalar>
+  void eval(const Scalar& r, Scalar& w, Scalar& dw) const {
+    constexpr double kappa = 1.0;
+    const Scalar s_in = kappa * r / m_h;
+    const double sr = detail::re(s_in);
+    const Scalar s = sr < 0 ? Scalar(-s_in) : s_in;
+    const double sign = sr < 0 ? -1.0 : 1.0;  // of the odd derivative; the value's sign is 1
+    const double x = std::abs(sr);
+    if (x >= 2.0) {
+      if constexpr (Value) w = m_cw * Scalar(0.0);
+      if constexpr (Slope) dw = m_cd * Scalar(0.0);
+      return;
+    }
+    Scalar f0 = 0.0, f1 = 0.0;
+    if (x < 1.0) {
+      if constexpr (Value) f0 = 1.0 - 1.5 * s * s + 0.75 * s * s * s;
+      if constexpr (Slope) f1 = -3.0 * s + 2.25 * s * s;
+    } else {
+      if constexpr (Value) f0 = 0.25 * detail::power_term(Scalar(2.0 - s), 3, 0);
+      if constexpr (Slope) f1 = 0.25 * detail::power_term(Scalar(2.0 - s), 3, 1);
+    }
+    if constexpr (Value) w = m_cw * (1.0 * f0);
+    if constexpr (Slope) dw = m_cd * (sign * f1);
+  }
+
+  double m_h, m_cw, m_cd;
+};
+
+/// Calls body(functions) with the kernel's W, dW/dr: written out for the cubic spline, the kernel's own otherwise.
+template <int Dim, class Body>
+void with_kernel_functions(const Kernel<Dim>& kernel, double h, Body&& body) {
+  if (kernel.type() == KernelType::CubicSpline)
+    body(CubicFunctions<Dim>(kernel, h));
+  else
+    body(KernelFunctions<Dim>{kernel, h});
+}
 
 }  // namespace
 
@@ -356,38 +595,388 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
     }
   }
 
-  // Pair geometry: r_ij (minimum image decided on the real part), |r_ij|^2 and |r_ij|.
+  // Pair geometry: r_ij (minimum image decided on the real part) and |r_ij|^2; |r_ij| = sqrt(|r_ij|^2).
   Vec box;
-  for (int a = 0; a < Dim; ++a) box[a] = Scalar(p.box_hi[a] - p.box_lo[a]);
-  const auto geometry = [&](int i, int j, Vec& r, Scalar& r2, Scalar& rr) {
-    r = x[i] - x[j];
-    for (int a = 0; a < Dim; ++a)
-      if (p.periodic[a]) {
-        const double L = p.box_hi[a] - p.box_lo[a], dr = detail::re(r[a]);
-        if (dr > 0.5 * L)
-          r[a] -= box[a];
-        else if (dr < -0.5 * L)
-          r[a] += box[a];
-      }
+  std::array<double, Dim> half_box;  // +-L/2 of a periodic axis; +inf otherwise (never crossed)
+  for (int a = 0; a < Dim; ++a) {
+    const double L = p.box_hi[a] - p.box_lo[a];
+    box[a] = Scalar(L);
+    half_box[a] = p.periodic[a] ? 0.5 * L : std::numeric_limits<double>::infinity();
+  }
+  const auto separation = [xs = x.data(), box, half_box](int i, int j, Vec& r, Scalar& r2) SPHSTAB_ALWAYS_INLINE {
+    r = xs[i] - xs[j];
+    for (int a = 0; a < Dim; ++a) {
+      const double dr = detail::re(r[a]);
+      if (dr > half_box[a])
+        r[a] -= box[a];
+      else if (dr < -half_box[a])
+        r[a] += box[a];
+    }
     r2 = Scalar(0);
     for (int a = 0; a < Dim; ++a) r2 += r[a] * r[a];
-    rr = sqrt(r2);
   };
 
-  // Per-pair arrays only where a pass other than the main loop reads them: the NCSPH gradient (grad W, W, r) and the
-  // local means of C_ij / S-SPH (grad W); then also r and r^2 for the viscosity and W for XSPH and artificial
-  // stress. The plain symmetric/antisymmetric forms keep no per-pair arrays: the main loop computes grad_i W_ij (and
-  // r, r^2, W where the pair terms read them) one row at a time, XSPH computes W_ij where it uses it, with the same
-  // operations.
   const bool plain = o.gradient == RateFormGradient::Plain;
-  const bool pair_arrays = !plain || uses_local_means(o.momentum);
   const bool viscous = o.viscosity != ViscositySwitch::Off;
-  const bool keep_r = pair_arrays && (!plain || viscous), keep_r2 = pair_arrays && viscous;
-  const bool keep_w = pair_arrays && (!plain || o.xsph > 0 || o.artificial_stress > 0);
-  const long nnz = nl.nonzeros();
-  std::vector<Vec>&rij = ws.rij, &grad = ws.grad, &gh = ws.gh;
-  std::vector<Scalar>&w = ws.w, &r2s = ws.r2s;
-  if (pair_arrays) {
+  const double c0 = m_material.sound_speed(), eta2 = 0.01 * h * h;
+  const PairFactor pair_factor(m_w_dp, o.artificial_stress_exponent);
+  std::vector<Scalar>& vol = ws.vol;
+  vol.resize(n);
+  for (int i = 0; i < n; ++i) vol[i] = m_mass[i] / rho[i];
+
+  // Stress sigma = S - p I, sigma / rho^2 and the artificial stress R per particle.
+  std::vector<Mat>&sigma = ws.sigma, &sigma_rho2 = ws.sigma_rho2, &R = ws.R;
+  const auto stresses = [&] {
+    sigma.resize(n);
+    sigma_rho2.resize(n);
+    R.resize(n);
+    for (int i = 0; i < n; ++i) {
+      const Scalar pressure = K * (rho[i] / rho0 - 1.0);
+      Mat s;
+      if constexpr (Dim == 1) {
+        s(0, 0) = S[i][0];
+      } else {
+        s << S[i][0], S[i][2], S[i][2], S[i][1];
+      }
+      sigma[i] = s - pressure * Mat::Identity();
+      sigma_rho2[i] = sigma[i] / (rho[i] * rho[i]);
+      R[i].setZero();
+      if (o.artificial_stress > 0) {
+        if constexpr (Dim == 1) {
+          if (detail::re(sigma[i](0, 0)) > 0) R[i](0, 0) = -o.artificial_stress * sigma[i](0, 0) / (rho[i] * rho[i]);
+        } else {
+          const SymmetricTensor2<Scalar> t{sigma[i](0, 0), sigma[i](1, 1), sigma[i](0, 1)};
+          const SymmetricTensor2<Scalar> r = particle_artificial_stress(t, rho[i], o.artificial_stress);
+          R[i] << r.xx, r.xy, r.xy, r.yy;
+        }
+      }
+    }
+  };
+
+  // Rates of particle i from its L, drho (summation) and acceleration: every entry of dydt is written here.
+  const auto finish = [&](int i, bool free, const Mat& L, Scalar drho, const Vec& acc) {
+    if (o.continuity == ContinuityForm::Divergence) drho = -rho[i] * L.trace();
+    if (free) {
+      dydt.template segment<Dim>(m_x_off[i]) = vhat[i];
+      if (is_driven(i))  // the prescribed acceleration replaces the SPH force
+        dydt.template segment<Dim>(m_x_off[i] + Dim) = m_driven_acc[m_driven_slot[i]].template cast<Scalar>();
+      else
+        dydt.template segment<Dim>(m_x_off[i] + Dim) = acc;
+    }
+    if (m_rho_off[i] < 0) return;
+    dydt[m_rho_off[i]] = drho;
+    if constexpr (Dim == 1) {
+      dydt[m_rho_off[i] + 1] = (4.0 * mu / 3.0) * L(0, 0);
+    } else {
+      // Jaumann rate in 3 x 3 with D_zz = 0 and Omega in-plane; S_zz = -(S_xx + S_yy) is carried implicitly.
+      const Mat D = 0.5 * (L + L.transpose()), W = 0.5 * (L - L.transpose());
+      Mat s;
+      s << S[i][0], S[i][2], S[i][2], S[i][1];
+      const Scalar tr = D.trace();
+      const Mat ds = 2.0 * mu * (D - (tr / 3.0) * Mat::Identity()) + W * s - s * W;
+      dydt[m_rho_off[i] + 1] = ds(0, 0);
+      dydt[m_rho_off[i] + 2] = ds(1, 1);
+      dydt[m_rho_off[i] + 3] = ds(0, 1);
+    }
+  };
+
+  if (plain && !uses_local_means(o.momentum)) {
+    // Plain gradient, symmetric or antisymmetric momentum (the same for the plain gradient): no per-pair arrays over
+    // the whole list. Each pair's r, |r|, W, grad W and pair terms are computed once (rows summed at the end: twice),
+    // by the same operations as before; the row loops are compiled for the active viscosity and artificial-stress
+    // terms.
+    stresses();
+    dydt.resize(m_size);
+    with_kernel_functions(kernel, h, [&](const auto& kf) {
+      // Each neighbour row in two steps. Pair functions: gather r_ij and |r_ij|^2 (and what the pair terms read),
+      // then the pairs' scalar functions (|r|, W, dW/dr / r, f^n, the viscosity's Pi / rhobar) as whole-row array
+      // loops (vectorised for real states), the row particle's XSPH velocity (it reads v only), and grad W,
+      // Pi / rhobar, f^n kept per pair. Sums: L, the continuity and the momentum over the row in neighbour order,
+      // which read the neighbours' XSPH velocities. So with XSPH the sums of a row wait until the pair functions of
+      // its last neighbour have run, and its kept pair results wait in a ring buffer that holds the pairs of the rows
+      // in between (a lattice ordered by rows needs a few lattice rows); the rows whose neighbours lie farther (across
+      // a periodic boundary) are summed at the end, their pair functions run again. Without XSPH each row is summed
+      // right after its pair functions.
+      const bool xsph = o.xsph > 0;
+      const auto summed = [&](int i) { return m_x_off[i] >= 0 || m_rho_off[i] >= 0; };
+      std::size_t longest = 0;
+      for (int i = 0; i < n; ++i)
+        longest = std::max(longest, static_cast<std::size_t>(nl.offsets[i + 1] - nl.offsets[i]));
+      // Ring: the rows' kept pair results one after the other (a row that would cross the end starts again at 0).
+      // Row i is summed after the pair functions of row ready[i]; in between the ring takes the pairs of rows i ..
+      // ready[i] (plus at most one row's length left unused at the end). Its size holds that for about 9 rows in 10
+      // (and for all rows without XSPH); rows that need more are summed at the end.
+      std::vector<long>& ready = ws.ready;  // the row's last neighbour (XSPH) or the row itself
+      ready.resize(n);
+      std::size_t ring = 2 * longest;
+      if (xsph) {
+        // The size from every 8th row (an estimate suffices: kept() decides per row).
+        std::vector<long>& need = ws.ring_start;  // borrowed: the pairs of rows i .. ready[i]
+        need.clear();
+        for (int i = 0; i < n; ++i) {
+          const long k0 = nl.offsets[i], k1 = nl.offsets[i + 1];
+          int last = i;
+          for (long k = k0; k < k1; ++k) last = std::max(last, nl.indices[k]);
+          ready[i] = last;
+          if (i % 8 == 0 && summed(i)) need.push_back(nl.offsets[last + 1] - k0);
+        }
+        if (!need.empty()) {
+          const auto q90 = need.begin() + std::min(need.size() - 1, (9 * need.size()) / 10);
+          std::nth_element(need.begin(), q90, need.end());
+          ring = std::max(ring, static_cast<std::size_t>(*q90) + 2 * longest);
+        }
+      } else {
+        for (int i = 0; i < n; ++i) ready[i] = i;
+      }
+      const auto kept = [&](int i) {
+        return static_cast<std::size_t>(nl.offsets[ready[i] + 1] - nl.offsets[i]) + longest <= ring;
+      };
+      std::vector<long>& ring_start = ws.ring_start;  // where row i's kept pair results start
+      ring_start.resize(n);
+      // grad W (Dim), Pi / rhobar, f^n per pair.
+      using Kept = Eigen::Matrix<Scalar, Dim + 2, 1>;
+      if (xsph && ws.ring.size() < ring) ws.ring.resize(ring);
+      Kept* const kept_pairs = ws.ring.data();
+      constexpr int kRowArrays = 8;
+      if (ws.row_r.size() < longest) ws.row_r.resize(longest);
+      if (ws.row.size() < kRowArrays * longest) ws.row.resize(kRowArrays * longest);
+      if (ws.row_mass.size() < longest) ws.row_mass.resize(longest);
+      double* const mb = ws.row_mass.data();  // m_j
+      Vec* const rb = ws.row_r.data();        // r_ij
+      Scalar* const r2b = ws.row.data();      // |r|^2
+      Scalar* const rrb = r2b + longest;      // |r|
+      Scalar* const wb = rrb + longest;       // W
+      Scalar* const gfb = wb + longest;       // dW/dr / r
+      Scalar* const fb = gfb + longest;       // f_ij^n
+      Scalar* const rhob = fb + longest;      // rho_j
+      Scalar* const vrb = rhob + longest;     // v_ij . r_ij
+      Scalar* const cb = vrb + longest;       // XSPH weight; Pi_ij / rhobar_ij
+      const auto row_sqrt = [r2b, rrb](std::size_t len) SPHSTAB_ALWAYS_INLINE {
+        if constexpr (std::is_same_v<Scalar, double>)
+          Eigen::Map<Eigen::ArrayXd>(rrb, len) = Eigen::Map<const Eigen::ArrayXd>(r2b, len).sqrt();
+        else
+          for (std::size_t q = 0; q < len; ++q) rrb[q] = sqrt(r2b[q]);
+      };
+
+      const auto rows = [&](auto viscosity_tag, auto stress_tag) {
+        constexpr ViscositySwitch kViscosity = decltype(viscosity_tag)::value;
+        constexpr bool kViscous = kViscosity != ViscositySwitch::Off;
+        constexpr bool kStressTerm = decltype(stress_tag)::value;
+        const bool summation = o.continuity == ContinuityForm::Summation;
+        const double alpha_c0 = -o.viscosity_alpha * c0;
+        // The arrays the row loops read and write, as plain pointers copied into the loops (the vector stores of the
+        // row arrays may alias anything, which would otherwise reload every vector's data pointer after each).
+        struct Arrays {
+          const long* off;
+          const int* idx;
+          const Vec *v, *vhat;
+          Vec* vhat_out;
+          const Scalar *rho, *vol;
+          const double* mass;
+          const Mat *sigma_rho2, *R;
+          Kept* kept;
+          Vec* r;                                         // row arrays: r_ij
+          Scalar *r2, *rr, *w, *gf, *f, *rho_j, *vr, *c;  // |r|^2, |r|, W, dW/dr / r, f^n, rho_j, v_ij . r_ij, weights
+          double* m;                                      // m_j
+        };
+        const Arrays A{.off = nl.offsets.data(),
+                       .idx = nl.indices.data(),
+                       .v = v.data(),
+                       .vhat = vhat.data(),
+                       .vhat_out = vhat.data(),
+                       .rho = rho.data(),
+                       .vol = vol.data(),
+                       .mass = m_mass.data(),
+                       .sigma_rho2 = sigma_rho2.data(),
+                       .R = R.data(),
+                       .kept = kept_pairs,
+                       .r = rb,
+                       .r2 = r2b,
+                       .rr = rrb,
+                       .w = wb,
+                       .gf = gfb,
+                       .f = fb,
+                       .rho_j = rhob,
+                       .vr = vrb,
+                       .c = cb,
+                       .m = mb};
+
+        // Pair functions of row i: the XSPH velocity (with_xsph) and the pair results for the sums (keep), copied to
+        // the ring from slot `base` on unless `base` is `now` (summed right away, from the row arrays).
+        constexpr std::size_t now = ~std::size_t(0);
+        const auto pair_functions = [&, A](int i, auto xsph_tag, bool keep, std::size_t base) SPHSTAB_ALWAYS_INLINE {
+          constexpr bool with_xsph = decltype(xsph_tag)::value;
+          const bool free = m_x_off[i] >= 0, terms = keep && free;
+          const long k0 = A.off[i];
+          const std::size_t len = A.off[i + 1] - k0;
+          for (std::size_t q = 0; q < len; ++q) {
+            const int j = A.idx[k0 + q];
+            separation(i, j, A.r[q], A.r2[q]);
+            if constexpr (with_xsph) A.m[q] = A.mass[j];
+            if (with_xsph || (kViscous && terms)) A.rho_j[q] = A.rho[j];
+            if (kViscous && terms) {
+              const Vec vij = A.v[i] - A.v[j];
+              A.vr[q] = vij.cwiseProduct(A.r[q]).sum();
+            }
+          }
+          row_sqrt(len);
+          if (!keep)
+            kf.row_values(len, A.rr, A.w);
+          else if (with_xsph || (kStressTerm && free))
+            kf.template row_slopes<true>(len, A.rr, A.w, A.gf);
+          else
+            kf.template row_slopes<false>(len, A.rr, A.w, A.gf);
+          const Scalar rho_i = A.rho[i];
+          if constexpr (with_xsph) {  // XSPH velocity [GMS2001, (3.6)]
+            for (std::size_t q = 0; q < len; ++q) A.c[q] = o.xsph * A.m[q] * A.w[q] / (0.5 * (rho_i + A.rho_j[q]));
+            Vec vh = A.v[i];
+            for (std::size_t q = 0; q < len; ++q) {
+              const int j = A.idx[k0 + q];
+              if (j == i) continue;
+              vh += A.c[q] * (A.v[j] - A.v[i]);
+            }
+            A.vhat_out[i] = vh;
+          }
+          if (!keep) return;
+          if (kStressTerm && free) pair_factor.row(len, A.w, A.f);
+          if (kViscous && free)
+            for (std::size_t q = 0; q < len; ++q) {
+              const Scalar mu_ij = h * A.vr[q] / (A.r2[q] + eta2), rho_bar = 0.5 * (rho_i + A.rho_j[q]);
+              Scalar pi = alpha_c0 * mu_ij;
+              if constexpr (kViscosity == ViscositySwitch::Compression) pi += o.viscosity_beta * mu_ij * mu_ij;
+              const Scalar c = pi / rho_bar;
+              // Compression: 0 for a receding pair, selected here rather than branched on in the sums (the sign of
+              // v_ij . r_ij is random); 0 - 0 I leaves the zero pair matrix as it is.
+              if constexpr (kViscosity != ViscositySwitch::Compression) {
+                A.c[q] = c;
+              } else if constexpr (std::is_same_v<Scalar, double>) {  // as below, by a mask (the loop vectorises)
+                const std::uint64_t approaching = -static_cast<std::uint64_t>(A.vr[q] < 0);
+                A.c[q] = std::bit_cast<double>(std::bit_cast<std::uint64_t>(c) & approaching);
+              } else {
+                A.c[q] = detail::re(A.vr[q]) < 0 ? c : Scalar(0);
+              }
+            }
+          if (base == now) return;
+          Kept* const out = A.kept + base;
+          for (std::size_t q = 0; q < len; ++q) {
+            out[q].template head<Dim>() = A.gf[q] * A.r[q];  // grad_i W_ij
+            if (kViscous && free) out[q][Dim] = A.c[q];
+            if (kStressTerm && free) out[q][Dim + 1] = A.f[q];
+          }
+        };
+
+        // Sums of row i from its pair results (the ring from slot `base` on, or the row arrays: `now`) and the XSPH
+        // velocities.
+        const auto sums = [&, A](int i, std::size_t base, auto from_ring) SPHSTAB_ALWAYS_INLINE {
+          constexpr bool kRing = decltype(from_ring)::value;
+          const bool free = m_x_off[i] >= 0;
+          const long k0 = A.off[i];
+          const std::size_t len = A.off[i + 1] - k0;
+          Mat L = Mat::Zero();
+          Scalar drho(0);
+          Vec acc = Vec::Zero();
+          const Mat& si = A.sigma_rho2[i];
+          const Kept* const in = kRing ? A.kept + base : nullptr;
+          for (std::size_t q = 0; q < len; ++q) {
+            const int j = A.idx[k0 + q];
+            if (j == i) continue;
+            Vec gk;  // grad_i W_ij
+            if constexpr (kRing)
+              gk = in[q].template head<Dim>();
+            else
+              gk = A.gf[q] * A.r[q];
+            const Vec dv = A.vhat[j] - A.vhat[i];
+            // L^ab = dv^a/dx^b [GMS2001, (3.10)]; continuity [GMS2001, (3.8)] (not dot(): it conjugates complex steps).
+            L += (A.vol[j] * dv) * gk.transpose();
+            if (summation) drho -= A.mass[j] * dv.cwiseProduct(gk).sum();
+            if (!free) continue;
+            if constexpr (!kViscous && !kStressTerm) {
+              // Powell (1.36): m_j grad W_ij = rho_j Ghat_ij. (Adding the zero pair matrix would change no result: acc
+              // starts at +0, so a zero's sign cannot reach it.)
+              acc += A.mass[j] * ((si + A.sigma_rho2[j]) * gk);
+            } else {
+              // Pair terms: viscosity and artificial stress.
+              Mat pair = Mat::Zero();
+              if constexpr (kViscous) pair -= (kRing ? in[q][Dim] : A.c[q]) * Mat::Identity();
+              if constexpr (kStressTerm) pair += (kRing ? in[q][Dim + 1] : A.f[q]) * (A.R[i] + A.R[j]);
+              acc += A.mass[j] * ((si + A.sigma_rho2[j] + pair) * gk);
+            }
+          }
+          finish(i, free, L, drho, acc);
+        };
+
+        std::vector<int>& late = ws.late;  // rows summed at the end
+        late.clear();
+        int next = 0;  // the next row to sum, in index order
+        const auto sum_ready = [&](int t) {
+          for (; next <= t; ++next) {
+            if (!summed(next)) continue;
+            if (!kept(next)) {
+              late.push_back(next);
+              continue;
+            }
+            if (ready[next] > t) break;
+            sums(next, ring_start[next], std::true_type{});
+          }
+        };
+        if (!xsph) {  // vhat = v: each row summed right after its pair functions
+          for (int t = 0; t < n; ++t) vhat[t] = v[t];
+          for (int t = 0; t < n; ++t)
+            if (summed(t)) {
+              pair_functions(t, std::false_type{}, true, now);
+              sums(t, now, std::false_type{});
+            }
+          return;
+        }
+        std::size_t position = 0;
+        for (int t = 0; t < n; ++t) {
+          // Fixed particles do not move; driven ones move with v.
+          const bool with_xsph = m_x_off[t] >= 0 && !is_driven(t), keep = summed(t) && kept(t);
+          if (!with_xsph) vhat[t] = v[t];
+          if (keep) {
+            const std::size_t len = nl.offsets[t + 1] - nl.offsets[t];
+            if (position + len > ring) position = 0;
+            ring_start[t] = position;
+            position += len;
+          }
+          if (with_xsph)
+            pair_functions(t, std::true_type{}, keep, keep ? ring_start[t] : 0);
+          else if (keep)
+            pair_functions(t, std::false_type{}, true, ring_start[t]);
+          sum_ready(t);
+        }
+        sum_ready(n - 1);
+        for (int i : late) {
+          pair_functions(i, std::false_type{}, true, now);
+          sums(i, now, std::false_type{});
+        }
+      };
+      const auto with_stress = [&](auto viscosity_tag) {
+        if (o.artificial_stress > 0)
+          rows(viscosity_tag, std::true_type{});
+        else
+          rows(viscosity_tag, std::false_type{});
+      };
+      switch (o.viscosity) {
+        case ViscositySwitch::Off:
+          with_stress(std::integral_constant<ViscositySwitch, ViscositySwitch::Off>{});
+          break;
+        case ViscositySwitch::Compression:
+          with_stress(std::integral_constant<ViscositySwitch, ViscositySwitch::Compression>{});
+          break;
+        case ViscositySwitch::Always:
+          with_stress(std::integral_constant<ViscositySwitch, ViscositySwitch::Always>{});
+          break;
+      }
+    });
+  } else {
+    // The corrected gradient (NCSPH) and the local means of C_ij / S-SPH: per-pair arrays, as later passes read them:
+    // grad W (always), r (NCSPH or viscosity), r^2 (viscosity), W (NCSPH, XSPH or artificial stress).
+    const bool keep_r = !plain || viscous, keep_r2 = viscous;
+    const bool keep_w = !plain || o.xsph > 0 || o.artificial_stress > 0;
+    const long nnz = nl.nonzeros();
+    std::vector<Vec>&rij = ws.rij, &grad = ws.grad, &gh = ws.gh;
+    std::vector<Scalar>&w = ws.w, &r2s = ws.r2s;
     grad.resize(nnz);
     if (keep_r) rij.resize(nnz);
     if (keep_r2) r2s.resize(nnz);
@@ -403,299 +992,196 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
           continue;
         }
         Vec r;
-        Scalar r2, rr;
-        geometry(i, j, r, r2, rr);
+        Scalar r2;
+        separation(i, j, r, r2);
+        const Scalar rr = sqrt(r2);
         if (keep_r) rij[k] = r;
         if (keep_r2) r2s[k] = r2;
         if (keep_w) w[k] = kernel.value(rr, h);
         grad[k] = (kernel.d1(rr, h) / rr) * r;
       }
-  }
 
-  // Current volumes and the gradient Ghat_ij with V_j included (plain or NCSPH).
-  std::vector<Scalar>& vol = ws.vol;
-  vol.resize(n);
-  for (int i = 0; i < n; ++i) vol[i] = m_mass[i] / rho[i];
-  if (pair_arrays) {
+    // The gradient Ghat_ij with V_j included (plain or NCSPH).
     gh.resize(nnz);
     for (int i = 0; i < n; ++i)
       for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) gh[k] = vol[nl.indices[k]] * grad[k];
-  }
-  if (o.gradient == RateFormGradient::Ncsph)
-    for (int i = 0; i < n; ++i) {
-      // Powell (1.19): Shepard gradient (S_i grad W_ij V_j - W_ij V_j g_i) / S_i^2, then times M_i^-1 with
-      // M_i^ab = sum_j (x_j^a - x_i^a) gradW~^b_ij, so that sum_j (x_j - x_i) Ghat_ij^T = I.
-      Scalar shep(0);
-      Vec g = Vec::Zero();
-      for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
-        shep += vol[nl.indices[k]] * w[k];
-        g += gh[k];
-      }
-      Mat M = Mat::Zero();
-      for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
-        gh[k] = (gh[k] * shep - (vol[nl.indices[k]] * w[k]) * g) / (shep * shep);
-        M -= rij[k] * gh[k].transpose();
-      }
-      const Eigen::Matrix<double, Dim, Dim> Mr = M.unaryExpr([](const Scalar& z) { return detail::re(z); });
-      // JacobiSVD stops early on a non-finite matrix and leaves its singular values unset: refuse first.
-      if (!Mr.allFinite())
-        throw std::domain_error("RateFormScheme: NCSPH moment matrix of particle " + std::to_string(i) +
-                                " is not finite (non-finite positions or densities in the state)");
-      const Eigen::JacobiSVD<Eigen::Matrix<double, Dim, Dim>> svd(Mr);
-      const double smax = svd.singularValues()(0), smin = svd.singularValues()(Dim - 1);
-      if (!(smin > 1e-12 * smax))
-        throw std::domain_error("RateFormScheme: NCSPH moment matrix of particle " + std::to_string(i) +
-                                " is singular (rcond " + format_number(smax > 0 ? smin / smax : 0.0) + ")");
-      const Mat Minv_t = M.inverse().transpose();
-      for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) gh[k] = Minv_t * gh[k];
-    }
-
-  // XSPH velocity [GMS2001, (3.6)].
-  for (int i = 0; i < n; ++i) {
-    vhat[i] = v[i];
-    if (o.xsph > 0 && m_x_off[i] >= 0 && !is_driven(i))  // fixed particles do not move; driven ones move with v
-      for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
-        const int j = nl.indices[k];
-        if (j == i) continue;
-        Scalar wk;
-        if (keep_w) {
-          wk = w[k];
-        } else {
-          Vec r;
-          Scalar r2, rr;
-          geometry(i, j, r, r2, rr);
-          wk = kernel.value(rr, h);
+    if (o.gradient == RateFormGradient::Ncsph)
+      for (int i = 0; i < n; ++i) {
+        // Powell (1.19): Shepard gradient (S_i grad W_ij V_j - W_ij V_j g_i) / S_i^2, then times M_i^-1 with
+        // M_i^ab = sum_j (x_j^a - x_i^a) gradW~^b_ij, so that sum_j (x_j - x_i) Ghat_ij^T = I.
+        Scalar shep(0);
+        Vec g = Vec::Zero();
+        for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
+          shep += vol[nl.indices[k]] * w[k];
+          g += gh[k];
         }
-        vhat[i] += (o.xsph * m_mass[j] * wk / (0.5 * (rho[i] + rho[j]))) * (v[j] - v[i]);
+        Mat M = Mat::Zero();
+        for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
+          gh[k] = (gh[k] * shep - (vol[nl.indices[k]] * w[k]) * g) / (shep * shep);
+          M -= rij[k] * gh[k].transpose();
+        }
+        const Eigen::Matrix<double, Dim, Dim> Mr = M.unaryExpr([](const Scalar& z) { return detail::re(z); });
+        // JacobiSVD stops early on a non-finite matrix and leaves its singular values unset: refuse first.
+        if (!Mr.allFinite())
+          throw std::domain_error("RateFormScheme: NCSPH moment matrix of particle " + std::to_string(i) +
+                                  " is not finite (non-finite positions or densities in the state)");
+        const Eigen::JacobiSVD<Eigen::Matrix<double, Dim, Dim>> svd(Mr);
+        const double smax = svd.singularValues()(0), smin = svd.singularValues()(Dim - 1);
+        if (!(smin > 1e-12 * smax))
+          throw std::domain_error("RateFormScheme: NCSPH moment matrix of particle " + std::to_string(i) +
+                                  " is singular (rcond " + format_number(smax > 0 ? smin / smax : 0.0) + ")");
+        const Mat Minv_t = M.inverse().transpose();
+        for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) gh[k] = Minv_t * gh[k];
       }
-  }
 
-  // Stress, artificial stress.
-  std::vector<Mat>&sigma = ws.sigma, &R = ws.R;
-  sigma.resize(n);
-  R.resize(n);
-  for (int i = 0; i < n; ++i) {
-    const Scalar pressure = K * (rho[i] / rho0 - 1.0);
-    Mat s;
-    if constexpr (Dim == 1) {
-      s(0, 0) = S[i][0];
-    } else {
-      s << S[i][0], S[i][2], S[i][2], S[i][1];
+    // XSPH velocity [GMS2001, (3.6)].
+    for (int i = 0; i < n; ++i) {
+      vhat[i] = v[i];
+      if (o.xsph > 0 && m_x_off[i] >= 0 && !is_driven(i))  // fixed particles do not move; driven ones move with v
+        for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
+          const int j = nl.indices[k];
+          if (j == i) continue;
+          vhat[i] += (o.xsph * m_mass[j] * w[k] / (0.5 * (rho[i] + rho[j]))) * (v[j] - v[i]);
+        }
     }
-    sigma[i] = s - pressure * Mat::Identity();
-    R[i].setZero();
-    if (o.artificial_stress > 0) {
-      if constexpr (Dim == 1) {
-        if (detail::re(sigma[i](0, 0)) > 0) R[i](0, 0) = -o.artificial_stress * sigma[i](0, 0) / (rho[i] * rho[i]);
-      } else {
-        const SymmetricTensor2<Scalar> t{sigma[i](0, 0), sigma[i](1, 1), sigma[i](0, 1)};
-        const SymmetricTensor2<Scalar> r = artificial_stress(t, rho[i], o.artificial_stress);
-        R[i] << r.xx, r.xy, r.xy, r.yy;
-      }
-    }
-  }
 
-  // Local means of algorithm 4.1 of P_ij = V_j grad W_ij (C_ij, S-SPH): row mean r_i, column mean c_j =
-  // (1/n_j) sum_k P_kj = -(V_j / n_j) sum_k grad W_jk, mean of column means m_i; and the S-SPH switch.
-  // The means' pattern is the list's pairs within the support at the discretisation's positions (rate_form.hpp):
-  // m_i and the C_ij / S-SPH terms skip the other entries; r_i and c_j are kernel sums over the whole list.
-  const char* in_support = m_in_support.empty() ? nullptr : m_in_support.data();
-  const auto in_pattern = [in_support](long k) { return !in_support || in_support[k]; };
-  std::vector<Vec>&row_mean = ws.row_mean, &col_mean = ws.col_mean, &mean_mean = ws.mean_mean;
-  std::vector<Eigen::Matrix<bool, Dim, 1>>& on = ws.on;
-  if (uses_local_means(o.momentum)) {
-    row_mean.assign(n, Vec::Zero());
-    col_mean.assign(n, Vec::Zero());
-    mean_mean.assign(n, Vec::Zero());
-    for (int i = 0; i < n; ++i) {
-      Vec gs = Vec::Zero();
-      for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
-        row_mean[i] += gh[k];
-        gs += grad[k];
+    stresses();
+
+    // Local means of algorithm 4.1 of P_ij = V_j grad W_ij (C_ij, S-SPH): row mean r_i, column mean c_j =
+    // (1/n_j) sum_k P_kj = -(V_j / n_j) sum_k grad W_jk, mean of column means m_i; and the S-SPH switch.
+    // The means' pattern is the list's pairs within the support at the discretisation's positions (rate_form.hpp):
+    // m_i and the C_ij / S-SPH terms skip the other entries; r_i and c_j are kernel sums over the whole list.
+    const char* in_support = m_in_support.empty() ? nullptr : m_in_support.data();
+    const auto in_pattern = [in_support](long k) { return !in_support || in_support[k]; };
+    std::vector<Vec>&row_mean = ws.row_mean, &col_mean = ws.col_mean, &mean_mean = ws.mean_mean;
+    std::vector<Eigen::Matrix<bool, Dim, 1>>& on = ws.on;
+    if (uses_local_means(o.momentum)) {
+      row_mean.assign(n, Vec::Zero());
+      col_mean.assign(n, Vec::Zero());
+      mean_mean.assign(n, Vec::Zero());
+      for (int i = 0; i < n; ++i) {
+        Vec gs = Vec::Zero();
+        for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
+          row_mean[i] += gh[k];
+          gs += grad[k];
+        }
+        row_mean[i] /= m_counts[i];
+        col_mean[i] = (-vol[i] / m_counts[i]) * gs;
       }
-      row_mean[i] /= m_counts[i];
-      col_mean[i] = (-vol[i] / m_counts[i]) * gs;
-    }
-    for (int i = 0; i < n; ++i) {
-      for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k)
-        if (in_pattern(k)) mean_mean[i] += col_mean[nl.indices[k]];
-      mean_mean[i] /= m_counts[i];
-    }
-  }
-  if (o.momentum == RateFormMomentum::StabilisedSph) {
-    // Switch per component, on the real parts (frozen under a complex step); |sum| below a relative tolerance
-    // counts as zero so that the unstressed lattice sits on the "off" branch of the tension rule.
-    const double tol = 1e-14 * (K + 4.0 * mu / 3.0);
-    on.assign(n, Eigen::Matrix<bool, Dim, 1>::Constant(false));
-    for (int i = 0; i < n; ++i) {
-      if (m_excluded[i]) continue;
-      for (int a = 0; a < Dim; ++a) {
-        double sum = 0;
+      for (int i = 0; i < n; ++i) {
         for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k)
-          if (in_pattern(k)) sum += detail::re(sigma[nl.indices[k]](a, a));
-        if (std::abs(sum) <= tol) sum = 0;
-        switch (o.switch_rule) {
-          case SwitchRule::Tension:
-            on[i][a] = sum > 0;
-            break;
-          case SwitchRule::AsPrinted:
-            on[i][a] = sum <= 0;
-            break;
-          case SwitchRule::Always:
-            on[i][a] = true;
-            break;
-          case SwitchRule::Never:
-            on[i][a] = false;
-            break;
+          if (in_pattern(k)) mean_mean[i] += col_mean[nl.indices[k]];
+        mean_mean[i] /= m_counts[i];
+      }
+    }
+    if (o.momentum == RateFormMomentum::StabilisedSph) {
+      // Switch per component, on the real parts (frozen under a complex step); |sum| below a relative tolerance
+      // counts as zero so that the unstressed lattice sits on the "off" branch of the tension rule.
+      const double tol = 1e-14 * (K + 4.0 * mu / 3.0);
+      on.assign(n, Eigen::Matrix<bool, Dim, 1>::Constant(false));
+      for (int i = 0; i < n; ++i) {
+        if (m_excluded[i]) continue;
+        for (int a = 0; a < Dim; ++a) {
+          double sum = 0;
+          for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k)
+            if (in_pattern(k)) sum += detail::re(sigma[nl.indices[k]](a, a));
+          if (std::abs(sum) <= tol) sum = 0;
+          switch (o.switch_rule) {
+            case SwitchRule::Tension:
+              on[i][a] = sum > 0;
+              break;
+            case SwitchRule::AsPrinted:
+              on[i][a] = sum <= 0;
+              break;
+            case SwitchRule::Always:
+              on[i][a] = true;
+              break;
+            case SwitchRule::Never:
+              on[i][a] = false;
+              break;
+          }
         }
       }
     }
-  }
 
-  dydt.setZero(m_size);
-  const double c0 = m_material.sound_speed(), eta2 = 0.01 * h * h;
-  for (int i = 0; i < n; ++i) {
-    const bool free = m_x_off[i] >= 0;
-    if (!free && m_rho_off[i] < 0) continue;
-    Mat L = Mat::Zero();
-    Scalar drho(0);
-    Vec acc = Vec::Zero();
-    const Mat si = sigma[i] / (rho[i] * rho[i]);
-    // grad_i W_ij (and r_ij, r_ij^2, W_ij where the pair terms read them) of row i: the pair arrays, or computed for
-    // this row first, in a short loop of independent pairs, with the same operations.
-    const long k0 = nl.offsets[i], k1 = nl.offsets[i + 1];
-    const Vec *gp, *rp = nullptr;
-    const Scalar *r2p = nullptr, *wp = nullptr;
-    if (pair_arrays) {
-      gp = grad.data() + k0;
-      if (keep_r) rp = rij.data() + k0;
-      if (keep_r2) r2p = r2s.data() + k0;
-      if (keep_w) wp = w.data() + k0;
-    } else {
-      const std::size_t len = static_cast<std::size_t>(k1 - k0);
-      if (ws.row_grad.size() < len) {
-        ws.row_grad.resize(len);
-        ws.row_r.resize(len);
-        ws.row_r2.resize(len);
-        ws.row_w.resize(len);
-      }
-      Vec* g = ws.row_grad.data();
-      Vec* rv = ws.row_r.data();
-      Scalar* r2v = ws.row_r2.data();
-      Scalar* wv = ws.row_w.data();
-      const bool want_w = free && o.artificial_stress > 0;
-      for (long k = k0; k < k1; ++k) {
+    dydt.resize(m_size);
+    for (int i = 0; i < n; ++i) {
+      const bool free = m_x_off[i] >= 0;
+      if (!free && m_rho_off[i] < 0) continue;
+      Mat L = Mat::Zero();
+      Scalar drho(0);
+      Vec acc = Vec::Zero();
+      const Mat& si = sigma_rho2[i];
+      for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
         const int j = nl.indices[k];
-        if (j == i) continue;
-        Vec r;
-        Scalar r2, rr;
-        geometry(i, j, r, r2, rr);
-        g[k - k0] = (kernel.d1(rr, h) / rr) * r;
+        if (j == i) {  // only a corrected gradient has a self term (it makes the rows sum to zero)
+          if (free && o.momentum == RateFormMomentum::Symmetric && !plain) acc += (2.0 / rho[i]) * (sigma[i] * gh[k]);
+          if (free && o.momentum == RateFormMomentum::Cij)
+            acc += (sigma[i] / rho[i]) * (gh[k] - row_mean[i] - col_mean[i] + mean_mean[i]);
+          continue;
+        }
+        const Vec& gk = grad[k];
+        const Vec dv = vhat[j] - vhat[i];
+        // L^ab = dv^a/dx^b [GMS2001, (3.10)]; continuity [GMS2001, (3.8)] (not dot(): it conjugates complex steps).
+        if (plain) {
+          L += (vol[j] * dv) * gk.transpose();
+          if (o.continuity == ContinuityForm::Summation) drho -= m_mass[j] * dv.cwiseProduct(gk).sum();
+        } else {
+          L += dv * gh[k].transpose();
+          if (o.continuity == ContinuityForm::Summation) drho -= rho[j] * dv.cwiseProduct(gh[k]).sum();
+        }
+        if (!free) continue;
+        // Pair terms on the plain gradient: viscosity and artificial stress (every momentum form).
+        Mat pair = Mat::Zero();
         if (viscous) {
-          rv[k - k0] = r;
-          r2v[k - k0] = r2;
-        }
-        if (want_w) wv[k - k0] = kernel.value(rr, h);
-      }
-      gp = g;
-      rp = rv;
-      r2p = r2v;
-      wp = wv;
-    }
-    for (long k = k0; k < k1; ++k) {
-      const int j = nl.indices[k];
-      if (j == i) {  // only a corrected gradient has a self term (it makes the rows sum to zero)
-        if (free && o.momentum == RateFormMomentum::Symmetric && !plain) acc += (2.0 / rho[i]) * (sigma[i] * gh[k]);
-        if (free && o.momentum == RateFormMomentum::Cij)
-          acc += (sigma[i] / rho[i]) * (gh[k] - row_mean[i] - col_mean[i] + mean_mean[i]);
-        continue;
-      }
-      const Vec& gk = gp[k - k0];
-      const Vec dv = vhat[j] - vhat[i];
-      // L^ab = dv^a/dx^b [GMS2001, (3.10)]; continuity [GMS2001, (3.8)] (not dot(): it conjugates complex steps).
-      if (plain) {
-        L += (vol[j] * dv) * gk.transpose();
-        if (o.continuity == ContinuityForm::Summation) drho -= m_mass[j] * dv.cwiseProduct(gk).sum();
-      } else {
-        L += dv * gh[k].transpose();
-        if (o.continuity == ContinuityForm::Summation) drho -= rho[j] * dv.cwiseProduct(gh[k]).sum();
-      }
-      if (!free) continue;
-      // Pair terms on the plain gradient: viscosity and artificial stress (every momentum form).
-      Mat pair = Mat::Zero();
-      if (viscous) {
-        const Vec vij = v[i] - v[j];
-        const Scalar vr = vij.cwiseProduct(rp[k - k0]).sum();
-        if (o.viscosity == ViscositySwitch::Always || detail::re(vr) < 0) {
-          const Scalar mu_ij = h * vr / (r2p[k - k0] + eta2), rho_bar = 0.5 * (rho[i] + rho[j]);
-          Scalar pi = -o.viscosity_alpha * c0 * mu_ij;
-          if (o.viscosity == ViscositySwitch::Compression) pi += o.viscosity_beta * mu_ij * mu_ij;
-          pair -= (pi / rho_bar) * Mat::Identity();
-        }
-      }
-      if (o.artificial_stress > 0) {
-        const Scalar f = artificial_stress_pair_factor<Scalar>(wp[k - k0], m_w_dp, o.artificial_stress_exponent);
-        pair += f * (R[i] + R[j]);
-      }
-      const Mat sj = sigma[j] / (rho[j] * rho[j]);
-      switch (o.momentum) {
-        case RateFormMomentum::Symmetric:  // Powell (1.36): m_j grad W_ij = rho_j Ghat_ij
-          if (plain) {
-            acc += m_mass[j] * ((si + sj + pair) * gk);
-          } else {
-            acc += rho[j] * ((si + sj) * gh[k]) + m_mass[j] * (pair * gk);
+          const Vec vij = v[i] - v[j];
+          const Scalar vr = vij.cwiseProduct(rij[k]).sum();
+          if (o.viscosity == ViscositySwitch::Always || detail::re(vr) < 0) {
+            const Scalar mu_ij = h * vr / (r2s[k] + eta2), rho_bar = 0.5 * (rho[i] + rho[j]);
+            Scalar pi = -o.viscosity_alpha * c0 * mu_ij;
+            if (o.viscosity == ViscositySwitch::Compression) pi += o.viscosity_beta * mu_ij * mu_ij;
+            pair -= (pi / rho_bar) * Mat::Identity();
           }
-          break;
-        case RateFormMomentum::Antisymmetric: {
-          if (plain) {  // grad W_ji = -grad W_ij: the symmetric form
-            acc += m_mass[j] * ((si + sj + pair) * gk);
-          } else {
-            const Vec ga = 0.5 * (gh[k] / vol[j] - gh[m_transpose[k]] / vol[i]);
-            acc += m_mass[j] * ((si + sj) * ga + pair * gk);
-          }
-          break;
         }
-        case RateFormMomentum::Cij:  // Powell (4.10), C_ij of (4.9); C_ij = P_ij outside the pattern
-          if (in_pattern(k))
-            acc += (sigma[j] / rho[j]) * (gh[k] - row_mean[i] - col_mean[j] + mean_mean[i]) + m_mass[j] * (pair * gk);
-          else
-            acc += (sigma[j] / rho[j]) * gh[k] + m_mass[j] * (pair * gk);
-          break;
-        case RateFormMomentum::StabilisedSph: {  // Powell algorithm 4.2: a_i += (f_ij + g_ij - f_ji - g_ji) / 2
-          const Mat Sij = sigma[i] / rho[i] + sigma[j] / rho[j];
-          Vec gij = -(Sij * (row_mean[i] + col_mean[j] - mean_mean[i]));
-          Vec gji = -(Sij * (row_mean[j] + col_mean[i] - mean_mean[j]));
-          for (int a = 0; a < Dim; ++a) {
-            if (!on[i][a] || !in_pattern(k)) gij[a] = Scalar(0);
-            if (!on[j][a] || !in_pattern(k)) gji[a] = Scalar(0);
+        if (o.artificial_stress > 0) pair += pair_factor(w[k]) * (R[i] + R[j]);
+        const Mat& sj = sigma_rho2[j];
+        switch (o.momentum) {
+          case RateFormMomentum::Symmetric:  // Powell (1.36): m_j grad W_ij = rho_j Ghat_ij
+            if (plain) {
+              acc += m_mass[j] * ((si + sj + pair) * gk);
+            } else {
+              acc += rho[j] * ((si + sj) * gh[k]) + m_mass[j] * (pair * gk);
+            }
+            break;
+          case RateFormMomentum::Antisymmetric: {
+            if (plain) {  // grad W_ji = -grad W_ij: the symmetric form
+              acc += m_mass[j] * ((si + sj + pair) * gk);
+            } else {
+              const Vec ga = 0.5 * (gh[k] / vol[j] - gh[m_transpose[k]] / vol[i]);
+              acc += m_mass[j] * ((si + sj) * ga + pair * gk);
+            }
+            break;
           }
-          acc += 0.5 * ((vol[i] + vol[j]) * (Sij * gk) + gij - gji) + m_mass[j] * (pair * gk);
-          break;
+          case RateFormMomentum::Cij:  // Powell (4.10), C_ij of (4.9); C_ij = P_ij outside the pattern
+            if (in_pattern(k))
+              acc += (sigma[j] / rho[j]) * (gh[k] - row_mean[i] - col_mean[j] + mean_mean[i]) + m_mass[j] * (pair * gk);
+            else
+              acc += (sigma[j] / rho[j]) * gh[k] + m_mass[j] * (pair * gk);
+            break;
+          case RateFormMomentum::StabilisedSph: {  // Powell algorithm 4.2: a_i += (f_ij + g_ij - f_ji - g_ji) / 2
+            const Mat Sij = sigma[i] / rho[i] + sigma[j] / rho[j];
+            Vec gij = -(Sij * (row_mean[i] + col_mean[j] - mean_mean[i]));
+            Vec gji = -(Sij * (row_mean[j] + col_mean[i] - mean_mean[j]));
+            for (int a = 0; a < Dim; ++a) {
+              if (!on[i][a] || !in_pattern(k)) gij[a] = Scalar(0);
+              if (!on[j][a] || !in_pattern(k)) gji[a] = Scalar(0);
+            }
+            acc += 0.5 * ((vol[i] + vol[j]) * (Sij * gk) + gij - gji) + m_mass[j] * (pair * gk);
+            break;
+          }
         }
       }
-    }
-    if (o.continuity == ContinuityForm::Divergence) drho = -rho[i] * L.trace();
-    if (free) {
-      dydt.template segment<Dim>(m_x_off[i]) = vhat[i];
-      if (is_driven(i))  // the prescribed acceleration replaces the SPH force
-        dydt.template segment<Dim>(m_x_off[i] + Dim) = m_driven_acc[m_driven_slot[i]].template cast<Scalar>();
-      else
-        dydt.template segment<Dim>(m_x_off[i] + Dim) = acc;
-    }
-    if (m_rho_off[i] < 0) continue;
-    dydt[m_rho_off[i]] = drho;
-    if constexpr (Dim == 1) {
-      dydt[m_rho_off[i] + 1] = (4.0 * mu / 3.0) * L(0, 0);
-    } else {
-      // Jaumann rate in 3 x 3 with D_zz = 0 and Omega in-plane; S_zz = -(S_xx + S_yy) is carried implicitly.
-      const Mat D = 0.5 * (L + L.transpose()), W = 0.5 * (L - L.transpose());
-      Mat s;
-      s << S[i][0], S[i][2], S[i][2], S[i][1];
-      const Scalar tr = D.trace();
-      const Mat ds = 2.0 * mu * (D - (tr / 3.0) * Mat::Identity()) + W * s - s * W;
-      dydt[m_rho_off[i] + 1] = ds(0, 0);
-      dydt[m_rho_off[i] + 2] = ds(1, 1);
-      dydt[m_rho_off[i] + 3] = ds(0, 1);
+      finish(i, free, L, drho, acc);
     }
   }
 }
@@ -749,3 +1235,5 @@ template class RateFormScheme<1>;
 template class RateFormScheme<2>;
 
 }  // namespace sphstab
+
+#undef SPHSTAB_ALWAYS_INLINE

@@ -242,14 +242,20 @@ class RateFormScheme final : public SemiDiscreteSystem {
     std::vector<Eigen::Matrix<Scalar, Dim, 1>> x, v, vhat, row_mean, col_mean, mean_mean;
     std::vector<Scalar> rho, vol;
     std::vector<Eigen::Matrix<Scalar, kStress, 1>> S;
-    std::vector<Eigen::Matrix<Scalar, Dim, Dim>> sigma, R;
+    std::vector<Eigen::Matrix<Scalar, Dim, Dim>> sigma, sigma_rho2, R;  // sigma, sigma / rho^2, artificial stress
     std::vector<Eigen::Matrix<bool, Dim, 1>> on;
     // Per pair (only the arrays the options need; none for the plain symmetric/antisymmetric forms).
     std::vector<Eigen::Matrix<Scalar, Dim, 1>> rij, grad, gh;
     std::vector<Scalar> w, r2s;
-    // Per pair of one row (the plain symmetric/antisymmetric forms): grad W, r, r^2, W.
-    std::vector<Eigen::Matrix<Scalar, Dim, 1>> row_grad, row_r;
-    std::vector<Scalar> row_r2, row_w;
+    // The plain symmetric/antisymmetric forms: per pair of one neighbour row r and scalars (r^2, |r|, W, ...); per
+    // pair of the rows not yet summed grad W, Pi / rhobar, f^n (a ring); per row the last neighbour and where its
+    // pairs start in the ring; the rows summed last.
+    std::vector<Eigen::Matrix<Scalar, Dim, 1>> row_r;
+    std::vector<Scalar> row;
+    std::vector<double> row_mass;
+    std::vector<Eigen::Matrix<Scalar, Dim + 2, 1>> ring;
+    std::vector<long> ready, ring_start;
+    std::vector<int> late;
   };
 
   std::shared_ptr<const Discretisation<Dim>> m_disc;
