@@ -10,6 +10,7 @@ void register_tcrit_command(CLI::App& app);
 void register_spectrum_command(CLI::App& app);
 void register_run_command(CLI::App& app);
 void register_scene_command(CLI::App& app);
+void register_jacobian_command(CLI::App& app);
 
 inline void register_commands(CLI::App& app) {
   register_kernels_command(app);
@@ -18,6 +19,7 @@ inline void register_commands(CLI::App& app) {
   register_spectrum_command(app);
   register_run_command(app);
   register_scene_command(app);
+  register_jacobian_command(app);
 }
 
 }  // namespace sphstab::cli
