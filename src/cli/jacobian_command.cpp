@@ -75,14 +75,7 @@ void run_elastic(const ElasticArgs& a) {
     load = "pre-tension T (Powell (3.40); A = A0 + T A1)";
   } else {
     const LatticeType type = parse_lattice_type(a.lattice);
-    PreStrainKind kind;
-    if (a.prestrain == "isotropic" || a.prestrain == "iso")
-      kind = PreStrainKind::Isotropic;
-    else if (a.prestrain == "uniaxial" || a.prestrain == "uniaxial-x")
-      kind = PreStrainKind::UniaxialX;
-    else
-      throw std::invalid_argument("jacobian elastic: --prestrain must be isotropic or uniaxial (got '" + a.prestrain +
-                                  "')");
+    const PreStrainKind kind = parse_prestrain_kind(a.prestrain);
     const ElasticMaterial material{.lambda = parse_double(a.lambda, "jacobian elastic: --lambda"),
                                    .mu = parse_double(a.mu, "jacobian elastic: --mu"),
                                    .rho = 1.0};

@@ -139,13 +139,7 @@ void run_tcrit_2d(const TcritArgs& a) {
   if (a.periodic && n < 2) throw std::invalid_argument("tcrit: --periodic needs --n >= 2");
   if (a.periodic && type != LatticeType::Square && n % 2 != 0)
     throw std::invalid_argument("tcrit: periodic hex/face-centred lattices need an even --n (got " + a.n + ")");
-  PreStrainKind kind;
-  if (a.prestrain == "isotropic" || a.prestrain == "iso")
-    kind = PreStrainKind::Isotropic;
-  else if (a.prestrain == "uniaxial" || a.prestrain == "uniaxial-x")
-    kind = PreStrainKind::UniaxialX;
-  else
-    throw std::invalid_argument("tcrit: --prestrain must be isotropic or uniaxial (got '" + a.prestrain + "')");
+  const PreStrainKind kind = parse_prestrain_kind(a.prestrain);
   const ElasticMaterial material{
       .lambda = parse_double(a.lambda, "tcrit: --lambda"), .mu = parse_double(a.mu, "tcrit: --mu"), .rho = 1.0};
   material.validate("tcrit");
@@ -174,7 +168,7 @@ void run_tcrit_2d(const TcritArgs& a) {
       "kernel,form,lattice,N,periodic,prestrain,direction,h_over_dx,quantity,method,backend,criterion,ecrit,ecrit_eig,"
       "ecrit_bisect,rel_diff,mechanism,ecrit_infinite,ecrit_symbol,mode_kx_over_pi,mode_ky_over_pi,"
       "mode_peak_fraction,infinite_kx_over_pi,infinite_ky_over_pi,status,reason\n";
-  const std::string prestrain_name = kind == PreStrainKind::Isotropic ? "isotropic" : "uniaxial";
+  const std::string prestrain_name = prestrain_kind_name(kind);
   SweepProgress progress(static_cast<long>(kernels.size() * hs.size() * forms.size()));
   for (KernelType kt : kernels) {
     Kernel<2> kernel(kt);

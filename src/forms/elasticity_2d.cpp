@@ -17,6 +17,16 @@
 
 namespace sphstab {
 
+PreStrainKind parse_prestrain_kind(const std::string& name) {
+  if (name == "isotropic" || name == "iso") return PreStrainKind::Isotropic;
+  if (name == "uniaxial" || name == "uniaxial-x") return PreStrainKind::UniaxialX;
+  throw std::invalid_argument("unknown pre-strain '" + name + "' (valid: isotropic, uniaxial)");
+}
+
+std::string prestrain_kind_name(PreStrainKind kind) {
+  return kind == PreStrainKind::Isotropic ? "isotropic" : "uniaxial";
+}
+
 void ElasticMaterial::validate(const char* who) const {
   if (!std::isfinite(lambda) || !std::isfinite(mu) || !std::isfinite(rho) || !(mu > 0) || !(rho > 0) ||
       !(lambda + mu > 0)) {

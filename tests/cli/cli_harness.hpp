@@ -2,10 +2,12 @@
 // Runs sphstab::cli::run in a forked child of the test process (in-process code, isolated state): stdout and stderr
 // to files, a memory limit through the size checks (core/memory_budget.hpp), a wall-clock limit by SIGALRM. Reports
 // the exit code or the signal, the outputs, the time and the child's peak resident memory.
+#include <gtest/gtest.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -13,6 +15,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "run.hpp"
@@ -75,6 +78,18 @@ inline std::string join_args(const std::vector<std::string>& args) {
   std::string s;
   for (const std::string& a : args) s += (s.empty() ? "" : " ") + (a.empty() ? std::string("''") : a);
   return s;
+}
+
+/// Bad-input cases (arguments, text the error must contain): each exits 1 with exactly one stderr line containing
+/// the text. `run` maps the arguments to a CliOutcome. Call from a test body (uses gtest's EXPECT_*).
+template <class Run>
+void expect_one_line_errors(const std::vector<std::pair<std::vector<std::string>, std::string>>& cases, Run&& run) {
+  for (const auto& [args, what] : cases) {
+    const CliOutcome r = run(args);
+    EXPECT_EQ(r.exit_code, 1) << join_args(args);
+    EXPECT_NE(r.err.find(what), std::string::npos) << join_args(args) << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
 }
 
 }  // namespace sphstab::test

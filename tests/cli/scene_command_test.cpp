@@ -121,12 +121,7 @@ TEST(SceneCommand, BadInputIsOneLine) {
       {{"scene", "slab", "--t-end", "0"}, "--t-end"},
       {{"scene", "rings", "--dp", "0.6"}, "spacing"},  // the builder: fewer than two particles across the ring
   };
-  for (const auto& [args, what] : cases) {
-    const test::CliOutcome r = run(args, "bad");
-    EXPECT_EQ(r.exit_code, 1) << test::join_args(args);
-    EXPECT_NE(r.err.find(what), std::string::npos) << test::join_args(args) << ": " << r.err;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  }
+  test::expect_one_line_errors(cases, [](const std::vector<std::string>& args) { return run(args, "bad"); });
 }
 
 }  // namespace

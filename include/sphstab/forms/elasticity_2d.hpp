@@ -34,6 +34,7 @@
 /// \endcode
 #include <Eigen/Core>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "sphstab/forms/discretisation.hpp"
@@ -54,6 +55,10 @@ struct ElasticMaterial {
 };
 
 enum class PreStrainKind { Isotropic, UniaxialX };
+/// "isotropic" / "iso" or "uniaxial" / "uniaxial-x"; throws std::invalid_argument naming the valid names.
+PreStrainKind parse_prestrain_kind(const std::string& name);
+/// The canonical name accepted by parse_prestrain_kind: "isotropic" or "uniaxial".
+std::string prestrain_kind_name(PreStrainKind kind);
 
 /// A uniform pre-strain: kind and linear strain e (the load parameter).
 struct PreStrain {
