@@ -1,0 +1,57 @@
+#pragma once
+/// \file plane_wave_reflection.hpp
+/// Reflection of plane waves at an absorbing (non-reflecting) boundary condition, the analytic side of Powell's
+/// ch. 2: the boundary x = 0 of the half-space x < 0, outward normal +x, a wave of angular frequency 1 hitting it at
+/// angle theta from the normal. A condition B(d/dt, d/dx, d/dy) u = 0 holds at x = 0 for the sum of the incident and
+/// the reflected waves; with d/dt -> -i, d/dx -> i k_x / c, d/dy -> i k_y / c per wave (k unit, c its speed) it is a
+/// linear system for the reflected amplitudes: [Powell2012, (2.49)].
+///
+/// Elastic (plane strain, u_tt = c_s^2 Lap u + (c_p^2 - c_s^2) grad div u, (2.38)): an incident P wave along
+/// k = (cos theta, sin theta) (polarisation k) reflects as P along (-cos theta, sin theta) and S along (-zeta, eta),
+/// eta = (c_s / c_p) sin theta (polarisation (-k_y, k_x)); an incident S wave as S along (-cos theta, sin theta) and P
+/// along (-nu, xi), xi = (c_p / c_s) sin theta, evanescent beyond the critical angle asin(c_s / c_p) (nu imaginary,
+/// decaying into the body) [Powell2012, (2.46)-(2.47)]. Amplitudes are for unit polarisation vectors.
+///
+/// \code{.cpp}
+/// auto r = sphstab::elastic_reflection(sphstab::AbsorbingCondition::Sochaki, 1.8708, 1.0, M_PI / 4,
+///                                      sphstab::WaveKind::P);  // |r.to_p|, |r.to_s|
+/// double cr = sphstab::rayleigh_speed(1.8708, 1.0);            // 0.92741 c_s at nu = 0.3
+/// \endcode
+#include <complex>
+#include <vector>
+
+namespace sphstab {
+
+/// The first-order absorbing conditions of Powell ch. 2 for the elastic wave equation (u = (u_x, u_y)).
+enum class AbsorbingCondition {
+  ClaytonEngquist,  ///< "P" (2.42): (d_t + c_p d_x) u_x = 0, (d_t + c_s d_x) u_y = 0
+  Sochaki,          ///< "M" (2.45): {d_t + diag(c_p, c_s) d_x + [[0, c_p - c_s], [c_p - c_s, 0]] d_y} u = 0
+  Higdon            ///< (2.41): (d_t + c_p d_x)(d_t + c_s d_x) u = 0, both components (second order)
+};
+
+enum class WaveKind { P, S };
+
+/// Reflected amplitudes per unit incident amplitude (complex: phase included).
+struct Reflection {
+  std::complex<double> to_p;  ///< reflected P (for S incidence beyond the critical angle: the evanescent P)
+  std::complex<double> to_s;  ///< reflected S
+  bool p_evanescent = false;  ///< the reflected P does not propagate (S incidence beyond asin(c_s / c_p))
+};
+
+/// The reflection of an incident P or S wave at angle theta in [0, pi/2) from the normal. Throws
+/// std::invalid_argument unless 0 < c_s < c_p (finite) and theta is in [0, pi/2), and std::domain_error when the
+/// 2 x 2 system is singular (the condition admits a free boundary wave at this angle).
+Reflection elastic_reflection(AbsorbingCondition condition, double c_p, double c_s, double theta, WaveKind incident);
+
+/// |R| of a scalar wave (u_tt = c^2 Lap u) at Higdon's condition prod_i (cos a_i d_t + c d_x) u = 0 [Powell2012,
+/// (2.32), with the factor corrected, see the notes]: prod_i |cos theta - cos a_i| / (cos theta + cos a_i). One a = 0
+/// is the first-order Engquist-Majda condition, |R| = tan^2(theta / 2). Throws std::invalid_argument for theta outside
+/// [0, pi/2) or an angle outside [0, pi/2).
+double scalar_reflection(double theta, const std::vector<double>& absorbing_angles = {0.0});
+
+/// The Rayleigh surface-wave speed: the root c_r in (0, c_s) of (2 - c_r^2 / c_s^2)^2 = 4 sqrt(1 - c_r^2 / c_p^2)
+/// sqrt(1 - c_r^2 / c_s^2) [Powell2012, (A.35)], to machine precision. Throws std::invalid_argument unless
+/// 0 < c_s < c_p.
+double rayleigh_speed(double c_p, double c_s);
+
+}  // namespace sphstab

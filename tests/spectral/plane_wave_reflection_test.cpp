@@ -1,0 +1,94 @@
+// Plane-wave reflection at absorbing boundaries (spectral/plane_wave_reflection.hpp) against the exact solutions of
+// [Powell2012, (2.49)] in the notes (seed-powell-nrbc.md §1, plane strain nu = 0.3, printed to 4 decimals), the scalar
+// Engquist-Majda R = tan^2(theta/2), normal incidence (every first-order condition is exact there), and the Rayleigh
+// speed against the closed form at nu = 1/4 and the notes' 0.92741 at nu = 0.3.
+#include "sphstab/spectral/plane_wave_reflection.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace sphstab {
+namespace {
+
+const double kCp = std::sqrt(1.4 / 0.4), kCs = 1.0;  // plane strain nu = 0.3: c_p / c_s = sqrt(2 (1 - nu) / (1 - 2 nu))
+
+double deg(double d) { return d * M_PI / 180; }
+
+struct Row {
+  double theta, pp, ps, sp, ss;
+};
+
+void expect_table(AbsorbingCondition b, const std::vector<Row>& rows) {
+  for (const Row& r : rows) {
+    const Reflection p = elastic_reflection(b, kCp, kCs, deg(r.theta), WaveKind::P);
+    const Reflection s = elastic_reflection(b, kCp, kCs, deg(r.theta), WaveKind::S);
+    // The notes print 4 decimals: agreement to half a unit of the last one.
+    EXPECT_NEAR(std::abs(p.to_p), r.pp, 5e-5) << r.theta;
+    EXPECT_NEAR(std::abs(p.to_s), r.ps, 5e-5) << r.theta;
+    EXPECT_NEAR(std::abs(s.to_p), r.sp, 5e-5) << r.theta;
+    EXPECT_NEAR(std::abs(s.to_s), r.ss, 5e-5) << r.theta;
+  }
+}
+
+TEST(PlaneWaveReflection, ClaytonEngquistMatchesTheExactTable) {
+  expect_table(AbsorbingCondition::ClaytonEngquist, {{5, .0005, .0204, .0376, .0066},
+                                                     {10, .0020, .0417, .0726, .0258},
+                                                     {30, .0051, .1439, .1565, .1795},
+                                                     {45, .0269, .2320, .0268, .1457}});
+}
+
+TEST(PlaneWaveReflection, SochakiMatchesTheExactTable) {
+  expect_table(AbsorbingCondition::Sochaki, {{5, .0001, .0002, .0006, .0051},
+                                             {10, .0003, .0014, .0050, .0197},
+                                             {30, .0098, .0316, .1674, .0871},
+                                             {45, .0592, .0818, .3556, .1501}});
+}
+
+TEST(PlaneWaveReflection, NormalIncidenceIsAbsorbedAndTheCriticalAngleIsFlagged) {
+  for (AbsorbingCondition b :
+       {AbsorbingCondition::ClaytonEngquist, AbsorbingCondition::Sochaki, AbsorbingCondition::Higdon})
+    for (WaveKind w : {WaveKind::P, WaveKind::S}) {
+      const Reflection r = elastic_reflection(b, kCp, kCs, 0.0, w);
+      EXPECT_LT(std::abs(r.to_p) + std::abs(r.to_s), 1e-15);
+    }
+  const double critical = std::asin(kCs / kCp);  // 32.31 degrees at nu = 0.3
+  EXPECT_NEAR(critical * 180 / M_PI, 32.31, 0.005);
+  EXPECT_FALSE(elastic_reflection(AbsorbingCondition::Sochaki, kCp, kCs, critical - 1e-6, WaveKind::S).p_evanescent);
+  EXPECT_TRUE(elastic_reflection(AbsorbingCondition::Sochaki, kCp, kCs, critical + 1e-6, WaveKind::S).p_evanescent);
+  EXPECT_FALSE(elastic_reflection(AbsorbingCondition::Sochaki, kCp, kCs, deg(80), WaveKind::P).p_evanescent);
+}
+
+TEST(PlaneWaveReflection, ScalarEngquistMajdaAndHigdon) {
+  // The notes' values of tan^2(theta / 2) and the second-order tan^4 at 45 degrees.
+  const double expected[] = {0.0077, 0.0718, 0.1716, 0.3333};
+  const double angles[] = {10, 30, 45, 60};
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_NEAR(scalar_reflection(deg(angles[k])), expected[k], 5e-5);
+    EXPECT_NEAR(scalar_reflection(deg(angles[k])), std::pow(std::tan(deg(angles[k]) / 2), 2), 1e-15);
+  }
+  EXPECT_NEAR(scalar_reflection(deg(45), {0.0, 0.0}), 0.0294, 5e-5);
+  // Higdon's factors absorb exactly at their own angles.
+  EXPECT_LT(scalar_reflection(deg(30), {0.0, deg(30)}), 1e-15);
+  EXPECT_THROW(scalar_reflection(M_PI / 2), std::invalid_argument);
+  EXPECT_THROW(scalar_reflection(0.1, {-0.1}), std::invalid_argument);
+}
+
+TEST(PlaneWaveReflection, RayleighSpeed) {
+  // nu = 1/4 (c_p^2 = 3 c_s^2): c_r^2 / c_s^2 = 2 - 2 / sqrt(3) exactly.
+  EXPECT_NEAR(rayleigh_speed(std::sqrt(3.0), 1.0), std::sqrt(2 - 2 / std::sqrt(3.0)), 1e-14);
+  EXPECT_NEAR(rayleigh_speed(kCp, kCs), 0.92741, 5e-6);
+  // Steel of the impact test (rho 7.8, E 2.1 Mbar, nu 0.3): c_s = sqrt(E / (2 (1 + nu) rho)) = 0.32179 cm/us, so
+  // (A.35) gives c_r = 0.29843 cm/us; the notes' 0.2985 is the approximation (A.36), 0.92769 c_s (0.03 % higher).
+  const double cs = std::sqrt(2.1 / (2 * 1.3 * 7.8));
+  EXPECT_NEAR(rayleigh_speed(kCp * cs, cs), 0.29843, 5e-6);
+  EXPECT_NEAR(0.92769 * cs, 0.2985, 5e-5);
+  EXPECT_THROW(rayleigh_speed(1.0, 1.0), std::invalid_argument);
+  EXPECT_THROW(rayleigh_speed(1.0, -1.0), std::invalid_argument);
+  EXPECT_THROW(elastic_reflection(AbsorbingCondition::Sochaki, 1.0, 2.0, 0.1, WaveKind::P), std::invalid_argument);
+  EXPECT_THROW(elastic_reflection(AbsorbingCondition::Sochaki, 2.0, 1.0, 2.0, WaveKind::P), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace sphstab
