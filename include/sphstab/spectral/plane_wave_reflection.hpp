@@ -20,14 +20,9 @@
 #include <complex>
 #include <vector>
 
-namespace sphstab {
+#include "sphstab/forms/absorbing_boundary.hpp"  // AbsorbingCondition
 
-/// The first-order absorbing conditions of Powell ch. 2 for the elastic wave equation (u = (u_x, u_y)).
-enum class AbsorbingCondition {
-  ClaytonEngquist,  ///< "P" (2.42): (d_t + c_p d_x) u_x = 0, (d_t + c_s d_x) u_y = 0
-  Sochaki,          ///< "M" (2.45): {d_t + diag(c_p, c_s) d_x + [[0, c_p - c_s], [c_p - c_s, 0]] d_y} u = 0
-  Higdon            ///< (2.41): (d_t + c_p d_x)(d_t + c_s d_x) u = 0, both components (second order)
-};
+namespace sphstab {
 
 enum class WaveKind { P, S };
 

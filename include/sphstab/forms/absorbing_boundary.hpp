@@ -1,0 +1,41 @@
+#pragma once
+/// \file absorbing_boundary.hpp
+/// The acceleration of a boundary particle under a first-order non-reflecting condition, which replaces the momentum
+/// equation there [Powell2012, (2.54)-(2.62)]: the elastic condition written along the particle's outward normal n
+/// (tangent t, any orientation) in velocity form,
+///     dv/dt = -B(n, t) (grad v) + (v . grad) v,
+/// with the convective term optional (2.65: it shifts the effective speeds by |v|, so it matters only at high particle
+/// speeds). L = grad v (L_ab = dv_a / dx_b) is the particle's velocity gradient (upwind or not, the caller's choice).
+///   - ClaytonEngquist ("P", (2.42)): a = -c_p ((L n) . n) n - c_s ((L n) . t) t.
+///   - Sochaki ("M", (2.45)): a = -[c_p (L n) . n + (c_p - c_s) (L t) . t] n - [c_s (L n) . t + (c_p - c_s) (L t) . n]
+///   t.
+///     The thesis's pseudocode for M has the signs flipped and the cross terms swapped (the notes); this is (2.45)
+///     itself, and it does not depend on the orientation of t.
+///   - Higdon's condition is second order in time and has no such velocity form; Powell's "H" (c_p, c_s scaled by
+///     the a-priori k . n) is the ClaytonEngquist law with those speeds.
+/// The plane-wave analysis of the same conditions is spectral/plane_wave_reflection.hpp.
+///
+/// \code{.cpp}
+/// Eigen::Vector2d a = sphstab::absorbing_acceleration(sphstab::AbsorbingCondition::Sochaki, c_p, c_s, n, L, v);
+/// \endcode
+#include <Eigen/Core>
+
+namespace sphstab {
+
+/// The first-order absorbing conditions of Powell ch. 2 for the elastic wave equation (u = (u_n, u_t)).
+enum class AbsorbingCondition {
+  ClaytonEngquist,  ///< "P" (2.42): (d_t + c_p d_n) u_n = 0, (d_t + c_s d_n) u_t = 0
+  Sochaki,          ///< "M" (2.45): {d_t + diag(c_p, c_s) d_n + [[0, c_p - c_s], [c_p - c_s, 0]] d_t} u = 0
+  Higdon            ///< (2.41): (d_t + c_p d_n)(d_t + c_s d_n) u = 0 (second order: plane-wave analysis only)
+};
+
+/// dv/dt of a boundary particle with unit outward normal n, velocity gradient L and velocity v (2D). Throws
+/// std::invalid_argument for Higdon (no first-order velocity form) or a normal that is not of unit length (1e-12).
+Eigen::Vector2d absorbing_acceleration(AbsorbingCondition condition, double c_p, double c_s, const Eigen::Vector2d& n,
+                                       const Eigen::Matrix2d& L, const Eigen::Vector2d& v, bool convective = false);
+
+/// The 1D condition (2.69)-(2.70): dv/dt = -c n dv/dx (n = +1 at the right end, -1 at the left), plus v dv/dx with
+/// the convective term.
+double absorbing_acceleration_1d(double c, double n, double dvdx, double v, bool convective = false);
+
+}  // namespace sphstab
