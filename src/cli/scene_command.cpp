@@ -165,10 +165,9 @@ void run_scene(const SceneArgs& a) {
       .dt = dt, .t_end = t_end, .record_every = every, .yield_stress = sc.yield, .neighbour_skin = skin};
   o.observer = [&](long step, double t, const Eigen::VectorXd& y) {
     const Eigen::Matrix2Xd x = rate_form_positions(scheme, y);
-    std::printf("%s",
-                csv_line({std::to_string(step), num(t), num(scheme.kinetic_energy(y)),
-                          std::to_string(find_fragments(x, bond).count()), num(sc.measure(x, y)), "", ""})
-                    .c_str());
+    std::printf("%s", csv_line({std::to_string(step), num(t), num(scheme.kinetic_energy(y)),
+                                std::to_string(find_fragments(x, bond).count()), num(sc.measure(x, y)), "", ""})
+                          .c_str());
     std::fflush(stdout);
     if (!a.out.empty()) {
       const std::string name = "scene_" + std::to_string(step) + ".vtp";

@@ -50,3 +50,43 @@ def read_vtp(path, names):
 
     pts = array("Points")
     return pts[0], pts[1], {n: array(n)[0] for n in names}
+
+
+def frozen_modes(out, title, path="frozen.png"):
+    """One panel per row of out/frozen_spectrum.csv (common/gms.hpp frozen_spectra_along_run): the most unstable
+    mode's velocity shape (arrows, |v| coloured; red cross: its largest velocity) at the state's particle positions,
+    titled with the growth rate and the number of unstable eigenvalues. Returns False (and writes nothing) without the CSV."""
+    import os
+
+    spec_path = os.path.join(out, "frozen_spectrum.csv")
+    if not os.path.exists(spec_path):
+        return False
+    rows = read(spec_path)
+    ncol = 4
+    nrow = (len(rows) + ncol - 1) // ncol
+    fig, axes = plt.subplots(nrow, ncol, figsize=(4.2 * ncol, 2.6 * nrow + 0.6), squeeze=False, layout="constrained")
+    for k, r in enumerate(rows):
+        ax = axes[k // ncol][k % ncol]
+        eps = "0" if num(r["eps"]) == 0 else "%g" % num(r["eps"])
+        visc = "visc" if num(r["viscosity"]) else "novisc"
+        m = read(os.path.join(out, f"frozen_mode_{r['state']}_eps{eps}_{visc}.csv"))
+        x = [num(q["x"]) for q in m]
+        y = [num(q["y"]) for q in m]
+        a = [math.hypot(num(q["vx"]), num(q["vy"])) for q in m]
+        amax = max(a) or 1.0
+        ax.scatter(x, y, c=[v / amax for v in a], s=2, cmap="viridis", linewidths=0)
+        if int(num(r["unstable_eigenvalues"])) > 0:
+            ax.plot([num(r["mode_peak_x"])], [num(r["mode_peak_y"])], "rx", ms=6)
+        if num(r["growth_rate"]) > 0:
+            ax.quiver(x, y, [num(q["vx"]) / amax for q in m], [num(q["vy"]) / amax for q in m], scale=30, width=0.002)
+        ax.set_aspect("equal")
+        ax.set_xticks([])
+        ax.set_yticks([])
+        ax.set_title(f"t = {num(r['t']):.0f}, ε = {eps}, viscosity {'on' if visc == 'visc' else 'off'}: "
+                     f"growth {num(r['growth_rate']):.3g}, {int(num(r['unstable_eigenvalues']))} unstable", fontsize=7)
+    for k in range(len(rows), nrow * ncol):
+        axes[k // ncol][k % ncol].axis("off")
+    fig.suptitle(title + " (most unstable mode: arrows, |v| coloured; frozen states, velocities zeroed)", fontsize=9)
+    fig.savefig(os.path.join(out, path), dpi=110)
+    plt.close(fig)
+    return True

@@ -1,18 +1,23 @@
 #pragma once
 /// \file study.hpp
-/// Helpers shared by the study drivers (studies/<name>/main.cpp): wall time, fits, random vectors, h grids and the
-/// number formats of summaries. Drivers compute and write data (CSV, summary.json); the prose of a study lives in
-/// its README.md and summary.md.in (rendered by scripts/render_summary.py).
+/// Helpers shared by the study drivers (studies/<name>/main.cpp): wall and CPU time, parallel runs, fits, random
+/// vectors, h grids and the number formats of summaries. Drivers compute and write data (CSV, summary.json); the prose
+/// of a study lives in its README.md and summary.md.in (rendered by scripts/render_summary.py).
 #include <Eigen/Core>
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <exception>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "sphstab/core/format.hpp"
@@ -39,6 +44,29 @@ inline std::string load_average() {
   std::ifstream f("/proc/loadavg");
   std::string a;
   return f >> a ? a : "-";
+}
+
+/// Calls job(k) for k = 0 .. count - 1 on `threads` threads, each index once, started in increasing order; each job
+/// writes its own result slot, so the results do not depend on the thread count. The first exception a job throws is
+/// rethrown here once every thread has stopped (the other threads take no new index after it).
+template <class Job>
+void parallel_for(std::size_t count, int threads, Job job) {
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr error;
+  std::mutex m;
+  auto worker = [&] {
+    for (std::size_t k; (k = next++) < count;) try {
+        job(k);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(m);
+        if (!error) error = std::current_exception();
+        next = count;
+      }
+  };
+  std::vector<std::thread> pool;
+  for (int i = 0; i < std::max(1, threads); ++i) pool.emplace_back(worker);
+  for (auto& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
 }
 
 /// Least-squares slope of log|y| against log x over the points with x > 0 and finite non-zero y (the observed order

@@ -16,17 +16,19 @@
 #include <iostream>
 #include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
+#include "common/gms.hpp"
 #include "common/study.hpp"
 #include "sphstab/analysis/fragments.hpp"
 #include "sphstab/analysis/oscillation.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/forms/rate_form.hpp"
+#include "sphstab/forms/rate_form_state.hpp"
 #include "sphstab/growth/rate_form_spectrum.hpp"
 #include "sphstab/integrate/rate_form_run.hpp"
 #include "sphstab/io/csv.hpp"
+#include "sphstab/io/rate_form_vtk.hpp"
 #include "sphstab/io/vtk.hpp"
 #include "sphstab/problems/cantilever_plate.hpp"
 
@@ -56,7 +58,7 @@ struct PlateCase {
 struct PlateRun {
   PlateCase c;
   int particles = 0;
-  double dt = 0, wall = 0;
+  double dt = 0, wall = 0, cpu = 0;  ///< wall and run-thread CPU seconds of the run
   long steps = 0;
   std::string status;
   OscillationMeasure osc;
@@ -93,15 +95,6 @@ PlateCase gms_plate(double H, double mu) {
   return c;
 }
 
-RateFormOptions gms_options(const PlateCase& c) {
-  return {.continuity = ContinuityForm::Divergence,
-          .xsph = 0.5,
-          .viscosity = c.alpha > 0 || c.beta > 0 ? ViscositySwitch::Compression : ViscositySwitch::Off,
-          .viscosity_alpha = c.alpha,
-          .viscosity_beta = c.beta,
-          .artificial_stress = c.eps};
-}
-
 struct PlateScene {
   ParticleSet<2> particles;
   std::shared_ptr<const Discretisation<2>> disc;
@@ -118,7 +111,7 @@ PlateScene make_scene(const PlateCase& c) {
   const double dp = s.particles.spacing;
   const Kernel<2> kernel(KernelType::CubicSpline);
   s.disc = make_discretisation(s.particles, kernel, c.h_factor * dp);
-  s.scheme = std::make_unique<RateFormScheme<2>>(s.disc, material_of(c), gms_options(c));
+  s.scheme = std::make_unique<RateFormScheme<2>>(s.disc, material_of(c), study::gms_options(c.eps, c.alpha, c.beta));
   s.y0 = s.scheme->uniform_state();
   const ParticleSet<2>& p = s.particles;
   for (int i = 0; i < p.size(); ++i) {
@@ -132,30 +125,6 @@ PlateScene make_scene(const PlateCase& c) {
     if (i + c.across < p.size()) s.bonds.emplace_back(i, i + c.across);
   }
   return s;
-}
-
-Eigen::Vector2d position(const PlateScene& s, const Eigen::VectorXd& y, int i) {
-  const int o = s.scheme->position_offset(i);
-  return o < 0 ? Eigen::Vector2d(s.particles.x.row(i).transpose()) : Eigen::Vector2d(y.segment<2>(o));
-}
-
-void write_frame(const PlateScene& s, const Eigen::VectorXd& y, const std::string& path) {
-  const int n = s.particles.size();
-  Eigen::MatrixXd pts(n, 2);
-  Eigen::VectorXd vel = Eigen::VectorXd::Zero(2 * n), sxx(n), sxy(n), rho(n), fixed(n);
-  const RateFormScheme<2>& sc = *s.scheme;
-  for (int i = 0; i < n; ++i) {
-    pts.row(i) = position(s, y, i).transpose();
-    if (sc.velocity_offset(i) >= 0) vel.segment<2>(2 * i) = y.segment<2>(sc.velocity_offset(i));
-    rho[i] = y[sc.density_offset(i)];
-    const double p = 1.0 * (rho[i] - 1.0);  // P = c0^2 (rho - rho0)
-    sxx[i] = y[sc.stress_offset(i)] - p;    // sigma_xx = -P + S_xx
-    sxy[i] = y[sc.stress_offset(i) + 2];
-    fixed[i] = s.particles.role[i] == Role::Fixed;
-  }
-  write_vtp(
-      path, pts,
-      {{"velocity", 2, vel}, {"sigma_xx", 1, sxx}, {"sigma_xy", 1, sxy}, {"density", 1, rho}, {"fixed", 1, fixed}});
 }
 
 PlateRun run_plate(const PlateCase& c, const std::string& out) {
@@ -174,18 +143,17 @@ PlateRun run_plate(const PlateCase& c, const std::string& out) {
   ro.observer = [&](long, double t, const Eigen::VectorXd& y) {
     double u = 0;
     for (int i : s.tip) u += y[s.scheme->position_offset(i) + 1] - s.particles.x(i, 1);
+    const Eigen::Matrix2Xd pts = rate_form_positions(*s.scheme, y);
     double stretch = 0;
     int at = -1;
     for (auto [i, j] : s.bonds) {
-      const double d = (position(s, y, i) - position(s, y, j)).norm() / dp;
+      const double d = (pts.col(i) - pts.col(j)).norm() / dp;
       if (d > stretch) stretch = d, at = i;
     }
     r.t.push_back(t);
     r.tip.push_back(u / static_cast<double>(s.tip.size()));
     r.ke.push_back(s.scheme->kinetic_energy(y));
     r.stretch.push_back(stretch);
-    Eigen::Matrix2Xd pts(2, s.particles.size());
-    for (int i = 0; i < s.particles.size(); ++i) pts.col(i) = position(s, y, i);
     const Fragments fr = find_fragments(pts, 1.5 * dp);
     r.fragments.push_back(fr.count());
     if (fr.count() > 1 && std::isnan(r.break_time)) {
@@ -194,18 +162,20 @@ PlateRun run_plate(const PlateCase& c, const std::string& out) {
       for (int i = 0; i < s.particles.size(); ++i)
         if (fr.label[i] != fr.label[0]) r.break_x = std::min(r.break_x, pts(0, i));  // particle 0 is in the clamp
     }
-    if (stretch > r.max_stretch) r.max_stretch = stretch, r.max_stretch_x = position(s, y, at)[0], r.max_stretch_t = t;
+    if (stretch > r.max_stretch) r.max_stretch = stretch, r.max_stretch_x = pts(0, at), r.max_stretch_t = t;
     if (c.vtk_frames > 0 && t >= frames.size() * frame_every - 0.5 * ro.dt) {
       const std::string name = c.tag + "_" + std::to_string(frames.size()) + ".vtp";
-      write_frame(s, y, vtk_dir + "/" + name);
+      write_rate_form_vtp(vtk_dir + "/" + name, *s.scheme, y);
       frames.emplace_back(t, name);
     }
   };
-  const RateFormRunResult res = run_rate_form(*s.scheme, s.y0, ro);
+  study::RunCost cost;
+  const RateFormRunResult res = study::timed_run(*s.scheme, s.y0, ro, cost);
   if (!frames.empty()) write_pvd(vtk_dir + "/" + c.tag + ".pvd", frames);
   r.dt = res.dt;
   r.steps = res.steps;
-  r.wall = res.wall_seconds;
+  r.wall = cost.wall;
+  r.cpu = cost.cpu;
   r.status = run_status_name(res.status);
   r.y_end = res.y;
   r.osc = measure_oscillation(r.t, r.tip);
@@ -267,22 +237,7 @@ LinearPeriod linear_period(const PlateCase& c) {
 /// Runs the cases on `threads` threads (one scheme per thread), results in case order.
 std::vector<PlateRun> run_all(const std::vector<PlateCase>& cases, const std::string& out, int threads) {
   std::vector<PlateRun> runs(cases.size());
-  std::size_t next = 0;
-  std::mutex m;
-  auto worker = [&] {
-    for (;;) {
-      std::size_t k;
-      {
-        std::lock_guard<std::mutex> lock(m);
-        if (next >= cases.size()) return;
-        k = next++;
-      }
-      runs[k] = run_plate(cases[k], out);
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
-  for (auto& t : pool) t.join();
+  study::parallel_for(cases.size(), threads, [&](std::size_t k) { runs[k] = run_plate(cases[k], out); });
   return runs;
 }
 
@@ -345,7 +300,8 @@ std::vector<CsvCell> run_cells(const PlateRun& r) {
           *std::max_element(r.fragments.begin(), r.fragments.end()),
           r.break_time,
           r.break_x,
-          r.wall};
+          r.wall,
+          r.cpu};
 }
 
 const std::vector<std::string> kRunColumns = {"tag",
@@ -377,46 +333,12 @@ const std::vector<std::string> kRunColumns = {"tag",
                                               "max_fragments",
                                               "break_time",
                                               "break_x",
-                                              "wall_seconds"};
+                                              "wall_seconds",
+                                              "cpu_seconds"};
 
 void write_runs(const std::string& path, const std::vector<PlateRun>& runs) {
   CsvWriter w(path, kRunColumns);
   for (const PlateRun& r : runs) w.row(run_cells(r));
-}
-
-/// Frozen-state spectrum: the state of `run` (velocities set to 0) under the scheme with artificial stress eps. Writes
-/// the most unstable mode's shape with the particle positions.
-struct FrozenSpectrum {
-  double growth_rate = kNaN;
-  int unstable = 0;      ///< eigenvalues with Re lambda > 1e-6 |lambda|max
-  double mode_x = kNaN;  ///< velocity-weighted mean x of the most unstable mode
-};
-
-FrozenSpectrum frozen_spectrum(const PlateCase& c, const Eigen::VectorXd& y_run, double eps, const std::string& path) {
-  PlateCase cc = c;
-  cc.eps = eps;
-  PlateScene s = make_scene(cc);
-  Eigen::VectorXd y = y_run;
-  const Discretisation<2>& d = *s.disc;
-  for (int f = 0; f < d.free_count(); ++f) y.segment<2>(s.scheme->velocity_offset(d.free[f])).setZero();
-  const RateFormSpectrum sp = rate_form_spectrum(*s.scheme, y, {.want_mode = true});
-  if (sp.info() != Status::Successful) throw std::runtime_error("frozen spectrum: " + sp.reason);
-  FrozenSpectrum out;
-  out.growth_rate = sp.growth_rate;
-  double scale = 0;
-  for (const auto& l : sp.eigenvalues) scale = std::max(scale, std::abs(l));
-  for (const auto& l : sp.eigenvalues) out.unstable += l.real() > 1e-6 * scale;
-  std::ofstream f(path);
-  f << "x,y,vx,vy\n";
-  double wx = 0, wsum = 0;
-  for (int k = 0; k < d.free_count(); ++k) {
-    const Eigen::Vector2d x = position(s, y, d.free[k]);
-    const Eigen::Vector2d v = sp.mode.segment<2>(2 * k);
-    wx += v.squaredNorm() * x[0], wsum += v.squaredNorm();
-    f << csv_line({format_number(x[0], 10), format_number(x[1], 10), format_number(v[0], 8), format_number(v[1], 8)});
-  }
-  out.mode_x = wx / wsum;
-  return out;
 }
 
 }  // namespace
@@ -581,24 +503,15 @@ int main(int argc, char** argv) {
         }
       }
     }
-    // Frozen-state spectra of the root-break case at its first tip extreme (a quarter period, v ~ 0).
+    // Frozen-state spectra of the root-break case (eps = 0 run) at about T/16 and T/8 of GMS's period (t = 70, 140),
+    // before the break (t = 289 at 10 across), the later one also with the viscosity on.
     {
       PlateCase c = root[0];
-      c.tag = "root_quarter";
-      c.vtk_frames = 0;
-      c.periods = 0.25 * c.paper / thin_period(c);
-      const PlateRun q = run_plate(c, out);
-      CsvWriter w(out + "/frozen_spectrum.csv", {"eps", "growth_rate", "unstable_eigenvalues", "mode_mean_x"});
-      for (double e : {0.0, 0.3}) {
-        const FrozenSpectrum fsp =
-            frozen_spectrum(c, q.y_end, e, out + "/frozen_mode_eps" + format_number(e, 2) + ".csv");
-        w.row({e, fsp.growth_rate, fsp.unstable, fsp.mode_x});
-        const std::string k = e == 0 ? "frozen_eps0" : "frozen_eps03";
-        sum.set(k + "_growth", fsp.growth_rate, 3);
-        sum.set(k + "_unstable", fsp.unstable);
-        sum.set(k + "_mode_x", fsp.mode_x, 3);
-      }
-      sum.set("frozen_time", q.t.back(), 4);
+      const PlateScene scene = make_scene(c);
+      const double h = c.h_factor * scene.particles.spacing;
+      study::frozen_spectra_along_run(*scene.scheme, scene.y0,
+                                      {.dt = c.cfl * h / scene.scheme->material().p_wave_speed()}, {70, 140}, 140, out,
+                                      sum);
     }
 
     // Summary numbers.

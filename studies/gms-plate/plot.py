@@ -3,9 +3,10 @@
 
 periods.png: period against tip speed per shear modulus, H = 2 and H = 1: sphstab runs, GMS Tables 1/2 (T_sph), the
 thin-plate (7.1) and Timoshenko periods. convergence.png: period against dp (H = 2, mu = 0.22, V_f = 0.01) with the
-linear (spectral) period and the extrapolated limit; tip histories. root.png: snapshots of sigma_xx near the root for
-the mu = 0.6, V_f = 0.05 plate with eps = 0 and eps = 0.3, and the most unstable mode of the frozen quarter-period
-state.
+linear (spectral) period and the extrapolated limit; tip histories; CPU seconds against the period error (Pareto).
+root.png: snapshots of sigma_xx near the root for the mu = 0.6, V_f = 0.05 plate with eps = 0 and eps = 0.3, and the
+most unstable mode of the frozen state at t = 140 (viscosity on) for both eps. frozen.png: every frozen spectrum's
+most unstable mode.
 """
 import glob
 import math
@@ -14,25 +15,9 @@ import sys
 import xml.etree.ElementTree as ET
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from plot_common import num, plt, read  # noqa: E402
+from plot_common import frozen_modes, num, plt, read, read_vtp  # noqa: E402
 
 MU_COLOUR = {"0.22": "tab:blue", "0.3": "tab:orange", "0.6": "tab:green"}
-
-
-def read_vtp(path):
-    """Points (x, y) and point-data arrays of an ASCII .vtp written by io/vtk.hpp."""
-    root = ET.parse(path).getroot()
-    pts, fields = None, {}
-    for da in root.iter("DataArray"):
-        vals = [float(v) for v in da.text.split()]
-        nc = int(da.get("NumberOfComponents", "1"))
-        name = da.get("Name")
-        rows = [vals[i:i + nc] for i in range(0, len(vals), nc)]
-        if name in (None, "Points"):
-            pts = rows
-        else:
-            fields[name] = rows if nc > 1 else vals
-    return pts, fields
 
 
 def periods(out):
@@ -65,7 +50,7 @@ def convergence(out):
     conv = read(os.path.join(out, "convergence.csv"))
     lin = {r["across"]: num(r["linear_period"]) for r in read(os.path.join(out, "linear.csv"))}
     ext = read(os.path.join(out, "extrapolation.csv"))
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+    fig, axes = plt.subplots(1, 3, figsize=(16, 4.2))
     ax = axes[0]
     dp = [num(r["dp"]) for r in conv]
     ax.plot(dp, [num(r["period"]) for r in conv], "o-", label="run, V_f = 0.01, ε = 0.3")
@@ -90,6 +75,22 @@ def convergence(out):
     ax.set_xlabel("t (cm / c0)")
     ax.set_ylabel("tip displacement (cm)")
     ax.legend(fontsize=7)
+    # Cost against accuracy: the run thread's CPU seconds against the period error, per resolution.
+    ax = axes[2]
+    cpu = [num(r["cpu_seconds"]) for r in conv]
+    refs = [("Timoshenko", num(conv[0]["timoshenko_period"]), "o-")]
+    if ext and not math.isnan(num(ext[0]["extrapolated_period"])):
+        refs.append(("the extrapolated period", num(ext[0]["extrapolated_period"]), "s--"))
+    for name, ref, style in refs:
+        ax.loglog(cpu, [abs(num(r["period"]) / ref - 1) for r in conv], style, label=f"vs {name}")
+    for r, c in zip(conv, cpu):
+        ax.annotate(f"{r['across']} across", (c, abs(num(r["period"]) / refs[0][1] - 1)), fontsize=7,
+                    textcoords="offset points", xytext=(4, 4))
+    ax.set_xlabel("CPU seconds of the run (1.45 thin-plate periods)")
+    ax.set_ylabel("|period error|")
+    ax.set_title("cost against period error (Pareto)", fontsize=9)
+    ax.legend(fontsize=7)
+    ax.grid(True, which="both", alpha=0.3)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "convergence.png"), dpi=130)
     plt.close(fig)
@@ -106,16 +107,16 @@ def root(out):
         for row, k in enumerate([1, 3, 6]):
             if k >= len(files):
                 continue
-            pts, f = read_vtp(files[k])
-            keep = [i for i, p in enumerate(pts) if p[0] < 7]
+            px, py, f = read_vtp(files[k], ["sigma_xx"])
+            keep = [i for i, x in enumerate(px) if x < 7]
             ax = axes[row][col]
-            sc = ax.scatter([pts[i][0] for i in keep], [pts[i][1] for i in keep], c=[f["sigma_xx"][i] for i in keep],
+            sc = ax.scatter([px[i] for i in keep], [py[i] for i in keep], c=[f["sigma_xx"][i] for i in keep],
                             s=4, cmap="coolwarm", vmin=-0.06, vmax=0.06)
             ax.set_aspect("equal")
             ax.set_title(f"ε = {r['eps']}, t = {times[k]:.0f}: σ_xx", fontsize=9)
         fig.colorbar(sc, ax=axes[2][col], orientation="horizontal", fraction=0.08)
     for col, e in enumerate(("0", "0.3")):
-        path = os.path.join(out, f"frozen_mode_eps{e}.csv")
+        path = os.path.join(out, f"frozen_mode_t140_eps{e}_visc.csv")
         if not os.path.exists(path):
             continue
         m = read(path)
@@ -127,7 +128,7 @@ def root(out):
         ax.scatter(x, y, c=[v / amax for v in a], s=3, cmap="viridis")
         ax.quiver(x, y, [num(r["vx"]) / amax for r in m], [num(r["vy"]) / amax for r in m], scale=25, width=0.002)
         ax.set_aspect("equal")
-        ax.set_title(f"most unstable mode, frozen state at T/4, ε = {e} (|v| coloured)", fontsize=9)
+        ax.set_title(f"most unstable mode, frozen state at t = 140 (about T/8), viscosity on, ε = {e} (|v| coloured)", fontsize=9)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "root.png"), dpi=120)
     plt.close(fig)
@@ -138,6 +139,7 @@ def main():
     periods(out)
     convergence(out)
     root(out)
+    frozen_modes(out, "Cantilever plate, mu = 0.6, V_f = 0.05, eps = 0 run before the root break: linearised spectra")
 
 
 if __name__ == "__main__":

@@ -10,7 +10,6 @@
 // rho0 = c0 = 1 (K = 1), lengths in cm, time in cm / c0; the SI case in m, s, Pa, kg/m^3.
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -19,16 +18,19 @@
 #include <limits>
 #include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
+#include "common/gms.hpp"
 #include "common/study.hpp"
 #include "sphstab/analysis/fragments.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/forms/rate_form.hpp"
+#include "sphstab/forms/rate_form_state.hpp"
 #include "sphstab/integrate/rate_form_run.hpp"
 #include "sphstab/io/csv.hpp"
+#include "sphstab/io/rate_form_vtk.hpp"
 #include "sphstab/io/vtk.hpp"
+#include "sphstab/kernel/kernel.hpp"
 #include "sphstab/problems/colliding_rings.hpp"
 
 using namespace sphstab;
@@ -61,33 +63,16 @@ struct RingRun {
   RingCase c;
   Units u;
   int particles = 0, per_ring = 0;
-  double h = 0, dt = 0, speed = 0, wall = 0, cpu = 0, us_per_particle_step = kNaN, us_cpu = kNaN;
-  long steps = 0, builds = 0;
+  double h = 0, dt = 0, speed = 0;
+  study::RunCost cost;
   std::string status;
   // Series, one entry per record (times in GMS units, velocities over c0, lengths over the length unit).
   std::vector<double> t, ke, dmin, vx0, vx1, sxx_max;
   std::vector<int> frag_all, frag0, frag1, lost0, lost1;
 };
 
-RateFormOptions gms_options(double eps) {
-  return {.continuity = ContinuityForm::Divergence,
-          .xsph = 0.5,
-          .viscosity = ViscositySwitch::Compression,
-          .viscosity_alpha = 1,
-          .viscosity_beta = 2,
-          .artificial_stress = eps};
-}
-
 /// The SI material of the issue: E = 1e7 Pa, nu = 0.3975 (mu / K = 0.22, GMS's ratio), rho0 = 1 kg/m^3.
 RateFormMaterial si_material() { return RateFormMaterial::from_youngs(1e7, 0.3975, 1.0); }
-
-/// Positions 2 x N of the state.
-Eigen::Matrix2Xd positions(const RateFormScheme<2>& s, const Eigen::VectorXd& y) {
-  const int n = s.discretisation().size();
-  Eigen::Matrix2Xd x(2, n);
-  for (int i = 0; i < n; ++i) x.col(i) = y.segment<2>(s.position_offset(i));
-  return x;
-}
 
 /// Smallest distance between a particle of ring 0 (indices [0, n)) and one of ring 1 ([n, 2n)), exact when below
 /// `band`; otherwise some value >= band (the candidates are the particles within `band` in x of the other ring's
@@ -108,25 +93,6 @@ double ring_distance(const Eigen::Matrix2Xd& x, int n, double band) {
   return std::sqrt(d2);
 }
 
-void write_frame(const RateFormScheme<2>& s, const CollidingRings& rings, const Eigen::VectorXd& y,
-                 const std::string& path) {
-  const int n = s.discretisation().size();
-  const RateFormMaterial& m = s.material();
-  Eigen::MatrixXd pts(n, 2);
-  Eigen::VectorXd vel(2 * n), sxx(n), sxy(n), rho(n), ring(n);
-  for (int i = 0; i < n; ++i) {
-    pts.row(i) = y.segment<2>(s.position_offset(i)).transpose();
-    vel.segment<2>(2 * i) = y.segment<2>(s.velocity_offset(i));
-    rho[i] = y[s.density_offset(i)];
-    const double p = m.bulk_modulus * (rho[i] / m.density - 1);  // P = c0^2 (rho - rho0)
-    sxx[i] = y[s.stress_offset(i)] - p;                          // sigma_xx = -P + S_xx
-    sxy[i] = y[s.stress_offset(i) + 2];
-    ring[i] = rings.ring[i];
-  }
-  write_vtp(path, pts,
-            {{"velocity", 2, vel}, {"sigma_xx", 1, sxx}, {"sigma_xy", 1, sxy}, {"density", 1, rho}, {"ring", 1, ring}});
-}
-
 RingRun run_rings(const RingCase& c, const std::string& out) {
   RingRun r{.c = c};
   const RateFormMaterial mat =
@@ -141,13 +107,14 @@ RingRun run_rings(const RingCase& c, const std::string& out) {
   r.per_ring = n;
   r.h = 1.5 * c.dp;
   const Kernel<2> kernel(KernelType::CubicSpline);
-  const RateFormScheme<2> scheme(make_discretisation(rings.particles, kernel, r.h), mat, gms_options(c.eps));
+  const RateFormScheme<2> scheme(make_discretisation(rings.particles, kernel, r.h), mat, study::gms_options(c.eps));
   Eigen::VectorXd y0 = scheme.uniform_state();
   for (int i = 0; i < r.particles; ++i) scheme.set_velocity(y0, i, rings.velocity.col(i));
   const double support = kernel.support_radius(r.h), bond = 1.5 * c.dp;
   r.dt = 0.5 * r.h / mat.p_wave_speed();
   const double t_end = c.steps > 0 ? c.steps * r.dt : c.t_end;
 
+  const Eigen::VectorXd ring_field = Eigen::Map<const Eigen::VectorXi>(rings.ring.data(), r.particles).cast<double>();
   const std::string vtk_dir = out + "/vtk/" + c.tag;
   if (c.frames > 0) fs::create_directories(vtk_dir);
   std::vector<std::pair<double, std::string>> frames;
@@ -158,7 +125,7 @@ RingRun run_rings(const RingCase& c, const std::string& out) {
                         .record_every = std::max(1, static_cast<int>(std::lround(record_dt / r.dt))),
                         .neighbour_skin = c.skin * c.dp};
   ro.observer = [&](long step, double t, const Eigen::VectorXd& y) {
-    const Eigen::Matrix2Xd x = positions(scheme, y);
+    const Eigen::Matrix2Xd x = rate_form_positions(scheme, y);
     const Fragments all = find_fragments(x, bond);
     const Fragments f0 = find_fragments(x.leftCols(n), bond), f1 = find_fragments(x.rightCols(n), bond);
     double v0 = 0, v1 = 0, smax = -kInf;
@@ -182,20 +149,13 @@ RingRun run_rings(const RingCase& c, const std::string& out) {
     if (c.frames > 0 && (t >= frames.size() * frame_every - 0.5 * ro.dt || step * ro.dt >= t_end - 0.5 * ro.dt)) {
       char name[64];
       std::snprintf(name, sizeof name, "%s_%06ld.vtp", c.tag.c_str(), step);
-      write_frame(scheme, rings, y, vtk_dir + "/" + name);
+      write_rate_form_vtp(vtk_dir + "/" + name, scheme, y, {{"ring", 1, ring_field}});
       frames.emplace_back(t, name);
     }
   };
-  const double cpu0 = study::thread_cpu_seconds();
-  const RateFormRunResult run = run_rate_form(scheme, y0, ro);
-  r.cpu = study::thread_cpu_seconds() - cpu0;
-  r.wall = run.wall_seconds;
-  r.steps = run.steps;
-  r.builds = run.neighbour_builds;
+  const RateFormRunResult run = study::timed_run(scheme, y0, ro, r.cost);
   r.dt = run.dt;
   r.status = run.completed() ? "completed" : run.message;
-  r.us_per_particle_step = 1e6 * run.wall_seconds / (static_cast<double>(run.steps) * r.particles);
-  r.us_cpu = 1e6 * r.cpu / (static_cast<double>(run.steps) * r.particles);
   if (!frames.empty()) write_pvd(vtk_dir + "/" + c.tag + ".pvd", frames);
 
   std::ofstream csv(out + "/series/" + c.tag + ".csv");
@@ -212,24 +172,18 @@ RingRun run_rings(const RingCase& c, const std::string& out) {
 /// Runs the cases on `threads` threads (one scheme per run), results in case order.
 std::vector<RingRun> run_all(const std::vector<RingCase>& cases, const std::string& out, int threads) {
   std::vector<RingRun> runs(cases.size());
-  std::atomic<std::size_t> next{0};
   std::mutex m;
-  auto worker = [&] {
-    for (std::size_t k; (k = next++) < cases.size();) {
-      runs[k] = run_rings(cases[k], out);
-      std::lock_guard<std::mutex> lock(m);
-      const RingRun& r = runs[k];
-      std::printf(
-          "%-12s %5d particles, %6ld steps, %7.1f s wall (%.1f s CPU), %.3g us per particle-step (%.3g CPU), "
-          "%ld builds: %s\n",
-          r.c.tag.c_str(), r.particles, r.steps, r.wall, r.cpu, r.us_per_particle_step, r.us_cpu, r.builds,
-          r.status.c_str());
-      std::fflush(stdout);
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
-  for (auto& t : pool) t.join();
+  study::parallel_for(cases.size(), threads, [&](std::size_t k) {
+    runs[k] = run_rings(cases[k], out);
+    std::lock_guard<std::mutex> lock(m);
+    const RingRun& r = runs[k];
+    std::printf(
+        "%-12s %5d particles, %6ld steps, %7.1f s wall (%.1f s CPU), %.3g us per particle-step (%.3g CPU), "
+        "%ld builds: %s\n",
+        r.c.tag.c_str(), r.particles, r.cost.steps, r.cost.wall, r.cost.cpu, r.cost.us_per_particle_step(),
+        r.cost.us_cpu(), r.cost.neighbour_builds, r.status.c_str());
+    std::fflush(stdout);
+  });
   return runs;
 }
 
@@ -286,6 +240,27 @@ double ring_ovalling_period(double K, double mu, double R, double t) {
   return 2 * M_PI / w;
 }
 
+/// Frozen-state spectra (common/gms.hpp) along the eps = 0 collision at a coarser grid (dp_spectrum: dense
+/// eigenproblems of 2N and, with the viscosity on, 4N for N particles): at the start (at rest in the rings' frame:
+/// stress free, so stable) and at `times` (the first: the contact, when the closest particles of the two rings are
+/// nearest, also with the viscosity on; the later ones: the rebound, with the rings in hoop tension).
+void frozen_spectra(double dp_spectrum, double gap, double skin, const std::vector<double>& times,
+                    const std::string& out, study::Summary& sum) {
+  const RateFormMaterial mat{.density = 1, .bulk_modulus = 1, .shear_modulus = 0.22};
+  const CollidingRings rings =
+      make_colliding_rings({.inner_radius = 3, .outer_radius = 4, .spacing = dp_spectrum, .gap = gap, .speed = 0.059});
+  const double h = 1.5 * dp_spectrum;
+  const RateFormScheme<2> scheme(make_discretisation(rings.particles, Kernel<2>(KernelType::CubicSpline), h), mat,
+                                 study::gms_options(0));
+  Eigen::VectorXd y0 = scheme.uniform_state();
+  for (int i = 0; i < rings.size(); ++i) scheme.set_velocity(y0, i, rings.velocity.col(i));
+  study::frozen_spectra_along_run(scheme, y0,
+                                  {.dt = 0.5 * h / mat.p_wave_speed(), .neighbour_skin = skin * dp_spectrum}, times,
+                                  times.front(), out, sum);
+  sum.set("frozen_dp", dp_spectrum, 3);
+  sum.set("frozen_particles", rings.size());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) try {
@@ -295,6 +270,8 @@ int main(int argc, char** argv) try {
   int threads = 2, frames = 12;
   long si_steps = 300;
   bool si_full = false, quick = false;
+  double dp_spectrum = 0.25;
+  std::vector<double> spectrum_times = {5, 25, 45};
   app.add_option("--out", out, "output directory");
   app.add_option("--t-end", t_end, "run length in cm/c0 (default 250, about 2 ovalling periods)")
       ->check(CLI::Range(0.01, 1e5));
@@ -308,9 +285,16 @@ int main(int argc, char** argv) try {
   app.add_option("--frames", frames, "VTK frames per run (0: none)")->check(CLI::Range(0, 1000));
   app.add_option("--si-steps", si_steps, "steps of the timed SI run")->check(CLI::Range(1L, 1000000L));
   app.add_flag("--si-full", si_full, "run the SI configuration over the whole collision (about 20 min per eps)");
+  app.add_option("--dp-spectrum", dp_spectrum, "grid spacing of the frozen-state spectra (0: none)")
+      ->check(CLI::Range(0.0, 0.5));
+  app.add_option("--spectrum-times", spectrum_times,
+                 "times of the frozen spectra (the first also with the viscosity on), cm/c0")
+      ->delimiter(',')
+      ->check(CLI::Range(0.0, 1e4));
   app.add_flag("--quick", quick, "pipeline check: t_end 20, 20 SI steps, 3 frames");
   CLI11_PARSE(app, argc, argv);
-  if (quick) t_end = 20, si_steps = 20, frames = std::min(frames, 3);
+  if (quick) t_end = 20, si_steps = 20, frames = std::min(frames, 3), dp_spectrum = 0.4, spectrum_times = {5};
+  std::sort(spectrum_times.begin(), spectrum_times.end());
   const auto t0 = study::Clock::now();
   const std::string load_start = study::load_average();
   fs::create_directories(out + "/series");
@@ -355,9 +339,9 @@ int main(int argc, char** argv) try {
   const int n_ring = runs.front().per_ring;
   for (const RingRun& r : runs) {
     const RingMeasures m = measure(r);
-    wall_runs += r.wall;
-    cpu_runs += r.cpu;
-    const double t_end_g = r.steps * r.dt / r.u.time();
+    wall_runs += r.cost.wall;
+    cpu_runs += r.cost.cpu;
+    const double t_end_g = r.cost.steps * r.dt / r.u.time();
     runs_csv << csv_line({r.c.tag,
                           r.c.si ? "SI" : "GMS",
                           format_number(r.c.eps),
@@ -367,14 +351,14 @@ int main(int argc, char** argv) try {
                           std::to_string(r.per_ring),
                           format_number(r.h),
                           format_number(r.dt, 8),
-                          std::to_string(r.steps),
+                          std::to_string(r.cost.steps),
                           format_number(t_end_g),
                           r.status,
-                          format_number(r.wall, 4),
-                          format_number(r.cpu, 4),
-                          format_number(r.us_per_particle_step, 4),
-                          format_number(r.us_cpu, 4),
-                          std::to_string(r.builds),
+                          format_number(r.cost.wall, 4),
+                          format_number(r.cost.cpu, 4),
+                          format_number(r.cost.us_per_particle_step(), 4),
+                          format_number(r.cost.us_cpu(), 4),
+                          std::to_string(r.cost.neighbour_builds),
                           format_number(m.contact_first),
                           format_number(m.contact_last),
                           format_number(m.touch_first),
@@ -392,10 +376,10 @@ int main(int argc, char** argv) try {
                           std::to_string(m.lost_max),
                           format_number(m.ke_end_over_ke0),
                           format_number(m.sxx_max)});
-    study::md_row(cost_table,
-                  {r.c.tag, r.c.si ? "SI" : "GMS", std::to_string(r.particles), std::to_string(r.steps),
-                   study::sig(t_end_g, 4), study::fixed(r.wall, 1), study::fixed(r.cpu, 1),
-                   study::sig(r.us_per_particle_step, 3), study::sig(r.us_cpu, 3), std::to_string(r.builds)});
+    study::md_row(cost_table, {r.c.tag, r.c.si ? "SI" : "GMS", std::to_string(r.particles),
+                               std::to_string(r.cost.steps), study::sig(t_end_g, 4), study::fixed(r.cost.wall, 1),
+                               study::fixed(r.cost.cpu, 1), study::sig(r.cost.us_per_particle_step(), 3),
+                               study::sig(r.cost.us_cpu(), 3), std::to_string(r.cost.neighbour_builds)});
     const bool full = r.c.steps == 0;
     if (full)
       study::md_row(
@@ -410,12 +394,12 @@ int main(int argc, char** argv) try {
       // The whole collision (t_end in cm/c0) at this run's cost per particle-step.
       const double full_steps = std::ceil(t_end * r.u.time() / r.dt);
       s.set(k + "_full_steps", full_steps, 4);
-      s.set(k + "_full_minutes", full_steps * r.particles * r.us_cpu * 1e-6 / 60, 2);
-      s.set(k + "_cpu", r.cpu, 3);
-      s.set(k + "_us_cpu", r.us_cpu, 3);
-      s.set(k + "_steps", r.steps);
-      s.set(k + "_wall", r.wall, 3);
-      s.set(k + "_us", r.us_per_particle_step, 3);
+      s.set(k + "_full_minutes", full_steps * r.particles * r.cost.us_cpu() * 1e-6 / 60, 2);
+      s.set(k + "_cpu", r.cost.cpu, 3);
+      s.set(k + "_us_cpu", r.cost.us_cpu(), 3);
+      s.set(k + "_steps", r.cost.steps);
+      s.set(k + "_wall", r.cost.wall, 3);
+      s.set(k + "_us", r.cost.us_per_particle_step(), 3);
       continue;
     }
     const std::string k = r.c.eps > 0 ? "eps03" : "eps0";
@@ -436,11 +420,11 @@ int main(int argc, char** argv) try {
     s.set(k + "_restitution", m.restitution, 3);
     s.set(k + "_ke_end", m.ke_end_over_ke0, 3);
     s.set(k + "_sxx_max", m.sxx_max, 3);
-    s.set(k + "_wall", r.wall, 3);
-    s.set(k + "_us", r.us_per_particle_step, 3);
-    s.set(k + "_us_cpu", r.us_cpu, 3);
-    s.set(k + "_cpu", r.cpu, 3);
-    s.set(k + "_steps", r.steps);
+    s.set(k + "_wall", r.cost.wall, 3);
+    s.set(k + "_us", r.cost.us_per_particle_step(), 3);
+    s.set(k + "_us_cpu", r.cost.us_cpu(), 3);
+    s.set(k + "_cpu", r.cost.cpu, 3);
+    s.set(k + "_steps", r.cost.steps);
     s.set(k + "_status", r.status);
     if (k == "eps0")
       s.set("eps0_verdict", m.frag_ring_end > 1
@@ -481,6 +465,11 @@ int main(int argc, char** argv) try {
   s.set("skin", skin, 3);
   s.set("wall_runs", wall_runs, 3);
   s.set("cpu_runs", cpu_runs, 3);
+  if (dp_spectrum > 0) {
+    const auto ts = study::Clock::now();
+    frozen_spectra(dp_spectrum, gap, skin, spectrum_times, out, s);
+    s.set("frozen_wall", study::seconds_since(ts), 3);
+  }
   s.set("wall_total", study::seconds_since(t0), 3);
   s.set("load_start", load_start);
   s.set("load_end", study::load_average());

@@ -8,7 +8,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from plot_common import num, plt, read, read_vtp  # noqa: E402
+from plot_common import frozen_modes, num, plt, read, read_vtp  # noqa: E402
 
 STYLE = {0.0: ("C3", "eps = 0"), 0.3: ("C0", "eps = 0.3")}
 
@@ -104,3 +104,4 @@ def main(out):
 
 if __name__ == "__main__":
     main(sys.argv[1] if len(sys.argv) > 1 else "results/gms-rings")
+    frozen_modes(sys.argv[1] if len(sys.argv) > 1 else "results/gms-rings", "Colliding rings, eps = 0 collision at the spectrum's dp: linearised spectra")

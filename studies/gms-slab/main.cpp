@@ -11,7 +11,6 @@
 // summary.json. GMS units: rho0 = c0 = 1 (K = 1), lengths in cm, time in cm / c0.
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -20,16 +19,18 @@
 #include <limits>
 #include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
+#include "common/gms.hpp"
 #include "common/study.hpp"
 #include "sphstab/analysis/fragments.hpp"
 #include "sphstab/analysis/neck.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/forms/rate_form.hpp"
+#include "sphstab/forms/rate_form_state.hpp"
 #include "sphstab/integrate/rate_form_run.hpp"
 #include "sphstab/io/csv.hpp"
+#include "sphstab/io/rate_form_vtk.hpp"
 #include "sphstab/io/vtk.hpp"
 #include "sphstab/problems/plastic_slab.hpp"
 
@@ -85,8 +86,8 @@ struct Break {
 struct SlabRun {
   SlabCase c;
   int particles = 0, columns = 0, rows = 0, driven = 0;
-  double h = 0, dt = 0, wall = 0, cpu = 0, us_per_particle_step = kNaN, us_cpu = kNaN, width0 = kNaN;
-  long steps = 0, builds = 0;
+  double h = 0, dt = 0, width0 = kNaN;
+  study::RunCost cost;
   int chunks = 0;
   std::string status;
   std::vector<SlabRecord> records;
@@ -96,22 +97,6 @@ struct SlabRun {
   Break brk, brk_support;  ///< bond radius 1.5 dp and 2h
   double t_stop = 0;
 };
-
-RateFormOptions gms_options(double eps) {
-  return {.continuity = ContinuityForm::Divergence,
-          .xsph = 0.5,
-          .viscosity = ViscositySwitch::Compression,
-          .viscosity_alpha = 1,
-          .viscosity_beta = 2,
-          .artificial_stress = eps};
-}
-
-Eigen::Matrix2Xd positions(const RateFormScheme<2>& s, const Eigen::VectorXd& y) {
-  const int n = s.discretisation().size();
-  Eigen::Matrix2Xd x(2, n);
-  for (int i = 0; i < n; ++i) x.col(i) = y.segment<2>(s.position_offset(i));
-  return x;
-}
 
 double median(std::vector<double> v) {
   if (v.empty()) return kNaN;
@@ -142,26 +127,6 @@ Eigen::Vector2d closest_to_rest(const Eigen::Matrix2Xd& x, const Fragments& f, i
   return mid;
 }
 
-void write_frame(const RateFormScheme<2>& s, const std::vector<char>& driven, const Eigen::VectorXd& y,
-                 const std::string& path) {
-  const int n = s.discretisation().size();
-  Eigen::MatrixXd pts(n, 2);
-  Eigen::VectorXd vel(2 * n), sxx(n), rho(n), seq(n), drv(n);
-  for (int i = 0; i < n; ++i) {
-    pts.row(i) = y.segment<2>(s.position_offset(i)).transpose();
-    vel.segment<2>(2 * i) = y.segment<2>(s.velocity_offset(i));
-    rho[i] = y[s.density_offset(i)];
-    const Eigen::Vector3d S = y.segment<3>(s.stress_offset(i));
-    sxx[i] = S[0] - (rho[i] - 1.0);  // sigma_xx = -P + S_xx, P = c0^2 (rho - rho0)
-    const double szz = -(S[0] + S[1]);
-    seq[i] = std::sqrt(1.5 * (S[0] * S[0] + S[1] * S[1] + szz * szz + 2 * S[2] * S[2]));  // sqrt(3 J2)
-    drv[i] = driven[i];
-  }
-  write_vtp(
-      path, pts,
-      {{"velocity", 2, vel}, {"sigma_xx", 1, sxx}, {"von_mises", 1, seq}, {"density", 1, rho}, {"driven", 1, drv}});
-}
-
 struct FrameInfo {
   std::string tag, kind, file;
   double t;
@@ -178,12 +143,10 @@ SlabRun run_slab(const SlabCase& c, const std::string& out, std::vector<FrameInf
   r.h = 1.5 * c.dp;
   const Kernel<2> kernel(KernelType::CubicSpline);
   const RateFormMaterial mat{.density = 1, .bulk_modulus = 1, .shear_modulus = kMu};
-  RateFormScheme<2> scheme(make_discretisation(slab.particles, kernel, r.h), mat, gms_options(c.eps));
+  RateFormScheme<2> scheme(make_discretisation(slab.particles, kernel, r.h), mat, study::gms_options(c.eps));
   std::vector<Eigen::Vector2d> acc;
   for (Eigen::Index k = 0; k < slab.driven_acceleration.cols(); ++k) acc.emplace_back(slab.driven_acceleration.col(k));
   scheme.set_driven(slab.driven, acc);
-  std::vector<char> is_driven(r.particles, 0);
-  for (int i : slab.driven) is_driven[i] = 1;
   Eigen::VectorXd y = scheme.uniform_state();
   double right0 = 0;
   for (int i : slab.right_end) right0 += slab.particles.x(i, 0) / slab.right_end.size();
@@ -207,7 +170,7 @@ SlabRun run_slab(const SlabCase& c, const std::string& out, std::vector<FrameInf
     if (c.frames <= 0) return;
     char name[96];
     std::snprintf(name, sizeof name, "%s_t%07.2f_%s.vtp", c.tag.c_str(), t, kind.c_str());
-    write_frame(scheme, is_driven, ys, vtk_dir + "/" + name);
+    write_rate_form_vtp(vtk_dir + "/" + name, scheme, ys);
     pvd.emplace_back(t, name);
     frame_log.push_back({c.tag, kind, std::string("vtk/") + c.tag + "/" + name, t});
   };
@@ -222,7 +185,7 @@ SlabRun run_slab(const SlabCase& c, const std::string& out, std::vector<FrameInf
   auto observe = [&](long step, double t_chunk, const Eigen::VectorXd& ys) {
     if (step == 0 && r.chunks > 0) return;  // the previous chunk's last record
     const double t = t0 + t_chunk;
-    const Eigen::Matrix2Xd x = positions(scheme, ys);
+    const Eigen::Matrix2Xd x = rate_form_positions(scheme, ys);
     const SlabNeck neck = slab_neck(x, slab.left_end, slab.right_end, neck_options);
     const Fragments fs2h = find_fragments(x, support);
     SlabRecord rec{.t = t, .ke = scheme.kinetic_energy(ys)};
@@ -290,21 +253,18 @@ SlabRun run_slab(const SlabCase& c, const std::string& out, std::vector<FrameInf
     r.records.push_back(rec);
   };
 
-  const auto wall0 = study::Clock::now();
-  const double cpu0 = study::thread_cpu_seconds();
   r.status = "completed to t_max";
   while (t0 < c.t_max - 0.5 * r.dt) {
     const double len = std::min(chunk_time, c.t_max - t0);
-    const RateFormRunResult run = run_rate_form(scheme, y,
-                                                {.dt = r.dt,
-                                                 .t_end = len,
-                                                 .record_every = record_every,
-                                                 .observer = observe,
-                                                 .yield_stress = kYield,
-                                                 .neighbour_skin = c.skin * c.dp});
+    const RateFormRunResult run = study::timed_run(scheme, y,
+                                                   {.dt = r.dt,
+                                                    .t_end = len,
+                                                    .record_every = record_every,
+                                                    .observer = observe,
+                                                    .yield_stress = kYield,
+                                                    .neighbour_skin = c.skin * c.dp},
+                                                   r.cost);
     ++r.chunks;
-    r.steps += run.steps;
-    r.builds += run.neighbour_builds;
     t0 += run.steps * run.dt;
     y = run.y;
     if (!run.completed()) {
@@ -319,13 +279,10 @@ SlabRun run_slab(const SlabCase& c, const std::string& out, std::vector<FrameInf
     }
   }
   r.t_stop = t0;
-  r.wall = study::seconds_since(wall0);
-  r.cpu = study::thread_cpu_seconds() - cpu0;
-  r.us_per_particle_step = 1e6 * r.wall / (static_cast<double>(r.steps) * r.particles);
-  r.us_cpu = 1e6 * r.cpu / (static_cast<double>(r.steps) * r.particles);
   if (c.frames > 0) {
     if (pvd.empty() || pvd.back().first < t0 - 0.5 * r.dt) frame(y, t0, "final");
-    log_profile(slab_neck(positions(scheme, y), slab.left_end, slab.right_end, neck_options).profile, t0, "final");
+    log_profile(slab_neck(rate_form_positions(scheme, y), slab.left_end, slab.right_end, neck_options).profile, t0,
+                "final");
     write_pvd(vtk_dir + "/" + c.tag + ".pvd", pvd);
   }
 
@@ -367,6 +324,28 @@ std::string crack_x(const Break& b) {
   return b.one_crack ? study::fixed(b.left.x, 3) : study::fixed(b.left.x, 3) + " / " + study::fixed(b.right.x, 3);
 }
 
+/// Frozen-state spectra (common/gms.hpp) along the eps = 0 run at a coarser grid (dp_spectrum): the start (stress
+/// free) and `times` before the break, under eps = 0 and 0.3, the last time also with the viscosity on. Elastic
+/// linearisations: the von Mises return is not part of the rate (the run has it).
+void frozen_spectra(double dp_spectrum, double skin, const std::vector<double>& times, const std::string& out,
+                    study::Summary& sum) {
+  const PlasticSlab slab =
+      make_plastic_slab({.spacing = dp_spectrum, .end_zone = kEndZone, .acceleration = kAcceleration});
+  const double h = 1.5 * dp_spectrum;
+  const RateFormMaterial mat{.density = 1, .bulk_modulus = 1, .shear_modulus = kMu};
+  RateFormScheme<2> scheme(make_discretisation(slab.particles, Kernel<2>(KernelType::CubicSpline), h), mat,
+                           study::gms_options(0));
+  std::vector<Eigen::Vector2d> acc;
+  for (Eigen::Index k = 0; k < slab.driven_acceleration.cols(); ++k) acc.emplace_back(slab.driven_acceleration.col(k));
+  scheme.set_driven(slab.driven, acc);
+  study::frozen_spectra_along_run(
+      scheme, scheme.uniform_state(),
+      {.dt = 0.5 * h / mat.p_wave_speed(), .yield_stress = kYield, .neighbour_skin = skin * dp_spectrum}, times,
+      times.back(), out, sum);
+  sum.set("frozen_dp", dp_spectrum, 3);
+  sum.set("frozen_particles", slab.size());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) try {
@@ -376,6 +355,8 @@ int main(int argc, char** argv) try {
   double t_max0 = 200, t_max3 = 650, margin = 40, chunk = 10, skin = 0.5;
   int threads = 2, frames = 12;
   bool quick = false;
+  double dp_spectrum = 0.0625;
+  std::vector<double> spectrum_times = {60, 100};
   app.add_option("--out", out, "output directory");
   app.add_option("--dp", dps, "particle spacings, comma list (GMS 0.016: about 30 CPU minutes for eps = 0.3)")
       ->delimiter(',')
@@ -391,9 +372,17 @@ int main(int argc, char** argv) try {
   app.add_option("--skin", skin, "Verlet skin of the neighbour list in dp")->check(CLI::Range(0.05, 10.0));
   app.add_option("--threads", threads, "concurrent runs")->check(CLI::Range(1, 64));
   app.add_option("--frames", frames, "regular VTK frames per run (0: none)")->check(CLI::Range(0, 1000));
+  app.add_option("--dp-spectrum", dp_spectrum, "grid spacing of the frozen-state spectra (0: none)")
+      ->check(CLI::Range(0.0, 0.2));
+  app.add_option("--spectrum-times", spectrum_times,
+                 "times of the frozen spectra (the last also with the viscosity on)")
+      ->delimiter(',')
+      ->check(CLI::Range(0.01, 1e4));
   app.add_flag("--quick", quick, "pipeline check: dp 0.08, both runs to t = 40");
   CLI11_PARSE(app, argc, argv);
-  if (quick) dps = {0.08}, t_max0 = t_max3 = 40, frames = std::min(frames, 4);
+  if (quick)
+    dps = {0.08}, t_max0 = t_max3 = 40, frames = std::min(frames, 4), dp_spectrum = 0.125, spectrum_times = {20};
+  std::sort(spectrum_times.begin(), spectrum_times.end());
   std::sort(dps.begin(), dps.end());
   dps.erase(std::unique(dps.begin(), dps.end()), dps.end());
   const auto t0 = study::Clock::now();
@@ -421,27 +410,21 @@ int main(int argc, char** argv) try {
   std::vector<SlabRun> runs(cases.size());
   std::vector<std::vector<FrameInfo>> frame_logs(cases.size());
   std::vector<std::vector<std::string>> profile_logs(cases.size());
-  std::atomic<std::size_t> next{0};
   std::mutex m;
-  auto worker = [&] {
-    for (std::size_t q; (q = next++) < order.size();) {
-      const std::size_t k = order[q];
-      runs[k] = run_slab(cases[k], out, frame_logs[k], profile_logs[k]);
-      std::lock_guard<std::mutex> lock(m);
-      const SlabRun& r = runs[k];
-      std::printf(
-          "%-16s %5d particles, %6ld steps to t = %.0f, %7.1f s wall (%.1f s CPU), %.3g us per particle-step "
-          "(%.3g CPU), %ld builds: %s; "
-          "neck %.4g, break %.4g (1.5 dp) / %.4g (2h) at x = %.3g, width before %.3g = %.3g dp\n",
-          r.c.tag.c_str(), r.particles, r.steps, r.t_stop, r.wall, r.cpu, r.us_per_particle_step, r.us_cpu, r.builds,
-          r.status.c_str(), r.t_neck, r.brk.t, r.brk_support.t, r.brk.left.x, r.brk.width_before(),
-          r.brk.width_before() / r.c.dp);
-      std::fflush(stdout);
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
-  for (auto& t : pool) t.join();
+  study::parallel_for(order.size(), threads, [&](std::size_t q) {
+    const std::size_t k = order[q];
+    runs[k] = run_slab(cases[k], out, frame_logs[k], profile_logs[k]);
+    std::lock_guard<std::mutex> lock(m);
+    const SlabRun& r = runs[k];
+    std::printf(
+        "%-16s %5d particles, %6ld steps to t = %.0f, %7.1f s wall (%.1f s CPU), %.3g us per particle-step "
+        "(%.3g CPU), %ld builds: %s; "
+        "neck %.4g, break %.4g (1.5 dp) / %.4g (2h) at x = %.3g, width before %.3g = %.3g dp\n",
+        r.c.tag.c_str(), r.particles, r.cost.steps, r.t_stop, r.cost.wall, r.cost.cpu, r.cost.us_per_particle_step(),
+        r.cost.us_cpu(), r.cost.neighbour_builds, r.status.c_str(), r.t_neck, r.brk.t, r.brk_support.t, r.brk.left.x,
+        r.brk.width_before(), r.brk.width_before() / r.c.dp);
+    std::fflush(stdout);
+  });
 
   std::ofstream frames_csv(out + "/frames.csv"), profiles_csv(out + "/profiles.csv");
   frames_csv << "tag,kind,t,file\n";
@@ -465,9 +448,9 @@ int main(int argc, char** argv) try {
   double wall_runs = 0, wall_max = 0, cpu_runs = 0;
   auto end_disp = [](double t) { return std::isnan(t) ? kNaN : slab_end_displacement(t, kAcceleration); };
   for (const SlabRun& r : runs) {
-    wall_runs += r.wall;
-    cpu_runs += r.cpu;
-    wall_max = std::max(wall_max, r.wall);
+    wall_runs += r.cost.wall;
+    cpu_runs += r.cost.cpu;
+    wall_max = std::max(wall_max, r.cost.wall);
     runs_csv << csv_line({r.c.tag,
                           format_number(r.c.dp),
                           format_number(r.c.eps),
@@ -477,15 +460,15 @@ int main(int argc, char** argv) try {
                           std::to_string(r.driven),
                           format_number(r.h),
                           format_number(r.dt, 8),
-                          std::to_string(r.steps),
+                          std::to_string(r.cost.steps),
                           std::to_string(r.chunks),
                           format_number(r.t_stop),
                           r.status,
-                          format_number(r.wall, 4),
-                          format_number(r.cpu, 4),
-                          format_number(r.us_per_particle_step, 4),
-                          format_number(r.us_cpu, 4),
-                          std::to_string(r.builds),
+                          format_number(r.cost.wall, 4),
+                          format_number(r.cost.cpu, 4),
+                          format_number(r.cost.us_per_particle_step(), 4),
+                          format_number(r.cost.us_cpu(), 4),
+                          std::to_string(r.cost.neighbour_builds),
                           format_number(r.width0),
                           format_number(r.t_neck),
                           format_number(r.x_neck),
@@ -519,10 +502,10 @@ int main(int argc, char** argv) try {
                           study::sig(r.brk.t, 4) + " (" + paper_break + ")", study::sig(r.brk_support.t, 4),
                           std::to_string(r.brk.cracks()), crack_x(r.brk), study::fixed(r.brk.junction_distance(), 3),
                           study::sig(r.brk.width_before() / r.c.dp, 3), study::sig(r.t_stop, 4)});
-    study::md_row(cost_table,
-                  {r.c.tag, std::to_string(r.particles), study::sig(r.dt, 4), std::to_string(r.steps),
-                   study::sig(r.t_stop, 4), study::fixed(r.wall, 1), study::fixed(r.cpu, 1),
-                   study::sig(r.us_per_particle_step, 3), study::sig(r.us_cpu, 3), std::to_string(r.builds), r.status});
+    study::md_row(cost_table, {r.c.tag, std::to_string(r.particles), study::sig(r.dt, 4), std::to_string(r.cost.steps),
+                               study::sig(r.t_stop, 4), study::fixed(r.cost.wall, 1), study::fixed(r.cost.cpu, 1),
+                               study::sig(r.cost.us_per_particle_step(), 3), study::sig(r.cost.us_cpu(), 3),
+                               std::to_string(r.cost.neighbour_builds), r.status});
     if (r.c.dp != dps.front()) continue;  // the key numbers of the prose: the finest resolution run
     const std::string k = r.c.eps > 0 ? "eps03" : "eps0";
     s.set(k + "_t_neck", r.t_neck, 4);
@@ -538,8 +521,8 @@ int main(int argc, char** argv) try {
     s.set(k + "_width_narrowest", r.brk.width_narrowest / r.c.dp, 3);
     s.set(k + "_t_separation", r.brk_support.t, 4);
     s.set(k + "_t_stop", r.t_stop, 4);
-    s.set(k + "_wall", r.wall, 3);
-    s.set(k + "_cpu", r.cpu, 3);
+    s.set(k + "_wall", r.cost.wall, 3);
+    s.set(k + "_cpu", r.cost.cpu, 3);
     s.set(k + "_end_displacement", end_disp(r.brk.t), 3);
     s.set(k + "_where", where(r.brk, r.c.dp));
     // GMS's "strain": one end's displacement over the length 3 (0.13 at t = 394).
@@ -569,6 +552,11 @@ int main(int argc, char** argv) try {
   s.set("load_start", load_start);
   s.set("load_end", study::load_average());
   s.set("wall_max", wall_max, 3);
+  if (dp_spectrum > 0) {
+    const auto ts = study::Clock::now();
+    frozen_spectra(dp_spectrum, skin, spectrum_times, out, s);
+    s.set("frozen_wall", study::seconds_since(ts), 3);
+  }
   s.set("wall_total", study::seconds_since(t0), 3);
   s.write(out);
   std::printf("gms-slab done in %.1f s\n", study::seconds_since(t0));

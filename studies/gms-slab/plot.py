@@ -7,7 +7,7 @@ import sys
 from collections import defaultdict
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from plot_common import num, plt, read, read_vtp  # noqa: E402
+from plot_common import frozen_modes, num, plt, read, read_vtp  # noqa: E402
 
 GMS_TIMES = {0.0: [(119, "GMS break (eps 0)")], 0.3: [(394, "GMS neck"), (542, "GMS break")]}
 
@@ -138,3 +138,4 @@ def main(out):
 
 if __name__ == "__main__":
     main(sys.argv[1] if len(sys.argv) > 1 else "results/gms-slab")
+    frozen_modes(sys.argv[1] if len(sys.argv) > 1 else "results/gms-slab", "Plastic slab, eps = 0 run at the spectrum's dp: linearised spectra")

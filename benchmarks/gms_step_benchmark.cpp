@@ -1,0 +1,226 @@
+// One-core speed of the full GMS scheme (forms/rate_form.hpp with the options of [GMS2001]: continuity -rho tr L,
+// XSPH 1/2, viscosity alpha = 1, beta = 2 with the compression switch, artificial stress 0.3, n = 4; GMS
+// predictor-corrector, integrate/rate_form_run.hpp) on the scenes of issue 10, neighbour updates included:
+//   - RingsSI: the colliding rings in SI units (E = 1e7 Pa, nu = 0.3975, rho0 = 1, radii 0.03 / 0.04 m, dx = 5e-4 m,
+//     h = 1.5 dx, +-0.059 c0; 17 608 particles), at first contact speed;
+//   - Lattice: periodic 2D square lattices of 99 856 and 1e6 particles (GMS units, mu = 0.22, h = 1.5 dx) with random
+//     velocities of 0.01 c0 (so the viscosity switch acts on about half the pairs) and densities 1 +- 0.5 %.
+// Per scene, in the same run:
+//   - Step: run_rate_form for `steps` predictor-corrector steps with a Verlet list (skin 0.5 dx, rebuilt when a
+//     particle has moved skin / 2; the build at the start is part of every run_rate_form call and is counted);
+//   - StepFixedList: the same steps on the scene's list, never rebuilt (two rate evaluations and the integration);
+//   - Rate: RateFormScheme::rate at y0 and at the state after each timed step (the states the run passes through):
+//     kernel sums, velocity gradient, stress rates, artificial stress and viscosity in one fused pass per particle
+//     row, so kernel and stress work are not separable by timing;
+//   - Rebuild: RateFormScheme::rebuilt (cell-list search at radius support + skin and the scheme's set-up on it);
+//   - Triad: a STREAM triad, the memory bandwidth reference (before and after the scenes).
+// Counters per benchmark: particles, pairs (ordered, list of the timed scheme), steps, builds, model_bytes (the least
+// data a step must move: see model_bytes()).
+//
+//   build/bin/gms_step_benchmark [--max-particles N] [google-benchmark flags]
+//   (studies/gms-speed/run.sh writes results/gms-speed/benchmark.json and, with benchmarks/gms_step_report.py,
+//    benchmark.md; about 3 min)
+#include <benchmark/benchmark.h>
+
+#include <Eigen/Core>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "sphstab/forms/rate_form.hpp"
+#include "sphstab/integrate/rate_form_run.hpp"
+#include "sphstab/particles/lattice.hpp"
+#include "sphstab/problems/colliding_rings.hpp"
+#include "stream_triad.hpp"
+
+namespace {
+
+using namespace sphstab;
+
+constexpr double kSkin = 0.5;  // Verlet skin in dx, as in the gms-* studies
+
+RateFormOptions gms() {
+  return {.continuity = ContinuityForm::Divergence,
+          .xsph = 0.5,
+          .viscosity = ViscositySwitch::Compression,
+          .viscosity_alpha = 1,
+          .viscosity_beta = 2,
+          .artificial_stress = 0.3};
+}
+
+struct Scene {
+  std::string name;
+  std::unique_ptr<RateFormScheme<2>> scheme;
+  Eigen::VectorXd y0;
+  std::vector<Eigen::VectorXd> states;  // y0 and the state after each of the timed steps (Rate runs over them)
+  double dt = 0, dx = 0;
+  long steps = 0;  // per timed run
+  long pairs() const { return scheme->discretisation().neighbours.nonzeros(); }
+  int particles() const { return scheme->discretisation().size(); }
+};
+
+Scene rings_si() {
+  const RateFormMaterial m = RateFormMaterial::from_youngs(1e7, 0.3975, 1.0);
+  const double dx = 5e-4;
+  const CollidingRings r = make_colliding_rings(
+      {.inner_radius = 0.03, .outer_radius = 0.04, .spacing = dx, .gap = 2e-3, .speed = 0.059 * m.sound_speed()});
+  Scene s{.name = "RingsSI", .dx = dx, .steps = 40};
+  s.scheme = std::make_unique<RateFormScheme<2>>(
+      make_discretisation(r.particles, Kernel<2>(KernelType::CubicSpline), 1.5 * dx), m, gms());
+  s.y0 = s.scheme->uniform_state();
+  for (int i = 0; i < r.size(); ++i) s.scheme->set_velocity(s.y0, i, r.velocity.col(i));
+  s.dt = 0.5 * 1.5 * dx / m.p_wave_speed();
+  return s;
+}
+
+Scene lattice(int side) {
+  const RateFormMaterial m{.density = 1, .bulk_modulus = 1, .shear_modulus = 0.22};
+  Scene s{.name = "Lattice", .dx = 1.0, .steps = side >= 1000 ? 2 : 6};
+  s.scheme = std::make_unique<RateFormScheme<2>>(
+      make_discretisation(make_lattice<2>(LatticeType::Square, side, {.spacing = 1.0, .periodic = true}),
+                          Kernel<2>(KernelType::CubicSpline), 1.5),
+      m, gms());
+  s.y0 = s.scheme->uniform_state();
+  std::mt19937_64 rng(side);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int i = 0; i < s.particles(); ++i) {
+    s.scheme->set_velocity(s.y0, i, 0.01 * m.sound_speed() * Eigen::Vector2d(u(rng), u(rng)));
+    s.y0[s.scheme->density_offset(i)] += 0.005 * u(rng);
+  }
+  s.dt = 0.5 * 1.5 / m.p_wave_speed();
+  return s;
+}
+
+Scene& scene(const std::string& key) {
+  static std::map<std::string, Scene> cache;
+  auto it = cache.find(key);
+  if (it == cache.end()) {
+    Scene s =
+        key == "RingsSI" ? rings_si() : lattice(static_cast<int>(std::lround(std::sqrt(std::atof(key.c_str() + 7)))));
+    // At y0 the rings move rigidly (no pair approaches: the viscosity is off everywhere); a few steps in, it acts.
+    const RateFormRunResult r =
+        run_rate_form(*s.scheme, s.y0,
+                      {.dt = s.dt,
+                       .t_end = static_cast<double>(s.steps) * s.dt,
+                       .observer = [&s](long, double, const Eigen::VectorXd& y) { s.states.push_back(y); }});
+    if (!r.completed()) throw std::runtime_error("gms_step_benchmark: " + s.name + " set-up run: " + r.message);
+    it = cache.emplace(key, std::move(s)).first;
+  }
+  return it->second;
+}
+
+/// The least data one predictor-corrector step must move, in bytes: per rate evaluation, the state read and the
+/// rates written (8 doubles each per particle in 2D: x, v, rho, S) plus the neighbour list's indices (4 B per pair) and
+/// offsets (8 B per particle); per step two evaluations and the integration's passes over the state (the predictor
+/// reads y, f and writes y*; the corrector reads y, f, f* and writes y; 7 state vectors).
+double model_bytes(long particles, long pairs) {
+  const double state = 8.0 * 8 * static_cast<double>(particles);
+  const double eval = 2 * state + 4.0 * static_cast<double>(pairs) + 8.0 * static_cast<double>(particles);
+  return 2 * eval + 7 * state;
+}
+
+void set_counters(benchmark::State& st, const Scene& s, long steps, long builds) {
+  st.counters["particles"] = s.particles();
+  st.counters["pairs"] = static_cast<double>(s.pairs());
+  st.counters["steps"] = static_cast<double>(steps);
+  st.counters["builds"] = static_cast<double>(builds);
+  st.counters["model_bytes"] = model_bytes(s.particles(), s.pairs());
+}
+
+void bm_step(benchmark::State& st, const std::string& key, bool rebuild) {
+  Scene& s = scene(key);
+  const RateFormRunOptions o{.dt = s.dt,
+                             .t_end = static_cast<double>(s.steps) * s.dt,
+                             .record_every = static_cast<int>(s.steps),
+                             .neighbour_skin = rebuild ? kSkin * s.dx : 0.0};
+  long steps = 0, builds = 0;
+  for (auto _ : st) {
+    const RateFormRunResult r = run_rate_form(*s.scheme, s.y0, o);
+    if (!r.completed()) {
+      st.SkipWithError(("run stopped: " + r.message).c_str());
+      return;
+    }
+    steps = r.steps, builds = r.neighbour_builds;
+    benchmark::DoNotOptimize(r.y.data());
+  }
+  set_counters(st, s, steps, builds);
+}
+
+void bm_rate(benchmark::State& st, const std::string& key) {
+  Scene& s = scene(key);
+  Eigen::VectorXd f(s.scheme->size());
+  for (auto _ : st) {
+    for (const Eigen::VectorXd& y : s.states) {
+      s.scheme->rate(y, f);
+      benchmark::DoNotOptimize(f.data());
+    }
+  }
+  set_counters(st, s, 0, 0);
+  st.counters["evaluations"] = static_cast<double>(s.states.size());
+}
+
+void bm_rebuild(benchmark::State& st, const std::string& key) {
+  Scene& s = scene(key);
+  const double radius = s.scheme->discretisation().kernel.support_radius(s.scheme->discretisation().h) + kSkin * s.dx;
+  long pairs = 0;
+  for (auto _ : st) {
+    const RateFormScheme<2> r = s.scheme->rebuilt(s.states.back(), radius);
+    pairs = r.discretisation().neighbours.nonzeros();
+    benchmark::DoNotOptimize(&r);
+  }
+  set_counters(st, s, 0, 1);
+  st.counters["pairs_rebuilt"] = static_cast<double>(pairs);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  long max_particles = 1000000;
+  std::vector<char*> args;
+  for (int i = 0; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a.rfind("--max-particles=", 0) == 0) {
+      char* end = nullptr;
+      max_particles = std::strtol(a.c_str() + 16, &end, 10);
+      if (*end != '\0' || max_particles < 1) {
+        std::fprintf(stderr, "gms_step_benchmark: --max-particles must be a positive integer (got '%s')\n",
+                     a.c_str() + 16);
+        return 2;
+      }
+    } else {
+      args.push_back(argv[i]);
+    }
+  }
+  int n = static_cast<int>(args.size());
+  benchmark::Initialize(&n, args.data());
+  if (benchmark::ReportUnrecognizedArguments(n, args.data())) return 2;
+  benchmark::RegisterBenchmark("Triad", bench::stream_triad)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+  std::vector<std::pair<std::string, long>> keys = {
+      {"RingsSI", 17608}, {"Lattice99856", 99856}, {"Lattice1000000", 1000000}};
+  for (const auto& [key, count] : keys) {
+    if (count > max_particles) continue;
+    const int reps = count >= 1000000 ? 1 : 3;
+    auto reg = [&](const char* what, auto fn) {
+      const std::string name = std::string(what) + "/" + key;
+      benchmark::RegisterBenchmark(name.c_str(), fn)
+          ->Unit(benchmark::kMillisecond)
+          ->Iterations(count >= 1000000 ? 1 : 3)
+          ->Repetitions(reps)
+          ->ReportAggregatesOnly(false);
+    };
+    reg("Step", [key](benchmark::State& st) { bm_step(st, key, true); });
+    reg("StepFixedList", [key](benchmark::State& st) { bm_step(st, key, false); });
+    reg("Rate", [key](benchmark::State& st) { bm_rate(st, key); });
+    reg("Rebuild", [key](benchmark::State& st) { bm_rebuild(st, key); });
+  }
+  benchmark::RegisterBenchmark("TriadAgain", bench::stream_triad)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,109 @@
+#!/usr/bin/env python3
+"""Turns the json of gms_step_benchmark into a markdown report: microseconds per particle-step of the full GMS scheme,
+the split (neighbour rebuild, rate evaluations, integration), and the ratio to the memory-bandwidth bound measured in
+the same run.
+
+    python3 benchmarks/gms_step_report.py benchmark.json benchmark.md [--rings-runs results/gms-rings/runs.csv]
+
+Each benchmark's time is the best of its repetitions (the machine is shared). With --rings-runs, the neighbour share
+of a whole collision uses the builds per step of that study's SI runs. Every sentence is computed from the inputs or
+describes the benchmark's code.
+"""
+import argparse
+import csv
+import json
+import os
+
+TARGET_US = 0.4  # issue 10: one core, SI rings, per particle-step
+
+
+def best(bms, name):
+    """Best repetition of benchmark `name`: (seconds per iteration, counters)."""
+    runs = [b for b in bms if b.get("run_type") == "iteration" and b["name"].split("/iterations")[0].split("/min_time")[0] == name
+            and not b.get("error_occurred")]
+    if not runs:
+        return None, None
+    b = min(runs, key=lambda b: b["real_time"])
+    scale = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[b.get("time_unit", "ns")]
+    return b["real_time"] * scale, b
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("json")
+    ap.add_argument("md")
+    ap.add_argument("--rings-runs")
+    a = ap.parse_args()
+    with open(a.json) as f:
+        data = json.load(f)
+    bms = data["benchmarks"]
+    bw = max(best(bms, n)[1]["bytes_per_second"] for n in ("Triad", "TriadAgain") if best(bms, n)[1])
+    rings_builds = None
+    if a.rings_runs and os.path.exists(a.rings_runs):
+        with open(a.rings_runs) as f:
+            si = [r for r in csv.DictReader(f) if r["units"] == "SI"]
+        if si:
+            rings_builds = [(r["tag"], float(r["neighbour_builds"]), float(r["steps"])) for r in si]
+
+    lines = ["# GMS scheme: speed per particle-step (gms_step_benchmark)", "",
+             f"Machine: {data['context'].get('num_cpus')} CPUs at {data['context'].get('mhz_per_cpu')} MHz, "
+             f"{data['context'].get('date')}; one thread. STREAM triad bandwidth in the same run: "
+             f"{bw / 1e9:.2f} GB/s (best of two, before and after the scenes).", "",
+             "All times in µs per particle (per step, per evaluation pair or per build).", "",
+             "| scene | particles | pairs / particle | 2 rate evaluations | integration | step, fixed list | "
+             "neighbour rebuild, per build | timed run with its builds (builds in steps) | bandwidth bound per step | "
+             "fixed-list step / bound |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
+    rows = {}
+    for scene in ("RingsSI", "Lattice99856", "Lattice1000000"):
+        t_step, b_step = best(bms, "Step/" + scene)
+        t_fix, b_fix = best(bms, "StepFixedList/" + scene)
+        t_rate, b_rate = best(bms, "Rate/" + scene)
+        t_reb, _ = best(bms, "Rebuild/" + scene)
+        if b_step is None or b_fix is None or b_rate is None or t_reb is None:
+            continue
+        n, steps, pairs = b_fix["particles"], b_fix["steps"], b_fix["pairs"]
+        step_us = 1e6 * t_step / (n * steps)
+        fix_us = 1e6 * t_fix / (n * steps)
+        rate_us = 1e6 * t_rate / (n * b_rate["evaluations"])
+        reb_us = 1e6 * t_reb / n
+        bound_us = 1e6 * b_fix["model_bytes"] / bw / n
+        rows[scene] = dict(step=step_us, fixed=fix_us, rate=rate_us, rebuild=reb_us, bound=bound_us)
+        lines.append(f"| {scene} | {int(n)} | {pairs / n:.1f} | {2 * rate_us:.3g} | {fix_us - 2 * rate_us:.3g} | "
+                     f"{fix_us:.3g} | {reb_us:.3g} | {step_us:.3g} ({int(b_step['builds'])} in {int(steps)}) | "
+                     f"{bound_us:.3g} | {fix_us / bound_us:.1f} |")
+    lines += ["",
+              "- **timed run**: run_rate_form for the timed steps with the Verlet list (skin 0.5 dx), its build at the "
+              "start included (so short runs overstate the rebuild share); **step, fixed list**: the same steps on "
+              "the scene's list, never rebuilt; **2 rate evaluations**: RateFormScheme::rate averaged over the states the run passes "
+              "through, twice (the predictor-corrector's two evaluations; kernel sums, velocity gradient, Jaumann stress rate, "
+              "artificial stress and viscosity are one fused pass per particle row, so kernel and stress work are "
+              "not timed apart); **integration**: the steps on a fixed list minus the two evaluations (state updates, "
+              "checks, records); **neighbour rebuild**: RateFormScheme::rebuilt (cell-list search at radius "
+              "support + skin and the scheme's set-up on the new list).",
+              "- **bandwidth bound**: the least data a step must move (two evaluations each reading the state and "
+              "the list's indices and writing the rates, seven state passes of the integration; "
+              "gms_step_benchmark.cpp model_bytes) over the triad bandwidth. The ratio says how far the step is from "
+              "memory-bound: the evaluation is compute-bound (kernel, stress and viscosity arithmetic per pair).", ""]
+    steady = None
+    if "RingsSI" in rows and rings_builds:
+        r = rows["RingsSI"]
+        per_step = max(b / s for _, b, s in rings_builds)
+        steady = r["fixed"] + per_step * r["rebuild"]
+        for tag, builds, steps in rings_builds:
+            lines.append(f"- gms-rings SI run `{tag}`: {int(builds)} builds in {int(steps)} steps "
+                         f"({builds / steps:.3g} per step).")
+        lines.append(f"- A whole SI collision, per particle-step: the fixed-list step {r['fixed']:.3g} + "
+                     f"{per_step:.3g} builds × {r['rebuild']:.3g} = **{steady:.3g} µs** "
+                     f"(rebuilds {100 * per_step * r['rebuild'] / steady:.1f} %).")
+        lines.append("")
+    if steady is not None:
+        lines.append(f"Target (issue 10): ≤ {TARGET_US} µs per particle-step on one core for the SI rings. Measured "
+                     f"{steady:.3g} µs, {steady / TARGET_US:.1f} × the target"
+                     + (": **met**." if steady <= TARGET_US else ": **not met**."))
+    with open(a.md, "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+if __name__ == "__main__":
+    main()
