@@ -24,6 +24,7 @@
 #include "sphstab/analysis/fragments.hpp"
 #include "sphstab/analysis/neck.hpp"
 #include "sphstab/core/format.hpp"
+#include "sphstab/core/memory_budget.hpp"
 #include "sphstab/forms/rate_form.hpp"
 #include "sphstab/forms/rate_form_state.hpp"
 #include "sphstab/integrate/rate_form_run.hpp"
@@ -99,6 +100,9 @@ Scene make_scene(const SceneArgs& a) {
     const double H = positive(a.thickness, "--thickness H"), L = positive(a.length, "--length L");
     const int across = static_cast<int>(parse_integer(a.across, 2, 1000, "scene: --across"));
     const double vf = parse_double(a.tip_speed, "scene: --tip-speed");
+    // About 1.5 kB per particle: the set, ~30 neighbour pairs, the scheme's workspace and the state vectors.
+    require_memory(1500.0 * (L / (H / across) + 4) * across,
+                   "scene: plate of " + a.across + " across and length " + a.length);
     build(make_cantilever_plate({.length = L, .thickness = H, .across = across}));
     std::vector<int> tip;
     const ParticleSet<2>& p = sc.scheme->discretisation().particles;

@@ -119,7 +119,9 @@ TEST(SceneCommand, BadInputIsOneLine) {
       {{"scene", "plate", "--dp", "0.1"}, "--across"},
       {{"scene", "plate", "--across", "1"}, "--across"},
       {{"scene", "slab", "--t-end", "0"}, "--t-end"},
-      {{"scene", "rings", "--dp", "0.6"}, "spacing"},  // the builder: fewer than two particles across the ring
+      {{"scene", "rings", "--dp", "0.6"}, "spacing"},
+      {{"scene", "plate", "--length", "1e9", "--across", "100"}, "GB"},  // refused before anything is built
+      {{"scene", "rings", "--dp", "1e-5"}, "GB"},  // the builder: fewer than two particles across the ring
   };
   test::expect_one_line_errors(cases, [](const std::vector<std::string>& args) { return run(args, "bad"); });
 }
