@@ -421,6 +421,7 @@ void RateFormScheme<Dim>::set_driven(std::vector<int> particles,
     const std::string who = "RateFormScheme::set_driven: particle " + std::to_string(i);
     if (i < 0 || i >= n) throw std::invalid_argument(who + " is out of range [0, " + std::to_string(n) + ")");
     if (m_x_off[i] < 0) throw std::invalid_argument(who + " is fixed (only free particles can be driven)");
+    if (is_absorbing(i)) throw std::invalid_argument(who + " is absorbing");
     if (slot[i] >= 0) throw std::invalid_argument(who + " is listed twice");
     if (!accelerations[q].allFinite()) throw std::invalid_argument(who + " has a non-finite acceleration");
     slot[i] = static_cast<int>(q);
@@ -429,6 +430,116 @@ void RateFormScheme<Dim>::set_driven(std::vector<int> particles,
   m_driven = std::move(particles);
   m_driven_acc = std::move(accelerations);
   m_driven_slot = std::move(slot);
+}
+
+template <int Dim>
+void RateFormScheme<Dim>::set_absorbing(AbsorbingParticles<Dim> boundary) {
+  const std::size_t count = boundary.particles.size();
+  if (boundary.normals.size() != count)
+    throw std::invalid_argument("RateFormScheme::set_absorbing: " + std::to_string(count) + " particles but " +
+                                std::to_string(boundary.normals.size()) + " normals (one per particle)");
+  if (count > 0 && boundary.condition == AbsorbingCondition::Higdon)
+    throw std::invalid_argument(
+        "RateFormScheme::set_absorbing: Higdon's condition is second order in time (no velocity form)");
+  const int n = m_disc->size();
+  std::vector<int> slot(n, -1);
+  for (std::size_t q = 0; q < count; ++q) {
+    const int i = boundary.particles[q];
+    const std::string who = "RateFormScheme::set_absorbing: particle " + std::to_string(i);
+    if (i < 0 || i >= n) throw std::invalid_argument(who + " is out of range [0, " + std::to_string(n) + ")");
+    if (m_x_off[i] < 0) throw std::invalid_argument(who + " is fixed (only free particles can absorb)");
+    if (is_driven(i)) throw std::invalid_argument(who + " is driven");
+    if (slot[i] >= 0) throw std::invalid_argument(who + " is listed twice");
+    const double len = boundary.normals[q].norm();
+    if (!(std::abs(len - 1) <= 1e-12))
+      throw std::invalid_argument(who + " has a normal of length " + format_number(len) + " (need a unit normal)");
+    slot[i] = static_cast<int>(q);
+  }
+  if (count == 0) slot.clear();
+  m_absorbing = std::move(boundary);
+  m_absorbing_slot = std::move(slot);
+}
+
+template <int Dim>
+template <class Scalar>
+void RateFormScheme<Dim>::absorb(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& y,
+                                 Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& dydt) const {
+  using Vec = Eigen::Matrix<Scalar, Dim, 1>;
+  using Mat = Eigen::Matrix<Scalar, Dim, Dim>;
+  using std::sqrt;
+  const Discretisation<Dim>& d = *m_disc;
+  const ParticleSet<Dim>& p = d.particles;
+  const NeighbourList& nl = d.neighbours;
+  const Kernel<Dim>& kernel = d.kernel;
+  const double h = d.h;
+  const bool ncsph = m_options.gradient == RateFormGradient::Ncsph;
+  const double c_p = m_material.p_wave_speed(), c_s = std::sqrt(m_material.shear_modulus / m_material.density);
+  const auto position = [&](int j) -> Vec {
+    return m_x_off[j] >= 0 ? Vec(y.template segment<Dim>(m_x_off[j]))
+                           : Vec(p.x.row(j).transpose().template cast<Scalar>());
+  };
+  const auto velocity = [&](int j) -> Vec {
+    return m_x_off[j] >= 0 ? Vec(y.template segment<Dim>(m_x_off[j] + Dim)) : Vec::Zero();
+  };
+  const auto volume = [&](int j) -> Scalar {
+    return m_mass[j] / (m_rho_off[j] >= 0 ? y[m_rho_off[j]] : Scalar(m_density));
+  };
+  std::vector<int> js;
+  std::vector<Vec> rs, gs;
+  std::vector<Scalar> ws;
+  for (std::size_t q = 0; q < m_absorbing.particles.size(); ++q) {
+    const int i = m_absorbing.particles[q];
+    const Eigen::Matrix<double, Dim, 1>& normal = m_absorbing.normals[q];
+    const Vec xi = position(i), vi = velocity(i);
+    // The neighbours used, r = x_i - x_j (minimum image), V_j grad_i W_ij and V_j W_ij.
+    js.clear(), rs.clear(), gs.clear(), ws.clear();
+    for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
+      const int j = nl.indices[k];
+      Vec r = xi - position(j);
+      for (int a = 0; a < Dim; ++a) {
+        if (!p.periodic[a]) continue;
+        const double L = p.box_hi[a] - p.box_lo[a], dr = detail::re(r[a]);
+        if (dr > 0.5 * L) r[a] -= L;
+        if (dr < -0.5 * L) r[a] += L;
+      }
+      // Upwind (2.67): only the interior side, (x_j - x_i) . n <= 0.
+      Scalar along(0);
+      for (int a = 0; a < Dim; ++a) along -= r[a] * normal[a];
+      if (m_absorbing.upwind && j != i && detail::re(along) > 1e-9 * h) continue;
+      const Scalar r2 = (r.array() * r.array()).sum(), rr = sqrt(r2), vj = volume(j);  // not squaredNorm: |r_a|^2
+      js.push_back(j);
+      rs.push_back(r);
+      gs.push_back(j == i ? Vec(Vec::Zero()) : Vec((vj * kernel.d1(rr, h) / rr) * r));
+      ws.push_back(vj * (j == i ? Scalar(kernel.value(0.0, h)) : kernel.value(rr, h)));
+    }
+    if (ncsph) {
+      // Powell (1.19) over the neighbours used: Shepard gradient, then the inverse moment matrix.
+      Scalar shep(0);
+      Vec g = Vec::Zero();
+      for (std::size_t t = 0; t < js.size(); ++t) shep += ws[t], g += gs[t];
+      Mat M = Mat::Zero();
+      for (std::size_t t = 0; t < js.size(); ++t) {
+        gs[t] = (gs[t] * shep - ws[t] * g) / (shep * shep);
+        M -= rs[t] * gs[t].transpose();
+      }
+      const Eigen::Matrix<double, Dim, Dim> Mr = M.unaryExpr([](const Scalar& z) { return detail::re(z); });
+      const Eigen::JacobiSVD<Eigen::Matrix<double, Dim, Dim>> svd(Mr);
+      if (!Mr.allFinite() || !(svd.singularValues()(Dim - 1) > 1e-12 * svd.singularValues()(0)))
+        throw std::domain_error("RateFormScheme: NCSPH moment matrix of absorbing particle " + std::to_string(i) +
+                                " is singular or not finite" + (m_absorbing.upwind ? " (upwind neighbours)" : ""));
+      const Mat Minv_t = M.inverse().transpose();
+      for (Vec& gt : gs) gt = Minv_t * gt;
+    }
+    Mat L = Mat::Zero();  // Powell (1.33) with the sign of rate_form.hpp: L^ab = sum_j (v_j^a - v_i^a) Ghat_ij^b
+    for (std::size_t t = 0; t < js.size(); ++t) L += (velocity(js[t]) - vi) * gs[t].transpose();
+    Vec a;
+    if constexpr (Dim == 1) {
+      a[0] = absorbing_acceleration_1d(c_p, normal[0], L(0, 0), vi[0], m_absorbing.convective);
+    } else {
+      a = absorbing_acceleration<Scalar>(m_absorbing.condition, c_p, c_s, normal, L, vi, m_absorbing.convective);
+    }
+    dydt.template segment<Dim>(m_x_off[i] + Dim) = a;
+  }
 }
 
 template <int Dim>
@@ -462,6 +573,8 @@ RateFormScheme<Dim> RateFormScheme<Dim>::rebuilt(const Eigen::VectorXd& y, doubl
   s.m_driven = m_driven;
   s.m_driven_acc = m_driven_acc;
   s.m_driven_slot = m_driven_slot;
+  s.m_absorbing = m_absorbing;
+  s.m_absorbing_slot = m_absorbing_slot;
   return s;
 }
 
@@ -490,6 +603,8 @@ std::string RateFormScheme<Dim>::name() const {
       break;
   }
   if (!m_driven.empty()) s += ", " + std::to_string(m_driven.size()) + " driven";
+  if (!m_absorbing.empty())
+    s += ", " + std::to_string(m_absorbing.particles.size()) + " absorbing" + (m_absorbing.upwind ? " upwind" : "");
   return s + ")";
 }
 
@@ -536,11 +651,13 @@ double RateFormScheme<Dim>::min_density(const Eigen::VectorXd& y) const {
 template <int Dim>
 void RateFormScheme<Dim>::rate(const Eigen::VectorXd& y, Eigen::VectorXd& dydt) const {
   evaluate(y, dydt);
+  if (!m_absorbing.empty()) absorb(y, dydt);
 }
 
 template <int Dim>
 void RateFormScheme<Dim>::rate(const Eigen::VectorXcd& y, Eigen::VectorXcd& dydt) const {
   evaluate(y, dydt);
+  if (!m_absorbing.empty()) absorb(y, dydt);
 }
 
 template <int Dim>

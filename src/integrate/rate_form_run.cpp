@@ -1,5 +1,6 @@
 #include "sphstab/integrate/rate_form_run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -173,45 +174,55 @@ void predictor_corrector(RunBook<Dim>& b, const VonMises* plastic) {
   }
 }
 
-/// [Powell2012, algorithm 1.1, (1.40)], staggered; the numbered steps are those of rate_form_run.hpp.
+/// [Powell2012, algorithm 1.1, (1.40)], staggered; the numbered steps are those of rate_form_run.hpp. Between steps
+/// it holds y = (x^n, v*^n, q^n), fe = F(y), vh = v^{n+1/2} and ve = a^n (the acceleration the step uses; with
+/// absorbing_half_step the boundary particles' entries come from H, not from fe).
 template <int Dim>
-void leapfrog(RunBook<Dim>& b, const VonMises* plastic) {
-  const Discretisation<Dim>& d0 = b.base.discretisation();  // free numbering and offsets: the same for every build
-  const double dt = b.dt;
-  RateFormRunResult& r = b.r;
-  // State offsets of the free particles in DOF order (d.free): x at xoff, v at xoff + Dim.
-  std::vector<int> xoff(d0.free_count());
-  for (int f = 0; f < d0.free_count(); ++f) xoff[f] = b.base.position_offset(d0.free[f]);
-  auto set_velocities = [&](Eigen::VectorXd& y, const Eigen::VectorXd& v) {
-    for (int f = 0; f < d0.free_count(); ++f) y.template segment<Dim>(xoff[f] + Dim) = v.template segment<Dim>(f * Dim);
-  };
-  auto get_velocities = [&](const Eigen::VectorXd& y, Eigen::VectorXd& v) {
-    v.resize(d0.dofs());
-    for (int f = 0; f < d0.free_count(); ++f) v.template segment<Dim>(f * Dim) = y.template segment<Dim>(xoff[f] + Dim);
-  };
+struct Leapfrog {
+  RunBook<Dim>& b;
+  const VonMises* plastic;
+  const Discretisation<Dim>& d0;  // free numbering and offsets: the same for every build
+  std::vector<int> xoff;          // state offsets of the free particles in DOF order: x at xoff, v at xoff + Dim
   // Powell (2.71) through the XSPH hook of the second-order integrator (one smoothing code, kernel at x^n), on the
   // discretisation of the current list (attached again after a rebuild).
   const Discretisation<Dim>* d = nullptr;
   VelocityHook smooth;
   long attached = -1;  // the build d belongs to
-  auto attach = [&] {
-    if (attached == r.neighbour_builds) return;
-    attached = r.neighbour_builds;
+  Eigen::VectorXd y, fe, fh, yh, vh, ve, u, vs;
+
+  Leapfrog(RunBook<Dim>& book, const VonMises* yield)
+      : b(book), plastic(yield), d0(book.base.discretisation()), xoff(d0.free_count()) {
+    for (int f = 0; f < d0.free_count(); ++f) xoff[f] = b.base.position_offset(d0.free[f]);
+  }
+  void set_velocities(Eigen::VectorXd& state, const Eigen::VectorXd& v) const {
+    for (int f = 0; f < d0.free_count(); ++f)
+      state.template segment<Dim>(xoff[f] + Dim) = v.template segment<Dim>(f * Dim);
+  }
+  void get_velocities(const Eigen::VectorXd& state, Eigen::VectorXd& v) const {
+    v.resize(d0.dofs());
+    for (int f = 0; f < d0.free_count(); ++f)
+      v.template segment<Dim>(f * Dim) = state.template segment<Dim>(xoff[f] + Dim);
+  }
+  void attach() {
+    if (attached == b.r.neighbour_builds) return;
+    attached = b.r.neighbour_builds;
     d = &b.scheme->discretisation();
     if (b.o.leapfrog_xsph > 0)
       smooth = xsph_hook<Dim>(std::shared_ptr<const Discretisation<Dim>>(d, [](const Discretisation<Dim>*) {}),
                               {.epsilon = b.o.leapfrog_xsph, .current_positions = true, .include_fixed = true});
-  };
-  Eigen::VectorXd u, vs;
-
-  // y holds the whole-step state (x^n, v*^n, q^n) of E_n and fe its rates; vh = v^{n+1/2}.
-  Eigen::VectorXd y = r.y, fe, fh, yh, vh, ve;
-  b.rate(y, fe);
-  r.rate_evaluations += 1;
-  get_velocities(y, vh);
-  get_velocities(fe, ve);  // the velocity slots of F hold a: ve = a^0
-  vh += 0.5 * dt * ve;     // v^{1/2} = v^0 + dt/2 a^0
-  for (long step = 1; step <= b.nsteps; ++step) {
+  }
+  /// E_0 = F(y0), v^{1/2} = v^0 + dt/2 a^0.
+  void start(const Eigen::VectorXd& y0) {
+    y = y0;
+    b.rate(y, fe);
+    b.r.rate_evaluations += 1;
+    get_velocities(y, vh);
+    get_velocities(fe, ve);  // the velocity slots of F hold a: ve = a^0
+    vh += 0.5 * b.dt * ve;
+  }
+  /// Steps 1-5: from (y, fe, vh, ve) at n to n + 1; the synchronised y^{n+1} into b.r.y.
+  void step() {
+    const double dt = b.dt;
     // 1. Powell's XSPH on v^{n+1/2}, at the positions x^n (the list of E_n); driven particles keep their velocity.
     attach();
     if (smooth) {
@@ -243,15 +254,62 @@ void leapfrog(RunBook<Dim>& b, const VonMises* plastic) {
     // 4. E_{n+1} at v*^{n+1} = v^{n+1/2} + dt/2 a^n.
     set_velocities(y, vh + 0.5 * dt * ve);
     b.rate(y, fe);
-    r.rate_evaluations += 2;
-    get_velocities(fe, ve);  // a^{n+1}
+    b.r.rate_evaluations += 2;
+    get_velocities(fe, ve);       // a^{n+1}
+    if (b.o.absorbing_half_step)  // Powell's algorithm 2.3: the boundary particles' a from H (forward Euler (2.66))
+      for (int i : b.base.absorbing().particles) {
+        const int f = d0.free_slot[i];
+        ve.template segment<Dim>(f * Dim) = fh.template segment<Dim>(xoff[f] + Dim);
+      }
     // Synchronised record y^{n+1} = (x^{n+1}, v^{n+1/2} + dt/2 a^{n+1}, q^{n+1}).
-    r.y = y;
-    set_velocities(r.y, vh + 0.5 * dt * ve);
+    b.r.y = y;
+    set_velocities(b.r.y, vh + 0.5 * dt * ve);
     // 5. v^{n+3/2} = v^{n+1/2} + dt a^{n+1}.
     vh += dt * ve;
+  }
+};
+
+template <int Dim>
+void leapfrog(RunBook<Dim>& b, const VonMises* plastic) {
+  Leapfrog<Dim> lf(b, plastic);
+  lf.start(b.r.y);
+  for (long step = 1; step <= b.nsteps; ++step) {
+    lf.step();
     if (!b.finish_step(step)) break;
   }
+}
+
+/// Checks the run options (rate_form_run.hpp) and the state size.
+template <int Dim>
+void check_run_options(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y0, const RateFormRunOptions& o,
+                       const std::string& who) {
+  if (!(o.dt > 0) || !std::isfinite(o.dt))
+    throw std::invalid_argument(who + ": dt must be finite and > 0 (got " + format_number(o.dt) + ")");
+  if (!(o.t_end > 0) || !std::isfinite(o.t_end))
+    throw std::invalid_argument(who + ": t_end must be finite and > 0 (got " + format_number(o.t_end) + ")");
+  if (o.record_every < 1) throw std::invalid_argument(who + ": record_every must be >= 1");
+  if (y0.size() != scheme.size())
+    throw std::invalid_argument(who + ": state has " + std::to_string(y0.size()) + " entries, expected " +
+                                std::to_string(scheme.size()));
+  if (!(o.leapfrog_xsph >= 0) || !std::isfinite(o.leapfrog_xsph))
+    throw std::invalid_argument(who + ": leapfrog_xsph must be finite and >= 0 (got " + format_number(o.leapfrog_xsph) +
+                                ")");
+  if (o.leapfrog_xsph > 0 && o.integrator != RateFormIntegrator::Leapfrog)
+    throw std::invalid_argument(who +
+                                ": leapfrog_xsph needs the leap-frog integrator (the predictor-corrector's XSPH is "
+                                "RateFormOptions::xsph)");
+  if (o.absorbing_half_step && o.integrator != RateFormIntegrator::Leapfrog)
+    throw std::invalid_argument(who +
+                                ": absorbing_half_step needs the leap-frog integrator (it is Powell's algorithm 2.3)");
+  if (!(o.yield_stress > 0))
+    throw std::invalid_argument(who + ": yield_stress must be > 0 (+infinity: elastic; got " +
+                                format_number(o.yield_stress) + ")");
+  if (!(o.max_displacement > 0))
+    throw std::invalid_argument(who + ": max_displacement must be > 0 (+infinity: unchecked; got " +
+                                format_number(o.max_displacement) + ")");
+  if (!(o.neighbour_skin >= 0) || !std::isfinite(o.neighbour_skin))
+    throw std::invalid_argument(who + ": neighbour_skin must be finite and >= 0 (0: no rebuild; got " +
+                                format_number(o.neighbour_skin) + ")");
 }
 
 }  // namespace
@@ -259,30 +317,7 @@ void leapfrog(RunBook<Dim>& b, const VonMises* plastic) {
 template <int Dim>
 RateFormRunResult run_rate_form(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y0,
                                 const RateFormRunOptions& o) {
-  if (!(o.dt > 0) || !std::isfinite(o.dt))
-    throw std::invalid_argument("run_rate_form: dt must be finite and > 0 (got " + format_number(o.dt) + ")");
-  if (!(o.t_end > 0) || !std::isfinite(o.t_end))
-    throw std::invalid_argument("run_rate_form: t_end must be finite and > 0 (got " + format_number(o.t_end) + ")");
-  if (o.record_every < 1) throw std::invalid_argument("run_rate_form: record_every must be >= 1");
-  if (y0.size() != scheme.size())
-    throw std::invalid_argument("run_rate_form: state has " + std::to_string(y0.size()) + " entries, expected " +
-                                std::to_string(scheme.size()));
-  if (!(o.leapfrog_xsph >= 0) || !std::isfinite(o.leapfrog_xsph))
-    throw std::invalid_argument("run_rate_form: leapfrog_xsph must be finite and >= 0 (got " +
-                                format_number(o.leapfrog_xsph) + ")");
-  if (o.leapfrog_xsph > 0 && o.integrator != RateFormIntegrator::Leapfrog)
-    throw std::invalid_argument(
-        "run_rate_form: leapfrog_xsph needs the leap-frog integrator (the predictor-corrector's XSPH is "
-        "RateFormOptions::xsph)");
-  if (!(o.yield_stress > 0))
-    throw std::invalid_argument("run_rate_form: yield_stress must be > 0 (+infinity: elastic; got " +
-                                format_number(o.yield_stress) + ")");
-  if (!(o.max_displacement > 0))
-    throw std::invalid_argument("run_rate_form: max_displacement must be > 0 (+infinity: unchecked; got " +
-                                format_number(o.max_displacement) + ")");
-  if (!(o.neighbour_skin >= 0) || !std::isfinite(o.neighbour_skin))
-    throw std::invalid_argument("run_rate_form: neighbour_skin must be finite and >= 0 (0: no rebuild; got " +
-                                format_number(o.neighbour_skin) + ")");
+  check_run_options(scheme, y0, o, "run_rate_form");
   const VonMises plastic(o.yield_stress);
   const auto wall0 = std::chrono::steady_clock::now();
   const long nsteps =
@@ -308,6 +343,55 @@ RateFormRunResult run_rate_form(const RateFormScheme<Dim>& scheme, const Eigen::
   return std::move(b.r);
 }
 
+template <int Dim>
+Eigen::MatrixXd leapfrog_step_matrix(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y, double dt,
+                                     const RateFormRunOptions& options, double delta) {
+  RateFormRunOptions o = options;
+  o.dt = dt, o.t_end = dt;
+  check_run_options(scheme, y, o, "leapfrog_step_matrix");
+  if (o.integrator != RateFormIntegrator::Leapfrog)
+    throw std::invalid_argument("leapfrog_step_matrix: options.integrator must be the leap-frog");
+  if (o.neighbour_skin > 0 || std::isfinite(o.yield_stress))
+    throw std::invalid_argument(
+        "leapfrog_step_matrix: needs the scheme's own neighbour list and an elastic run (no skin, no yield stress)");
+  if (!(delta > 0) || !std::isfinite(delta))
+    throw std::invalid_argument("leapfrog_step_matrix: delta must be finite and > 0 (got " + format_number(delta) +
+                                ")");
+  RunBook<Dim> b{.base = scheme, .o = o, .nsteps = 1, .dt = dt, .ke0 = 0, .r = {}};
+  b.scheme = &scheme;
+  b.x_build = scheme.discretisation().particles.x;
+  Leapfrog<Dim> lf(b, nullptr);
+  const Eigen::Index ny = y.size(), nv = scheme.discretisation().dofs();
+  // z0 = (y, v^{n+1/2} = v of y, a^n = F(y)'s acceleration).
+  Eigen::VectorXd z0(ny + 2 * nv), f0, v0, a0;
+  b.rate(y, f0);
+  lf.get_velocities(y, v0);
+  lf.get_velocities(f0, a0);
+  z0 << y, v0, a0;
+  const auto step = [&](const Eigen::VectorXd& z) {
+    lf.y = z.head(ny);
+    lf.vh = z.segment(ny, nv);
+    lf.ve = z.tail(nv);
+    b.rate(lf.y, lf.fe);
+    lf.step();
+    Eigen::VectorXd out(z.size());
+    out << lf.y, lf.vh, lf.ve;
+    return out;
+  };
+  Eigen::MatrixXd M(z0.size(), z0.size());
+  for (Eigen::Index k = 0; k < z0.size(); ++k) {
+    const double e = delta * std::max(1.0, std::abs(z0[k]));
+    Eigen::VectorXd zp = z0, zm = z0;
+    zp[k] += e, zm[k] -= e;
+    M.col(k) = (step(zp) - step(zm)) / (2 * e);
+  }
+  return M;
+}
+
+template Eigen::MatrixXd leapfrog_step_matrix<1>(const RateFormScheme<1>&, const Eigen::VectorXd&, double,
+                                                 const RateFormRunOptions&, double);
+template Eigen::MatrixXd leapfrog_step_matrix<2>(const RateFormScheme<2>&, const Eigen::VectorXd&, double,
+                                                 const RateFormRunOptions&, double);
 template RateFormRunResult run_rate_form<1>(const RateFormScheme<1>&, const Eigen::VectorXd&,
                                             const RateFormRunOptions&);
 template RateFormRunResult run_rate_form<2>(const RateFormScheme<2>&, const Eigen::VectorXd&,

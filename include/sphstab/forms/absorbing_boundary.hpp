@@ -19,6 +19,7 @@
 /// Eigen::Vector2d a = sphstab::absorbing_acceleration(sphstab::AbsorbingCondition::Sochaki, c_p, c_s, n, L, v);
 /// \endcode
 #include <Eigen/Core>
+#include <vector>
 
 namespace sphstab {
 
@@ -31,11 +32,41 @@ enum class AbsorbingCondition {
 
 /// dv/dt of a boundary particle with unit outward normal n, velocity gradient L and velocity v (2D). Throws
 /// std::invalid_argument for Higdon (no first-order velocity form) or a normal that is not of unit length (1e-12).
-Eigen::Vector2d absorbing_acceleration(AbsorbingCondition condition, double c_p, double c_s, const Eigen::Vector2d& n,
-                                       const Eigen::Matrix2d& L, const Eigen::Vector2d& v, bool convective = false);
+/// Scalar: double, or std::complex<double> for complex-step Jacobians (n and the speeds stay real).
+template <class Scalar>
+Eigen::Matrix<Scalar, 2, 1> absorbing_acceleration(AbsorbingCondition condition, double c_p, double c_s,
+                                                   const Eigen::Vector2d& n, const Eigen::Matrix<Scalar, 2, 2>& L,
+                                                   const Eigen::Matrix<Scalar, 2, 1>& v, bool convective = false);
+
+/// The real case for arguments that are Eigen expressions.
+inline Eigen::Vector2d absorbing_acceleration(AbsorbingCondition condition, double c_p, double c_s,
+                                              const Eigen::Vector2d& n, const Eigen::Matrix2d& L,
+                                              const Eigen::Vector2d& v, bool convective = false) {
+  return absorbing_acceleration<double>(condition, c_p, c_s, n, L, v, convective);
+}
 
 /// The 1D condition (2.69)-(2.70): dv/dt = -c n dv/dx (n = +1 at the right end, -1 at the left), plus v dv/dx with
 /// the convective term.
-double absorbing_acceleration_1d(double c, double n, double dvdx, double v, bool convective = false);
+template <class Scalar>
+Scalar absorbing_acceleration_1d(double c, double n, const Scalar& dvdx, const Scalar& v, bool convective = false) {
+  return -c * n * dvdx + (convective ? v * dvdx : Scalar(0));
+}
+
+/// The particles of a scheme whose momentum equation is replaced by an absorbing condition, Powell (2.62) and
+/// algorithm 2.3 (RateFormScheme::set_absorbing). Their velocity gradient is Powell (1.33) with the scheme's gradient
+/// (plain or NCSPH) over their neighbours, or with upwind over the neighbours on the interior side only,
+/// (x_j - x_i) . n_i <= 0 (Powell (2.67), "j < i" at a right end; the particles on the boundary's own line are kept so
+/// that the tangential derivative of the Sochaki condition exists in 2D). The speeds are the scheme material's:
+/// c_p = sqrt((K + 4 mu / 3) / rho0) (in 1D the bar's c), c_s = sqrt(mu / rho0). Their density and stress evolve as
+/// for any particle.
+template <int Dim>
+struct AbsorbingParticles {
+  std::vector<int> particles;                                          ///< free particles, distinct, not driven
+  std::vector<Eigen::Matrix<double, Dim, 1>> normals;                  ///< unit outward normal of each (1D: +1 or -1)
+  AbsorbingCondition condition = AbsorbingCondition::ClaytonEngquist;  ///< not Higdon (no velocity form)
+  bool upwind = false;      ///< Powell (2.67): interior-side neighbours only (use with a normalised gradient)
+  bool convective = false;  ///< Powell (2.62)'s + (v . grad) v
+  bool empty() const { return particles.empty(); }
+};
 
 }  // namespace sphstab

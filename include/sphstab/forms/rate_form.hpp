@@ -37,6 +37,10 @@
 /// neighbours like any free particle (their v enters the neighbours' XSPH, L, continuity and viscosity). Both rate
 /// overloads do this, so a complex-step Jacobian has zero dv/dt rows and identity dx/dt = v rows for them.
 ///
+/// Absorbing particles (set_absorbing; [Powell2012, (2.62), (2.69), algorithm 2.3]): free particles whose momentum
+/// equation is replaced by a first-order non-reflecting condition, dv_i/dt from their velocity gradient
+/// (forms/absorbing_boundary.hpp); their motion, density and stress follow the equations above.
+///
 /// State layout (size()): per particle in index order, free particles [x (Dim), v (Dim), rho, S (1 in 1D; xx, yy, xy
 /// in 2D)], fixed particles [rho, S] (or nothing when not evolving). The neighbour list is the discretisation's
 /// (built once at the initial positions): runs whose particles move by more than the list's margin must rebuild it
@@ -66,6 +70,7 @@
 #include <string>
 #include <vector>
 
+#include "sphstab/forms/absorbing_boundary.hpp"
 #include "sphstab/forms/discretisation.hpp"
 #include "sphstab/forms/stabilised_sph.hpp"
 #include "sphstab/operators/local_polish.hpp"
@@ -196,6 +201,16 @@ class RateFormScheme final : public SemiDiscreteSystem {
   const std::vector<Eigen::Matrix<double, Dim, 1>>& driven_accelerations() const { return m_driven_acc; }
   bool is_driven(int particle) const { return !m_driven_slot.empty() && m_driven_slot[particle] >= 0; }
 
+  /// Declares absorbing boundary particles (forms/absorbing_boundary.hpp), replacing any earlier declaration; an
+  /// empty set: none. Their acceleration is the absorbing condition's, Powell (2.62) in 2D and (2.69) in 1D, from the
+  /// velocity gradient of their own velocities v (not the GMS XSPH vhat) with the scheme's gradient (plain or NCSPH,
+  /// normalised over the neighbours used; upwind: the interior side only); everything else about them is unchanged.
+  /// Throws std::invalid_argument for mismatched sizes, an index out of range, a fixed, driven or repeated particle, a
+  /// normal that is not of unit length (1e-12; 1D: +-1) or the Higdon condition.
+  void set_absorbing(AbsorbingParticles<Dim> boundary);
+  const AbsorbingParticles<Dim>& absorbing() const { return m_absorbing; }
+  bool is_absorbing(int particle) const { return !m_absorbing_slot.empty() && m_absorbing_slot[particle] >= 0; }
+
   /// The same scheme on a neighbour list built at the positions of state y (free particles; fixed particles keep
   /// their reference positions), for runs with large motion (RateFormRunOptions::neighbour_skin). Keeps the masses
   /// (volumes), initial density, deviator, material, options, driven particles and the state layout; what the
@@ -224,6 +239,9 @@ class RateFormScheme final : public SemiDiscreteSystem {
   const Eigen::VectorXd& mass() const { return m_mass; }
 
  private:
+  /// Overwrites the accelerations of the absorbing particles in dydt (after evaluate() on the same y).
+  template <class Scalar>
+  void absorb(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& y, Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& dydt) const;
   template <class Scalar>
   void evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& y,
                 Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& dydt) const;
@@ -270,7 +288,9 @@ class RateFormScheme final : public SemiDiscreteSystem {
   std::vector<char> m_in_support;            // per list entry: in the local means' pattern (empty: every entry is)
   std::vector<int> m_driven, m_driven_slot;  // driven particles; per particle: index into m_driven_acc or -1
   std::vector<Eigen::Matrix<double, Dim, 1>> m_driven_acc;
-  std::vector<bool> m_excluded;  // StabilisedSph: particles that never get the correction
+  AbsorbingParticles<Dim> m_absorbing;
+  std::vector<int> m_absorbing_slot;  // per particle: index into m_absorbing or -1 (empty: none)
+  std::vector<bool> m_excluded;       // StabilisedSph: particles that never get the correction
   int m_size = 0;
   mutable Workspace<double> m_work_real;                   // rate(VectorXd)
   mutable Workspace<std::complex<double>> m_work_complex;  // rate(VectorXcd): complex-step Jacobians

@@ -107,6 +107,11 @@ struct RateFormRunOptions {
   /// Leap-frog only: epsilon of Powell's XSPH (2.71), >= 0 (Powell 0.1); 0: off. The predictor-corrector's XSPH is
   /// the scheme's own, RateFormOptions::xsph [GMS2001, (3.6)].
   double leapfrog_xsph = 0;
+  /// Leap-frog only, for schemes with absorbing particles (RateFormScheme::set_absorbing): their acceleration is taken
+  /// from the half-step evaluation H (at v^{n+1/2}) instead of E_{n+1} (at v*^{n+1}). That is Powell's algorithm 2.3
+  /// literally, "a_i^{n-1/2} uses <L>_i^{n-1/2}", so v^{n+3/2} = v^{n+1/2} + dt a(v^{n+1/2}): forward Euler (2.66) in
+  /// the boundary particles' own velocities. false (default): the whole-step acceleration like every other particle.
+  bool absorbing_half_step = false;
   /// Von Mises yield stress Y > 0 of the radial return after each step; +infinity (default): elastic.
   double yield_stress = std::numeric_limits<double>::infinity();
   /// Stop (RunStatus::DisplacementLimit, with the particle) when a free particle has moved more than this (max norm)
@@ -139,10 +144,23 @@ struct RateFormRunResult {
 
 /// Runs the chosen integrator from y0 (size scheme.size()). Throws std::invalid_argument for dt <= 0, t_end <= 0,
 /// record_every < 1, a state of the wrong size, leapfrog_xsph < 0 (or > 0 with the predictor-corrector),
-/// yield_stress <= 0, max_displacement <= 0, a negative or non-finite neighbour_skin, or (with a skin) non-finite
-/// positions in y0 or a periodic box shorter than twice the list radius.
+/// yield_stress <= 0, max_displacement <= 0, absorbing_half_step with the predictor-corrector, a negative or non-finite
+/// neighbour_skin, or (with a skin) non-finite positions in y0 or a periodic box shorter than twice the list radius.
 template <int Dim>
 RateFormRunResult run_rate_form(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y0,
                                 const RateFormRunOptions& options);
+
+/// The leap-frog's one-step map linearised at state y: the matrix M with dz^{n+1} = M dz^n for the staggered state
+/// z = (y^n with v*^n in its velocity slots, v^{n+1/2}, a^n) (sizes scheme.size() + 2 dofs), by central differences
+/// of the integrator's own step (steps 1-5 above, Powell's XSPH and absorbing_half_step included) with increments
+/// delta max(1, |z_k|). At a rest state (F(y) = 0, v = 0) the map is linear to O(delta^2), so the spectral radius of M
+/// decides the stability of small perturbations at this dt: the time-step limit of the whole scheme, boundary
+/// conditions included, where the spectral rule of growth/rate_form_time_step.hpp (Jvv = 0) does not apply. Dense:
+/// (size + 2 dofs)^2 doubles and 2 (size + 2 dofs) steps. Throws std::invalid_argument for the options run_rate_form
+/// rejects, the predictor-corrector, a neighbour skin or a yield stress, or delta <= 0.
+template <int Dim>
+Eigen::MatrixXd leapfrog_step_matrix(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y, double dt,
+                                     const RateFormRunOptions& options = {.integrator = RateFormIntegrator::Leapfrog},
+                                     double delta = 1e-7);
 
 }  // namespace sphstab
