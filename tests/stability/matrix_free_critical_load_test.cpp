@@ -1,0 +1,107 @@
+// The matrix-free eigen routes (LOBPCG; Lanczos on A0^{-1} (-A1) with CG solves) against the direct critical-load
+// engine (CHOLMOD bisection and Cholesky-mode Spectra / dsygv on the assembled A0, A1) on square lattices with fixed
+// layers.
+#include "sphstab/stability/matrix_free_critical_load.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+#include "sphstab/jacobian/analytic_jacobian_2d.hpp"
+#include "sphstab/particles/lattice_presets.hpp"
+#include "sphstab/stability/critical_load.hpp"
+
+namespace sphstab {
+namespace {
+
+const ElasticMaterial kMaterial{.lambda = 1.2115384615384615, .mu = 0.8076923076923077, .rho = 7.8};
+
+std::shared_ptr<const Discretisation<2>> square(int n, double h = 1.3) {
+  const Kernel<2> k(KernelType::CubicSpline);
+  return make_discretisation(strain_lattice_2d(LatticeType::Square, k, h, n), k, h);
+}
+
+CriticalLoad direct(const Discretisation<2>& d, MomentumForm form, PreStrainKind kind, LoadDirection direction) {
+  CriticalLoadOptions opt = CriticalLoadOptions::strain_2d();
+  opt.criterion = Criterion::Definiteness;
+  opt.want_mode = false;
+  return critical_load(analytic_jacobian_2d(d, kMaterial, form, kind), direction, opt);
+}
+
+struct Case {
+  int n;
+  MomentumForm form;
+  PreStrainKind kind;
+};
+
+TEST(MatrixFreeCriticalLoad, AgreesWithTheDirectRoute) {
+  // n = 16 only for the unit suite: LanczosCg needs ~1 min per case at n = 32 (see the header for n = 32, 64).
+  const std::vector<Case> cases = {{16, MomentumForm::Conservative, PreStrainKind::Isotropic},
+                                   {16, MomentumForm::Plus, PreStrainKind::Isotropic},
+                                   {16, MomentumForm::Uncorrected, PreStrainKind::Isotropic},
+                                   {16, MomentumForm::Conservative, PreStrainKind::UniaxialX}};
+  double worst = 0;
+  for (const Case& c : cases) {
+    auto d = square(c.n);
+    const MatrixFreeLinearisation lin(*d, kMaterial, c.form, c.kind);
+    const CriticalLoad ref = direct(*d, c.form, c.kind, LoadDirection::Tension);
+    for (MatrixFreeEigenMethod method : {MatrixFreeEigenMethod::Lobpcg, MatrixFreeEigenMethod::LanczosCg}) {
+      const MatrixFreeCriticalLoad mf = matrix_free_critical_load(lin, LoadDirection::Tension, {.method = method});
+      const std::string what = "n=" + std::to_string(c.n) + " " + momentum_form_name(c.form) + " " +
+                               prestrain_kind_name(c.kind) +
+                               (method == MatrixFreeEigenMethod::Lobpcg ? " lobpcg" : " lanczos-cg");
+      ASSERT_EQ(mf.info(), Status::Successful) << what << ": " << mf.reason;
+      ASSERT_EQ(ref.info(), Status::Successful) << what << ": " << ref.reason;
+      ASSERT_TRUE(std::isfinite(ref.load) && ref.load > 0) << what;
+      const double rel = std::abs(mf.load - ref.load) / ref.load;
+      EXPECT_LE(rel, 1e-8) << what << ": " << mf.load << " vs " << ref.load;
+      worst = std::max(worst, rel);
+      std::cout << what << ": e_crit " << mf.load << " (direct " << ref.load << ", relative " << rel << "), "
+                << mf.iterations << " steps, " << mf.a0_products << " A0 products\n";
+    }
+  }
+  std::cout << "largest relative difference matrix-free vs direct: " << worst << "\n";
+}
+
+TEST(MatrixFreeCriticalLoad, ModeIsAnEigenvectorOfThePencil) {
+  auto d = square(12);
+  const MatrixFreeLinearisation lin(*d, kMaterial, MomentumForm::Conservative, PreStrainKind::Isotropic);
+  const MatrixFreeCriticalLoad r = matrix_free_critical_load(lin, LoadDirection::Tension);
+  ASSERT_EQ(r.info(), Status::Successful) << r.reason;
+  // A(e_crit) x = 0: K x = e L x with L = -A1.
+  Eigen::VectorXd ax(lin.dofs()), a0x(lin.dofs());
+  lin.apply(r.load, r.mode, ax);
+  lin.apply_A0(r.mode, a0x);
+  EXPECT_LE(ax.norm(), 1e-8 * a0x.norm());
+}
+
+TEST(MatrixFreeCriticalLoad, RejectsWhatItDoesNotCover) {
+  auto d = square(6);
+  const MatrixFreeLinearisation uniaxial_plus(*d, kMaterial, MomentumForm::Plus, PreStrainKind::UniaxialX);
+  EXPECT_THROW(matrix_free_critical_load(uniaxial_plus, LoadDirection::Tension), std::invalid_argument);
+  const MatrixFreeLinearisation minus(*d, kMaterial, MomentumForm::Minus, PreStrainKind::Isotropic);
+  EXPECT_THROW(matrix_free_critical_load(minus, LoadDirection::Tension), std::invalid_argument);
+  const MatrixFreeLinearisation cons(*d, kMaterial, MomentumForm::Conservative, PreStrainKind::Isotropic);
+  EXPECT_THROW(matrix_free_critical_load(cons, LoadDirection::Tension, {.cg_rtol = 0}), std::invalid_argument);
+  EXPECT_THROW(matrix_free_critical_load(cons, LoadDirection::Tension, {.ncv = 1}), std::invalid_argument);
+  EXPECT_THROW(matrix_free_critical_load(cons, LoadDirection::Tension, {.residual_tol = 0}), std::invalid_argument);
+}
+
+TEST(MatrixFreeCriticalLoad, ReportsCgFailure) {
+  // Two CG steps per solve cannot reach 1e-12: a status, not an exception or a wrong number.
+  auto d = square(10);
+  const MatrixFreeLinearisation lin(*d, kMaterial, MomentumForm::Conservative, PreStrainKind::Isotropic);
+  const MatrixFreeCriticalLoad r = matrix_free_critical_load(
+      lin, LoadDirection::Tension, {.method = MatrixFreeEigenMethod::LanczosCg, .cg_maxit = 2});
+  EXPECT_EQ(r.info(), Status::NotConverging);
+  EXPECT_TRUE(std::isnan(r.load));
+  EXPECT_NE(r.reason.find("CG"), std::string::npos) << r.reason;
+  const MatrixFreeCriticalLoad l = matrix_free_critical_load(lin, LoadDirection::Tension, {.max_iterations = 5});
+  EXPECT_EQ(l.info(), Status::NotConverging);
+  EXPECT_TRUE(std::isnan(l.load));
+  EXPECT_NE(l.reason.find("LOBPCG"), std::string::npos) << l.reason;
+}
+
+}  // namespace
+}  // namespace sphstab
