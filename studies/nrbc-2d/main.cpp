@@ -1,0 +1,204 @@
+// Powell (2012) ch. 2 §3.2(a): 2D square compression with first-order non-reflecting boundaries. A 1 x 1 cm steel block
+// (50 x 50 particles) starts with the inward velocity v0 x_mi / |x_mi| (2.73), or that field rotated by pi/8 (2.74);
+// the kinetic energy of the block with absorbing boundary particles (Clayton-Engquist "P", Sochaki "M"; Powell's
+// half-step timing and sphstab's whole-step one) against the same 50 x 50 particles inside a large reference block
+// moving inwards everywhere (the infinite space collapsing on itself, as Powell's reference) whose boundary is too
+// far to matter, and against a free block.
+//
+// Writes to --out DIR: runs.csv (one row per case: the largest |KE - KE_ref| / KE0 and when, KE at the end),
+// series/<tag>.csv (t, KE / KE0 of the central block), summary.json.
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/study.hpp"
+#include "sphstab/core/format.hpp"
+#include "sphstab/forms/rate_form.hpp"
+#include "sphstab/integrate/rate_form_run.hpp"
+#include "sphstab/io/csv.hpp"
+#include "sphstab/operators/boundary_particles.hpp"
+
+using namespace sphstab;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Powell's units (g, cm, us): rho 7.8, E 2.1, nu 0.3 (plane strain), v0 = 0.01.
+constexpr double kV0 = 0.01;
+
+enum class Boundary { Reference, Free, P, M };
+const char* boundary_name(Boundary b) {
+  switch (b) {
+    case Boundary::Reference:
+      return "reference";
+    case Boundary::Free:
+      return "free";
+    case Boundary::P:
+      return "P";
+    case Boundary::M:
+      return "M";
+  }
+  return "?";
+}
+
+struct SquareCase {
+  Boundary boundary = Boundary::P;
+  bool skewed = false;     ///< (2.74): the velocity field rotated by pi/8
+  bool half_step = false;  ///< Powell's algorithm 2.3 timing of the absorbing particles
+  int n = 50;              ///< particles per side of the block
+  int margin = 0;          ///< reference: extra particles on each side (at rest)
+  double cfl = 0.3, t_end = 4, h_over_dx = 1.3;
+};
+
+struct SquareRun {
+  SquareCase c;
+  std::string status;
+  int particles = 0, absorbing = 0, layers = 0;
+  double wall = 0;
+  std::vector<double> t, ke;  ///< kinetic energy of the central n x n particles over KE0
+};
+
+std::string tag_of(const SquareCase& c) {
+  return std::string(boundary_name(c.boundary)) + (c.skewed ? "_skewed" : "_centred") +
+         (c.boundary == Boundary::P || c.boundary == Boundary::M ? (c.half_step ? "_half" : "_whole") : "");
+}
+
+SquareRun run_square(const SquareCase& c) {
+  const double dx = 1.0 / c.n;
+  const int side = c.n + 2 * c.margin;
+  ParticleSet<2> p;
+  p.x.resize(side * side, 2);
+  p.volume = Eigen::VectorXd::Constant(side * side, dx * dx);
+  p.role.assign(side * side, Role::Free);
+  p.spacing = dx;
+  std::vector<int> central;
+  for (int j = 0; j < side; ++j)
+    for (int i = 0; i < side; ++i) {
+      const int k = j * side + i;
+      p.x.row(k) << (i - c.margin + 0.5) * dx, (j - c.margin + 0.5) * dx;
+      if (i >= c.margin && i < c.margin + c.n && j >= c.margin && j < c.margin + c.n) central.push_back(k);
+    }
+  auto disc = make_discretisation(p, Kernel<2>(KernelType::CubicSpline), c.h_over_dx * dx);
+  const RateFormMaterial mat = RateFormMaterial::from_youngs(2.1, 0.3, 7.8);
+  RateFormScheme<2> scheme(disc, mat,
+                           {.continuity = ContinuityForm::Divergence,
+                            .viscosity = ViscositySwitch::Compression,
+                            .gradient = RateFormGradient::Ncsph});
+  SquareRun r{.c = c, .particles = side * side};
+  if (c.boundary == Boundary::P || c.boundary == Boundary::M) {
+    const BoundaryParticles<2> b = boundary_particles(disc->particles, disc->kernel, disc->h, disc->neighbours);
+    AbsorbingParticles<2> a{.condition = c.boundary == Boundary::P ? AbsorbingCondition::ClaytonEngquist
+                                                                   : AbsorbingCondition::Sochaki};
+    for (int i : b.particles) a.particles.push_back(i), a.normals.emplace_back(b.normal.row(i).transpose());
+    r.absorbing = static_cast<int>(a.particles.size());
+    r.layers = b.layers;
+    scheme.set_absorbing(a);
+  }
+  Eigen::VectorXd y0 = scheme.uniform_state();
+  const double ang = c.skewed ? M_PI / 8 : 0.0;
+  const Eigen::Matrix2d R{{std::cos(ang), -std::sin(ang)}, {std::sin(ang), std::cos(ang)}};
+  // Powell: "the hypothetical infinite space surrounding the problem domain is supposed to be collapsing in on
+  // itself", so the reference block moves inwards everywhere, not only in its central n x n.
+  for (int k = 0; k < side * side; ++k) {
+    const Eigen::Vector2d to_centre = Eigen::Vector2d(0.5, 0.5) - p.x.row(k).transpose();  // x_mi = x_m - x_i
+    scheme.set_velocity(y0, k, kV0 * R * to_centre.normalized());
+  }
+  const auto central_ke = [&](const Eigen::VectorXd& y) {
+    double e = 0;
+    for (int k : central) e += 0.5 * scheme.mass()[k] * y.segment<2>(scheme.velocity_offset(k)).squaredNorm();
+    return e;
+  };
+  const double ke0 = central_ke(y0);
+  const auto t0 = study::Clock::now();
+  const RateFormRunResult res = run_rate_form(scheme, y0,
+                                              {.dt = c.cfl * dx / mat.p_wave_speed(),
+                                               .t_end = c.t_end,
+                                               .energy_growth = 100,
+                                               .observer =
+                                                   [&](long, double t, const Eigen::VectorXd& y) {
+                                                     r.t.push_back(t);
+                                                     r.ke.push_back(central_ke(y) / ke0);
+                                                   },
+                                               .integrator = RateFormIntegrator::Leapfrog,
+                                               .leapfrog_xsph = 0.1,
+                                               .absorbing_half_step = c.half_step && r.absorbing > 0});
+  r.wall = study::seconds_since(t0);
+  r.status = run_status_name(res.status);
+  return r;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) try {
+  CLI::App app{"Powell 2012 ch. 2 §3.2(a): square compression with non-reflecting boundaries"};
+  std::string out = "results/nrbc-2d";
+  int threads = 2, n = 50, margin = 124;
+  double cfl = 0.3, t_end = 4;
+  app.add_option("--out", out, "output directory");
+  app.add_option("--threads", threads, "concurrent runs")->check(CLI::Range(1, 64));
+  app.add_option("--n", n, "particles per side of the block (Powell 50)")->check(CLI::Range(8, 400));
+  app.add_option("--margin", margin, "reference: particles added on each side")->check(CLI::Range(0, 1000));
+  app.add_option("--cfl", cfl, "dt = cfl dx / c_p")->check(CLI::Range(0.01, 2.0));
+  app.add_option("--t-end", t_end, "run length (us)")->check(CLI::Range(0.1, 100.0));
+  CLI11_PARSE(app, argc, argv);
+  const auto t0 = study::Clock::now();
+  fs::create_directories(out + "/series");
+  // The reference's own (moving, free) boundary must not be heard in the block before t_end: margin dx > c_p t_end.
+  const double cp = RateFormMaterial::from_youngs(2.1, 0.3, 7.8).p_wave_speed();
+  if (margin / static_cast<double>(n) <= cp * t_end)
+    throw std::invalid_argument("margin " + std::to_string(margin) +
+                                " too small: the reference's boundary is heard at t = " +
+                                format_number(margin / static_cast<double>(n) / cp) + " < t_end");
+  std::vector<SquareCase> cases;
+  for (bool skewed : {false, true}) {
+    cases.push_back(
+        {.boundary = Boundary::Reference, .skewed = skewed, .n = n, .margin = margin, .cfl = cfl, .t_end = t_end});
+    cases.push_back({.boundary = Boundary::Free, .skewed = skewed, .n = n, .cfl = cfl, .t_end = t_end});
+    for (Boundary b : {Boundary::P, Boundary::M})
+      for (bool half : {false, true})
+        cases.push_back({.boundary = b, .skewed = skewed, .half_step = half, .n = n, .cfl = cfl, .t_end = t_end});
+  }
+  std::vector<SquareRun> runs(cases.size());
+  study::parallel_for(cases.size(), threads, [&](std::size_t k) { runs[k] = run_square(cases[k]); });
+
+  study::Summary sum;
+  CsvWriter w(out + "/runs.csv", {"boundary", "skewed", "timing", "particles", "absorbing", "layers", "status",
+                                  "max_deviation", "t_max_deviation", "ke_end", "ke_ref_end", "wall_seconds"});
+  std::string md;
+  for (const SquareRun& r : runs) {
+    const SquareRun& ref = *std::find_if(runs.begin(), runs.end(), [&](const SquareRun& q) {
+      return q.c.boundary == Boundary::Reference && q.c.skewed == r.c.skewed;
+    });
+    double dev = 0, t_dev = NAN;
+    const std::size_t m = std::min(r.ke.size(), ref.ke.size());
+    for (std::size_t k = 0; k < m; ++k)
+      if (std::abs(r.ke[k] - ref.ke[k]) > dev) dev = std::abs(r.ke[k] - ref.ke[k]), t_dev = r.t[k];
+    const std::string timing = r.absorbing > 0 ? (r.c.half_step ? "half" : "whole") : "-";
+    w.row({boundary_name(r.c.boundary), r.c.skewed ? 1 : 0, timing, r.particles, r.absorbing, r.layers, r.status, dev,
+           t_dev, r.ke.back(), ref.ke.back(), r.wall});
+    CsvWriter s(out + "/series/" + tag_of(r.c) + ".csv", {"t", "ke_over_ke0", "ke_ref_over_ke0"});
+    for (std::size_t k = 0; k < m; ++k) s.row({r.t[k], r.ke[k], ref.ke[k]});
+    if (r.c.boundary == Boundary::Reference) continue;
+    study::md_row(md, {r.c.skewed ? "skewed (2.74)" : "centred (2.73)", boundary_name(r.c.boundary), timing,
+                       std::to_string(r.absorbing) + " (" + std::to_string(r.layers) + " layers)", r.status,
+                       study::sig(100 * dev, 3) + " % at t = " + study::sig(t_dev, 3),
+                       study::sig(100 * r.ke.back(), 3) + " % (" + study::sig(100 * ref.ke.back(), 3) + " %)",
+                       study::sig(r.wall, 3)});
+  }
+  sum.set("table", md);
+  sum.set("n", n);
+  sum.set("reference_side", n + 2 * margin);
+  sum.set("cfl", cfl, 3);
+  sum.set("t_end", t_end, 3);
+  sum.set("wall_seconds", study::seconds_since(t0), 3);
+  sum.write(out);
+  return 0;
+} catch (const std::exception& e) {
+  std::cerr << "nrbc-2d: " << e.what() << "\n";
+  return 1;
+}
