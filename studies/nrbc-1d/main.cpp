@@ -183,14 +183,10 @@ std::vector<BarRun> run_all(const std::vector<BarCase>& cases, int threads) {
   return runs;
 }
 
-/// Largest CFL in [lo, hi] at which the case runs stably to t_to, by bisection (stability assumed monotone in dt;
-/// sampling, not proof): relative resolution 1e-2. Returns hi when hi is stable, 0 when lo is not.
-double stable_cfl_limit(BarCase c, double lo, double hi) {
-  c.keep_series = false;
-  const auto stable = [&](double cfl) {
-    c.cfl = cfl;
-    return run_bar(c).stable;
-  };
+/// Largest CFL in [lo, hi] for which stable(cfl) holds, by geometric bisection to relative resolution 1e-2 (stability
+/// assumed monotone in dt: sampling, not proof). Returns hi when hi is stable, 0 when lo is not.
+template <class Stable>
+double largest_stable_cfl(double lo, double hi, Stable&& stable) {
   if (stable(hi)) return hi;
   if (!stable(lo)) return 0;
   while (hi / lo - 1 > 1e-2) {
@@ -198,6 +194,15 @@ double stable_cfl_limit(BarCase c, double lo, double hi) {
     (stable(mid) ? lo : hi) = mid;
   }
   return lo;
+}
+
+/// Largest CFL at which the case runs stably to t_to.
+double stable_cfl_limit(BarCase c, double lo, double hi) {
+  c.keep_series = false;
+  return largest_stable_cfl(lo, hi, [&](double cfl) {
+    c.cfl = cfl;
+    return run_bar(c).stable;
+  });
 }
 
 /// Spectral radius of the leap-frog's linearised step at rest (integrate/rate_form_run.hpp, leapfrog_step_matrix):
@@ -217,19 +222,12 @@ double step_radius(BarCase c, ViscositySwitch viscosity) {
 }
 constexpr double kRadiusTolerance = 1e-6;
 
-/// Largest CFL in [lo, hi] with step radius <= 1 + kRadiusTolerance, by bisection (relative resolution 1e-2).
+/// Largest CFL with step radius <= 1 + kRadiusTolerance.
 double linear_cfl_limit(BarCase c, ViscositySwitch viscosity, double lo, double hi) {
-  const auto stable = [&](double cfl) {
+  return largest_stable_cfl(lo, hi, [&](double cfl) {
     c.cfl = cfl;
     return step_radius(c, viscosity) <= 1 + kRadiusTolerance;
-  };
-  if (stable(hi)) return hi;
-  if (!stable(lo)) return 0;
-  while (hi / lo - 1 > 1e-2) {
-    const double mid = std::sqrt(lo * hi);
-    (stable(mid) ? lo : hi) = mid;
-  }
-  return lo;
+  });
 }
 
 void write_table(const std::string& path, const std::vector<BarRun>& runs) {
