@@ -22,29 +22,16 @@
 #include "sphstab/particles/lattice_presets.hpp"
 #include "sphstab/spectral/fourier_symbol_2d.hpp"
 #include "sphstab/stability/critical_load.hpp"
+#include "strain_lattice.hpp"
 
 namespace {
 
 using namespace sphstab;
 
-constexpr double kH = 1.3;
-const ElasticMaterial kMaterial{.lambda = 1.2115384615384615, .mu = 0.8076923076923077, .rho = 7.8};
-
-double peak_rss_mb() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return u.ru_maxrss / 1024.0;  // Linux: kilobytes
-}
-
-std::shared_ptr<const Discretisation<2>> discretisation(int n) {
-  static std::map<int, std::shared_ptr<const Discretisation<2>>> cache;
-  auto& d = cache[n];
-  if (!d) {
-    const Kernel<2> k(KernelType::CubicSpline);
-    d = make_discretisation(strain_lattice_2d(LatticeType::Square, k, kH, n), k, kH);
-  }
-  return d;
-}
+using bench::discretisation;
+using bench::kH;
+using bench::kMaterial;
+using bench::peak_rss_mb;
 
 const Linearisation& jacobian(int n) {
   static std::map<int, std::unique_ptr<Linearisation>> cache;
