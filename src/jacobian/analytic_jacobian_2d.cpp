@@ -8,6 +8,7 @@
 
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/memory_budget.hpp"
+#include "sphstab/forms/elastic_term.hpp"
 
 namespace sphstab {
 
@@ -206,6 +207,9 @@ Linearisation analytic_jacobian_2d(const ElasticForm2D& force) {
     throw std::invalid_argument(
         "analytic_jacobian_2d: the closed form is the linearisation at rest with zero fixed displacements "
         "(use affine_jacobian)");
+  if (!force.terms().empty())  // e.g. the artificial stress: its linearisation is not in the closed form
+    throw std::invalid_argument("analytic_jacobian_2d: additional momentum terms ('" + force.terms()[0]->name() +
+                                "') are not covered by the closed form (use affine_jacobian)");
   return analytic_jacobian_2d(force.discretisation(), force.material(), force.form(), force.prestrain().kind);
 }
 

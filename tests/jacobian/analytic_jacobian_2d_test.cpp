@@ -8,6 +8,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "sphstab/forms/artificial_stress_term.hpp"
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
 #include "sphstab/particles/lattice.hpp"
 
@@ -143,6 +144,9 @@ TEST(AnalyticJacobian2D, RejectsWhatTheClosedFormDoesNotCover) {
   fixed[0] = 0.01;
   clamped.set_fixed_displacement(fixed);
   EXPECT_THROW(analytic_jacobian_2d(clamped), std::invalid_argument);
+  ElasticForm2D with_term(d, kMaterial, MomentumForm::Plus);
+  with_term.add_term(std::make_shared<ArtificialStressTerm>(d));
+  EXPECT_THROW(analytic_jacobian_2d(with_term), std::invalid_argument);
   EXPECT_THROW(
       analytic_jacobian_2d(*d, {.lambda = 1, .mu = -1, .rho = 1}, MomentumForm::Plus, PreStrainKind::Isotropic),
       std::invalid_argument);
