@@ -1,6 +1,7 @@
 // `sphstab spectrum` in-process (cli_harness.hpp): the growth rate agrees with the library and with the lattice
 // dispersion value in GMS units; bad input is one error line.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <string>
@@ -11,8 +12,11 @@
 namespace sphstab {
 namespace {
 
+// One directory per test process: ctest runs the tests of this file in parallel processes, and a shared stdout file
+// let one test read another's output (a CI failure of BadInputIsOneErrorLine).
 test::CliOutcome run(const std::vector<std::string>& args) {
-  return test::run_cli_in_child(args, std::filesystem::temp_directory_path() / "sphstab_spectrum_test", 2e9, 120);
+  return test::run_cli_in_child(
+      args, std::filesystem::temp_directory_path() / ("sphstab_spectrum_test_" + std::to_string(getpid())), 2e9, 120);
 }
 
 TEST(SpectrumCommand, GrowthRateInGmsUnits) {
