@@ -46,9 +46,17 @@ const char* boundary_name(Boundary b) {
   return "?";
 }
 
+/// Initial velocity: v0 x_mi / |x_mi| everywhere ((2.73), the infinite space collapsing), that field rotated by pi/8
+/// (2.74), or only within 0.25 of the centre and at rest elsewhere ((2.76), Powell's central disc).
+enum class Field { Centred, Skewed, Disc };
+const char* field_name(Field f) { return f == Field::Centred ? "centred" : f == Field::Skewed ? "skewed" : "disc"; }
+const char* field_label(Field f) {
+  return f == Field::Centred ? "centred (2.73)" : f == Field::Skewed ? "skewed (2.74)" : "central disc (2.76)";
+}
+
 struct SquareCase {
   Boundary boundary = Boundary::P;
-  bool skewed = false;     ///< (2.74): the velocity field rotated by pi/8
+  Field field = Field::Centred;
   bool half_step = false;  ///< Powell's algorithm 2.3 timing of the absorbing particles
   int n = 50;              ///< particles per side of the block
   int margin = 0;          ///< reference: extra particles on each side (at rest)
@@ -64,7 +72,7 @@ struct SquareRun {
 };
 
 std::string tag_of(const SquareCase& c) {
-  return std::string(boundary_name(c.boundary)) + (c.skewed ? "_skewed" : "_centred") +
+  return std::string(boundary_name(c.boundary)) + "_" + field_name(c.field) +
          (c.boundary == Boundary::P || c.boundary == Boundary::M ? (c.half_step ? "_half" : "_whole") : "");
 }
 
@@ -100,13 +108,13 @@ SquareRun run_square(const SquareCase& c) {
     scheme.set_absorbing(a);
   }
   Eigen::VectorXd y0 = scheme.uniform_state();
-  const double ang = c.skewed ? M_PI / 8 : 0.0;
+  const double ang = c.field == Field::Skewed ? M_PI / 8 : 0.0;
   const Eigen::Matrix2d R{{std::cos(ang), -std::sin(ang)}, {std::sin(ang), std::cos(ang)}};
   // Powell: "the hypothetical infinite space surrounding the problem domain is supposed to be collapsing in on
   // itself", so the reference block moves inwards everywhere, not only in its central n x n.
   for (int k = 0; k < side * side; ++k) {
     const Eigen::Vector2d to_centre = Eigen::Vector2d(0.5, 0.5) - p.x.row(k).transpose();  // x_mi = x_m - x_i
-    scheme.set_velocity(y0, k, kV0 * R * to_centre.normalized());
+    if (c.field != Field::Disc || to_centre.norm() < 0.25) scheme.set_velocity(y0, k, kV0 * R * to_centre.normalized());
   }
   const auto central_ke = [&](const Eigen::VectorXd& y) {
     double e = 0;
@@ -155,36 +163,36 @@ int main(int argc, char** argv) try {
                                 " too small: the reference's boundary is heard at t = " +
                                 format_number(margin / static_cast<double>(n) / cp) + " < t_end");
   std::vector<SquareCase> cases;
-  for (bool skewed : {false, true}) {
+  for (Field field : {Field::Centred, Field::Skewed, Field::Disc}) {
     cases.push_back(
-        {.boundary = Boundary::Reference, .skewed = skewed, .n = n, .margin = margin, .cfl = cfl, .t_end = t_end});
-    cases.push_back({.boundary = Boundary::Free, .skewed = skewed, .n = n, .cfl = cfl, .t_end = t_end});
+        {.boundary = Boundary::Reference, .field = field, .n = n, .margin = margin, .cfl = cfl, .t_end = t_end});
+    cases.push_back({.boundary = Boundary::Free, .field = field, .n = n, .cfl = cfl, .t_end = t_end});
     for (Boundary b : {Boundary::P, Boundary::M})
       for (bool half : {false, true})
-        cases.push_back({.boundary = b, .skewed = skewed, .half_step = half, .n = n, .cfl = cfl, .t_end = t_end});
+        cases.push_back({.boundary = b, .field = field, .half_step = half, .n = n, .cfl = cfl, .t_end = t_end});
   }
   std::vector<SquareRun> runs(cases.size());
   study::parallel_for(cases.size(), threads, [&](std::size_t k) { runs[k] = run_square(cases[k]); });
 
   study::Summary sum;
-  CsvWriter w(out + "/runs.csv", {"boundary", "skewed", "timing", "particles", "absorbing", "layers", "status",
+  CsvWriter w(out + "/runs.csv", {"boundary", "field", "timing", "particles", "absorbing", "layers", "status",
                                   "max_deviation", "t_max_deviation", "ke_end", "ke_ref_end", "wall_seconds"});
   std::string md;
   for (const SquareRun& r : runs) {
     const SquareRun& ref = *std::find_if(runs.begin(), runs.end(), [&](const SquareRun& q) {
-      return q.c.boundary == Boundary::Reference && q.c.skewed == r.c.skewed;
+      return q.c.boundary == Boundary::Reference && q.c.field == r.c.field;
     });
     double dev = 0, t_dev = NAN;
     const std::size_t m = std::min(r.ke.size(), ref.ke.size());
     for (std::size_t k = 0; k < m; ++k)
       if (std::abs(r.ke[k] - ref.ke[k]) > dev) dev = std::abs(r.ke[k] - ref.ke[k]), t_dev = r.t[k];
     const std::string timing = r.absorbing > 0 ? (r.c.half_step ? "half" : "whole") : "-";
-    w.row({boundary_name(r.c.boundary), r.c.skewed ? 1 : 0, timing, r.particles, r.absorbing, r.layers, r.status, dev,
-           t_dev, r.ke.back(), ref.ke.back(), r.wall});
+    w.row({boundary_name(r.c.boundary), field_name(r.c.field), timing, r.particles, r.absorbing, r.layers, r.status,
+           dev, t_dev, r.ke.back(), ref.ke.back(), r.wall});
     CsvWriter s(out + "/series/" + tag_of(r.c) + ".csv", {"t", "ke_over_ke0", "ke_ref_over_ke0"});
     for (std::size_t k = 0; k < m; ++k) s.row({r.t[k], r.ke[k], ref.ke[k]});
     if (r.c.boundary == Boundary::Reference) continue;
-    study::md_row(md, {r.c.skewed ? "skewed (2.74)" : "centred (2.73)", boundary_name(r.c.boundary), timing,
+    study::md_row(md, {field_label(r.c.field), boundary_name(r.c.boundary), timing,
                        std::to_string(r.absorbing) + " (" + std::to_string(r.layers) + " layers)", r.status,
                        study::sig(100 * dev, 3) + " % at t = " + study::sig(t_dev, 3),
                        study::sig(100 * r.ke.back(), 3) + " % (" + study::sig(100 * ref.ke.back(), 3) + " %)",

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Plots of the 2D square-compression study (Powell 2012 ch. 2 §3.2(a), Figs. 2.13-2.16): kinetic energy of the block
-over KE0 against the large reference, and the deviation from it, for the centred (2.73) and skewed (2.74) fields.
+over KE0 against the large reference, and the deviation from it, for the centred (2.73), skewed (2.74) and central-disc (2.76) fields.
 Usage: plot.py RESULTS_DIR (reads runs.csv and series/<tag>.csv)."""
 import os
 import sys
@@ -10,18 +10,19 @@ from plot_common import num, plt, read  # noqa: E402
 
 
 def tag(row):
-    kind = "_skewed" if row["skewed"] == "1" else "_centred"
+    kind = "_" + row["field"]
     timing = "" if row["timing"] == "-" else "_" + row["timing"]
     return row["boundary"] + kind + timing
 
 
 def main(out):
     rows = read(os.path.join(out, "runs.csv"))
-    fig, axes = plt.subplots(2, 2, figsize=(12, 8), sharex=True)
-    for col, skewed in enumerate(("0", "1")):
+    fields = {"centred": "centred (2.73)", "skewed": "skewed (2.74)", "disc": "central disc (2.76)"}
+    fig, axes = plt.subplots(2, 3, figsize=(17, 8), sharex=True)
+    for col, field in enumerate(fields):
         a_ke, a_dev = axes[0][col], axes[1][col]
         for r in rows:
-            if r["skewed"] != skewed:
+            if r["field"] != field:
                 continue
             s = read(os.path.join(out, "series", tag(r) + ".csv"))
             t = [num(x["t"]) for x in s]
@@ -33,7 +34,7 @@ def main(out):
                 a_dev.plot(t, [100 * (num(x["ke_over_ke0"]) - num(x["ke_ref_over_ke0"])) for x in s], label=label)
         a_ke.set_ylim(0, 1.2)
         a_ke.set_ylabel("KE of the block / KE0")
-        a_ke.set_title("skewed (2.74)" if skewed == "1" else "centred (2.73)")
+        a_ke.set_title(fields[field])
         a_ke.legend(fontsize=8)
         a_dev.axhline(0.25, color="0.5", lw=0.6, ls=":")
         a_dev.axhline(-0.25, color="0.5", lw=0.6, ls=":")
