@@ -67,17 +67,7 @@ Linearisation analytic_jacobian_2d(const Discretisation<2>& d, const Operators<2
   require_jacobian_memory(d, false);
   const int n = d.size(), nf = d.free_count();
   const NeighbourList& nl = d.neighbours;
-  auto check = [&](const SparseMatrix<>& m, const char* name) {
-    if (m.rows() != n || m.cols() != n || m.nonZeros() != nl.nonzeros())
-      throw std::invalid_argument(std::string("analytic_jacobian_2d: operator ") + name + " must be " +
-                                  std::to_string(n) + " x " + std::to_string(n) +
-                                  " with the neighbour-list pattern (assemble with gradient = true, hessian = true)");
-  };
-  check(ops.G[0], "G[x]");
-  check(ops.G[1], "G[y]");
-  check(ops.H[0][0], "H[x][x]");
-  check(ops.H[0][1], "H[x][y]");
-  check(ops.H[1][1], "H[y][y]");
+  require_closed_form_operators(d, ops, "analytic_jacobian_2d");
 
   Linearisation jac;
   jac.dofs_per_particle = 2;
@@ -200,17 +190,36 @@ Linearisation analytic_jacobian_2d(const Discretisation<2>& d, const ElasticMate
 }
 
 Linearisation analytic_jacobian_2d(const ElasticForm2D& force) {
+  require_closed_form_coverage(force, "analytic_jacobian_2d");
+  return analytic_jacobian_2d(force.discretisation(), force.material(), force.form(), force.prestrain().kind);
+}
+
+void require_closed_form_coverage(const ElasticForm2D& force, const std::string& who) {
   if (force.gradient_provider() && !force.gradient_provider()->is_plain())
-    throw std::invalid_argument("analytic_jacobian_2d: gradient provider '" + force.gradient_provider()->name() +
+    throw std::invalid_argument(who + ": gradient provider '" + force.gradient_provider()->name() +
                                 "' is not covered by the closed form (use affine_jacobian)");
   if (force.fixed_displacement().size() > 0 && force.fixed_displacement().cwiseAbs().maxCoeff() != 0.0)
-    throw std::invalid_argument(
-        "analytic_jacobian_2d: the closed form is the linearisation at rest with zero fixed displacements "
-        "(use affine_jacobian)");
+    throw std::invalid_argument(who +
+                                ": the closed form is the linearisation at rest with zero fixed displacements "
+                                "(use affine_jacobian)");
   if (!force.terms().empty())  // e.g. the artificial stress: its linearisation is not in the closed form
-    throw std::invalid_argument("analytic_jacobian_2d: additional momentum terms ('" + force.terms()[0]->name() +
+    throw std::invalid_argument(who + ": additional momentum terms ('" + force.terms()[0]->name() +
                                 "') are not covered by the closed form (use affine_jacobian)");
-  return analytic_jacobian_2d(force.discretisation(), force.material(), force.form(), force.prestrain().kind);
+}
+
+void require_closed_form_operators(const Discretisation<2>& d, const Operators<2>& ops, const std::string& who) {
+  const int n = d.size();
+  const auto check = [&](const SparseMatrix<>& m, const char* name) {
+    if (m.rows() != n || m.cols() != n || m.nonZeros() != d.neighbours.nonzeros() || !m.isCompressed())
+      throw std::invalid_argument(who + ": operator " + name + " must be " + std::to_string(n) + " x " +
+                                  std::to_string(n) +
+                                  " with the neighbour-list pattern (assemble with gradient = true, hessian = true)");
+  };
+  check(ops.G[0], "G[x]");
+  check(ops.G[1], "G[y]");
+  check(ops.H[0][0], "H[x][x]");
+  check(ops.H[0][1], "H[x][y]");
+  check(ops.H[1][1], "H[y][y]");
 }
 
 }  // namespace sphstab

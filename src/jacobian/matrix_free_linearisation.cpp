@@ -7,6 +7,7 @@
 
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/memory_budget.hpp"
+#include "sphstab/jacobian/analytic_jacobian_2d.hpp"
 
 namespace sphstab {
 
@@ -18,32 +19,9 @@ long free_row_pairs(const Discretisation<2>& d) {
   return pairs;
 }
 
-void require_operator_shapes(const Discretisation<2>& d, const Operators<2>& ops) {
-  const int n = d.size();
-  auto check = [&](const SparseMatrix<>& m, const char* name) {
-    if (m.rows() != n || m.cols() != n || m.nonZeros() != d.neighbours.nonzeros() || !m.isCompressed())
-      throw std::invalid_argument(std::string("MatrixFreeLinearisation: operator ") + name + " must be " +
-                                  std::to_string(n) + " x " + std::to_string(n) +
-                                  " with the neighbour-list pattern (assemble with gradient = true, hessian = true)");
-  };
-  check(ops.G[0], "G[x]");
-  check(ops.G[1], "G[y]");
-  check(ops.H[0][0], "H[x][x]");
-  check(ops.H[0][1], "H[x][y]");
-  check(ops.H[1][1], "H[y][y]");
-}
-
 /// The force's discretisation, after checking that the closed form covers the force.
 const Discretisation<2>& covered_discretisation(const ElasticForm2D& force) {
-  if (force.gradient_provider() && !force.gradient_provider()->is_plain())
-    throw std::invalid_argument("MatrixFreeLinearisation: gradient provider '" + force.gradient_provider()->name() +
-                                "' is not covered (use affine_jacobian)");
-  if (force.fixed_displacement().size() > 0 && force.fixed_displacement().cwiseAbs().maxCoeff() != 0.0)
-    throw std::invalid_argument(
-        "MatrixFreeLinearisation: only the rest state with zero fixed displacements is covered (use affine_jacobian)");
-  if (!force.terms().empty())
-    throw std::invalid_argument("MatrixFreeLinearisation: additional momentum terms ('" + force.terms()[0]->name() +
-                                "') are not covered (use affine_jacobian)");
+  require_closed_form_coverage(force, "MatrixFreeLinearisation");
   return force.discretisation();
 }
 
@@ -62,7 +40,7 @@ MatrixFreeLinearisation::MatrixFreeLinearisation(const Discretisation<2>& d, con
                                                  const ElasticMaterial& material, MomentumForm form,
                                                  PreStrainKind kind) {
   material.validate("MatrixFreeLinearisation");
-  require_operator_shapes(d, ops);
+  require_closed_form_operators(d, ops, "MatrixFreeLinearisation");
   build(d, ops, material, form, kind);
 }
 

@@ -59,6 +59,7 @@
 /// sphstab::SparseMatrix<> a = jac.at(1e-3);   // A(e) at e = 1e-3, dofs x dofs, interleaved f * 2 + a
 /// \endcode
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
 #include "sphstab/forms/discretisation.hpp"
@@ -86,8 +87,14 @@ Linearisation analytic_jacobian_2d(const Discretisation<2>& discretisation, cons
                                    MomentumForm form, PreStrainKind kind);
 
 /// The Jacobian of a force function's form, material and pre-strain kind (its load e is not used: A0 and A1 do not
-/// depend on it). Throws std::invalid_argument if the force has a non-plain gradient provider or non-zero fixed
-/// displacements (the closed form covers neither).
+/// depend on it). Throws std::invalid_argument if the closed form does not cover the force
+/// (require_closed_form_coverage).
 Linearisation analytic_jacobian_2d(const ElasticForm2D& force);
+
+/// The checks shared by the closed-form routes (assembled and matrix_free_linearisation.hpp); `who` starts the
+/// one-line message. Coverage: a plain gradient, zero fixed displacements and no additional momentum terms (e.g. the
+/// artificial stress). Operators: G and H (xx, xy, yy) N x N, compressed, with the neighbour list's pattern.
+void require_closed_form_coverage(const ElasticForm2D& force, const std::string& who);
+void require_closed_form_operators(const Discretisation<2>& d, const Operators<2>& ops, const std::string& who);
 
 }  // namespace sphstab
