@@ -32,6 +32,10 @@ Eigen::Matrix<Scalar, 2, 1> absorbing_acceleration(AbsorbingCondition condition,
     case AbsorbingCondition::Higdon:
       throw std::invalid_argument(
           "absorbing_acceleration: Higdon's condition is second order in time (no velocity form)");
+    case AbsorbingCondition::ViscousTraction:
+      throw std::invalid_argument(
+          "absorbing_acceleration: the viscous traction adds to the momentum equation "
+          "(viscous_traction_acceleration)");
   }
   if (convective) a += L * v;
   return a;

@@ -441,6 +441,23 @@ void RateFormScheme<Dim>::set_absorbing(AbsorbingParticles<Dim> boundary) {
   if (count > 0 && boundary.condition == AbsorbingCondition::Higdon)
     throw std::invalid_argument(
         "RateFormScheme::set_absorbing: Higdon's condition is second order in time (no velocity form)");
+  if (!boundary.speed_scale.empty() && boundary.speed_scale.size() != count)
+    throw std::invalid_argument("RateFormScheme::set_absorbing: " + std::to_string(count) + " particles but " +
+                                std::to_string(boundary.speed_scale.size()) +
+                                " speed scales (one per particle or none)");
+  for (double s : boundary.speed_scale)
+    if (!(s > 0) || !std::isfinite(s))
+      throw std::invalid_argument("RateFormScheme::set_absorbing: speed scale " + format_number(s) +
+                                  " (need finite and > 0)");
+  const bool traction = boundary.condition == AbsorbingCondition::ViscousTraction;
+  if (count > 0 && traction && (!(boundary.traction_depth > 0) || !std::isfinite(boundary.traction_depth)))
+    throw std::invalid_argument(
+        "RateFormScheme::set_absorbing: the viscous traction needs a finite traction_depth > 0 "
+        "(got " +
+        format_number(boundary.traction_depth) + ")");
+  if (count > 0 && traction && (boundary.upwind || boundary.convective))
+    throw std::invalid_argument(
+        "RateFormScheme::set_absorbing: upwind and convective do not apply to the viscous traction");
   const int n = m_disc->size();
   std::vector<int> slot(n, -1);
   for (std::size_t q = 0; q < count; ++q) {
@@ -490,7 +507,13 @@ void RateFormScheme<Dim>::absorb(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>&
   for (std::size_t q = 0; q < m_absorbing.particles.size(); ++q) {
     const int i = m_absorbing.particles[q];
     const Eigen::Matrix<double, Dim, 1>& normal = m_absorbing.normals[q];
+    const double scale = m_absorbing.speed_scale.empty() ? 1.0 : m_absorbing.speed_scale[q];
     const Vec xi = position(i), vi = velocity(i);
+    if (m_absorbing.condition == AbsorbingCondition::ViscousTraction) {  // (2.75): adds to the momentum equation
+      dydt.template segment<Dim>(m_x_off[i] + Dim) +=
+          viscous_traction_acceleration<Scalar, Dim>(scale * c_p, scale * c_s, normal, vi, m_absorbing.traction_depth);
+      continue;
+    }
     // The neighbours used, r = x_i - x_j (minimum image), V_j grad_i W_ij and V_j W_ij.
     js.clear(), rs.clear(), gs.clear(), ws.clear();
     for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
@@ -534,9 +557,10 @@ void RateFormScheme<Dim>::absorb(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>&
     for (std::size_t t = 0; t < js.size(); ++t) L += (velocity(js[t]) - vi) * gs[t].transpose();
     Vec a;
     if constexpr (Dim == 1) {
-      a[0] = absorbing_acceleration_1d(c_p, normal[0], L(0, 0), vi[0], m_absorbing.convective);
+      a[0] = absorbing_acceleration_1d(scale * c_p, normal[0], L(0, 0), vi[0], m_absorbing.convective);
     } else {
-      a = absorbing_acceleration<Scalar>(m_absorbing.condition, c_p, c_s, normal, L, vi, m_absorbing.convective);
+      a = absorbing_acceleration<Scalar>(m_absorbing.condition, scale * c_p, scale * c_s, normal, L, vi,
+                                         m_absorbing.convective);
     }
     dydt.template segment<Dim>(m_x_off[i] + Dim) = a;
   }

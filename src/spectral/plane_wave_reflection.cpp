@@ -37,6 +37,9 @@ Eigen::Vector2cd apply(AbsorbingCondition b, double c_p, double c_s, const Eigen
       return {(dt + c_p * dx) * d[0] + (c_p - c_s) * dy * d[1], (dt + c_s * dx) * d[1] + (c_p - c_s) * dy * d[0]};
     case AbsorbingCondition::Higdon:
       return (dt + c_p * dx) * (dt + c_s * dx) * d;
+    case AbsorbingCondition::ViscousTraction:  // the traction (2.75) divided by rho c_p and rho c_s
+      return {(dt + c_p * dx) * d[0] + (c_p - 2 * c_s * c_s / c_p) * dy * d[1],
+              (dt + c_s * dx) * d[1] + c_s * dy * d[0]};
   }
   throw std::invalid_argument("elastic_reflection: unknown condition");
 }

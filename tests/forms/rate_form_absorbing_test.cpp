@@ -229,6 +229,90 @@ TEST(RateFormAbsorbing, StepMatrixPredictsASmallRun) {
   EXPECT_THROW(leapfrog_step_matrix(s, rest, -dt, o), std::invalid_argument);
 }
 
+TEST(RateFormAbsorbing, SpeedScaleIsTheConditionWithScaledSpeeds) {
+  // Powell's "H" and Higdon's first-order factor scale c_p and c_s per particle: with NCSPH and a linear velocity
+  // field the acceleration equals the condition's with the scaled speeds.
+  const auto disc = block(7, 6);
+  const Eigen::Matrix2d A{{0.013, -0.004}, {0.007, -0.011}};
+  const double c_p = kSteel.p_wave_speed(), c_s = std::sqrt(kSteel.shear_modulus / kSteel.density);
+  RateFormScheme<2> s(disc, kSteel, {.gradient = RateFormGradient::Ncsph});
+  AbsorbingParticles<2> b = right_and_top(7, 6, AbsorbingCondition::ClaytonEngquist, false);
+  for (std::size_t q = 0; q < b.particles.size(); ++q) b.speed_scale.push_back(0.5 + 0.1 * static_cast<double>(q));
+  s.set_absorbing(b);
+  Eigen::VectorXd y = s.uniform_state(), f;
+  for (int i = 0; i < disc->size(); ++i) s.set_velocity(y, i, A * disc->particles.x.row(i).transpose());
+  s.rate(y, f);
+  for (std::size_t q = 0; q < b.particles.size(); ++q) {
+    const int i = b.particles[q];
+    const double k = b.speed_scale[q];
+    const Vec2 want = absorbing_acceleration(AbsorbingCondition::ClaytonEngquist, k * c_p, k * c_s, b.normals[q], A,
+                                             Vec2(A * disc->particles.x.row(i).transpose()));
+    EXPECT_LT((f.segment<2>(s.velocity_offset(i)) - want).norm(), 1e-12 * (1 + want.norm())) << i;
+  }
+}
+
+TEST(RateFormAbsorbing, ViscousTractionAddsTheDashpotToTheMomentumEquation) {
+  // Powell (2.75) on the outer face: every rate equals the plain scheme's except the face particles' dv/dt, which gain
+  // -(c_p (v.n) n + c_s (v.t) t) / depth exactly (real and complex path).
+  const auto disc = block(6, 5);
+  const RateFormScheme<2> plain(disc, kSteel, {.viscosity = ViscositySwitch::Always});
+  RateFormScheme<2> face = plain;
+  AbsorbingParticles<2> b = right_and_top(6, 5, AbsorbingCondition::ViscousTraction, false);
+  b.traction_depth = 0.02;
+  face.set_absorbing(b);
+  const double c_p = kSteel.p_wave_speed(), c_s = std::sqrt(kSteel.shear_modulus / kSteel.density);
+  const Eigen::VectorXd y = plain.uniform_state() + random_vector(plain.size(), 1e-3, 3);
+  Eigen::VectorXd f, g;
+  plain.rate(y, f);
+  face.rate(y, g);
+  Eigen::VectorXd want = f;
+  for (std::size_t q = 0; q < b.particles.size(); ++q) {
+    const int i = b.particles[q];
+    const Vec2 n = b.normals[q], t(n[1], -n[0]), v = y.segment<2>(plain.velocity_offset(i));
+    want.segment<2>(plain.velocity_offset(i)) -= (c_p * v.dot(n) * n + c_s * v.dot(t) * t) / 0.02;
+  }
+  EXPECT_LT((g - want).norm(), 1e-13 * want.norm());
+  Eigen::VectorXcd gc;
+  face.rate(Eigen::VectorXcd(y.cast<std::complex<double>>()), gc);
+  EXPECT_LT((gc.real() - g).norm(), 1e-15 * g.norm());
+  // 1D: the bar's end particle with depth dx, a = -c v / dx.
+  const auto rod = bar(10);
+  RateFormScheme<1> s1(rod, kBar), p1(rod, kBar);
+  s1.set_absorbing({.particles = {9},
+                    .normals = {Eigen::Matrix<double, 1, 1>(1.0)},
+                    .condition = AbsorbingCondition::ViscousTraction,
+                    .traction_depth = 0.01});
+  const Eigen::VectorXd y1 = s1.uniform_state() + random_vector(s1.size(), 1e-3, 4);
+  Eigen::VectorXd f1, g1;
+  p1.rate(y1, f1);
+  s1.rate(y1, g1);
+  const int k = s1.velocity_offset(9);
+  EXPECT_NEAR(g1[k] - f1[k], -kBar.p_wave_speed() * y1[k] / 0.01, 1e-12);
+  g1[k] = f1[k];
+  EXPECT_EQ((g1 - f1).norm(), 0.0);
+}
+
+TEST(RateFormAbsorbing, ViscousEndAbsorbsAPulseInOneDimension) {
+  // The dashpot on the last particle of the bar (depth dx) takes out most of a pulse that a free end reflects.
+  const auto disc = bar(100);
+  const double c = kBar.p_wave_speed();
+  RateFormScheme<1> s(disc, kBar, {.continuity = ContinuityForm::Divergence});
+  s.set_absorbing({.particles = {99},
+                   .normals = {Eigen::Matrix<double, 1, 1>(1.0)},
+                   .condition = AbsorbingCondition::ViscousTraction,
+                   .traction_depth = 0.01});
+  Eigen::VectorXd y = s.uniform_state();
+  for (int i = 60; i < 75; ++i) {
+    y[s.velocity_offset(i)] = 0.01;
+    y[s.density_offset(i)] = kBar.density * (1 + 0.01 / c);
+  }
+  const double ke0 = s.kinetic_energy(y);
+  const RateFormRunResult r =
+      run_rate_form(s, y, {.dt = 0.3 * 0.01 / c, .t_end = 3.0, .integrator = RateFormIntegrator::Leapfrog});
+  ASSERT_TRUE(r.completed()) << r.message;
+  EXPECT_LT(r.kinetic_energy.back() / ke0, 0.15);  // a free end keeps > 0.5 (test above)
+}
+
 TEST(RateFormAbsorbing, BadDeclarationsAreOneLineErrors) {
   const auto disc = block(4, 4);
   RateFormScheme<2> s(disc, kSteel);
@@ -247,6 +331,16 @@ TEST(RateFormAbsorbing, BadDeclarationsAreOneLineErrors) {
   expect_error({.particles = {16}, .normals = {Vec2(1, 0)}}, "out of range");
   expect_error({.particles = {3, 3}, .normals = {Vec2(1, 0), Vec2(1, 0)}}, "listed twice");
   expect_error({.particles = {3}, .normals = {Vec2(1, 0)}, .condition = AbsorbingCondition::Higdon}, "Higdon");
+  expect_error({.particles = {3}, .normals = {Vec2(1, 0)}, .speed_scale = {1.0, 1.0}}, "2 speed scales");
+  expect_error({.particles = {3}, .normals = {Vec2(1, 0)}, .speed_scale = {-1.0}}, "speed scale -1");
+  expect_error({.particles = {3}, .normals = {Vec2(1, 0)}, .condition = AbsorbingCondition::ViscousTraction},
+               "traction_depth");
+  expect_error({.particles = {3},
+                .normals = {Vec2(1, 0)},
+                .condition = AbsorbingCondition::ViscousTraction,
+                .upwind = true,
+                .traction_depth = 0.02},
+               "do not apply to the viscous traction");
   s.set_driven({5}, {Vec2(0, 1)});
   expect_error({.particles = {5}, .normals = {Vec2(1, 0)}}, "is driven");
   s.set_driven({}, {});

@@ -60,6 +60,53 @@ TEST(PlaneWaveReflection, NormalIncidenceIsAbsorbedAndTheCriticalAngleIsFlagged)
   EXPECT_FALSE(elastic_reflection(AbsorbingCondition::Sochaki, kCp, kCs, deg(80), WaveKind::P).p_evanescent);
 }
 
+TEST(PlaneWaveReflection, ViscousTractionSatisfiesTheStressCondition) {
+  // Independent of the displacement-form rewriting in apply(): superpose the incident and reflected waves with the
+  // solved amplitudes, form the stress at x = 0 from Hooke's law (rho = 1, mu = c_s^2, lambda = c_p^2 - 2 c_s^2)
+  // and check Powell (2.75), sigma_xx = -c_p v_x and sigma_xy = -c_s v_y, to round-off; and the dashpot reflects
+  // nothing at normal incidence but does at 30 degrees (Lysmer-Kuhlemeyer).
+  using cd = std::complex<double>;
+  const cd I(0, 1);
+  const double mu = kCs * kCs, lambda = kCp * kCp - 2 * mu;
+  for (WaveKind w : {WaveKind::P, WaveKind::S})
+    for (double theta_deg : {0.0, 10.0, 30.0, 45.0, 70.0}) {
+      const double th = deg(theta_deg), a = std::cos(th), b = std::sin(th);
+      const Reflection r = elastic_reflection(AbsorbingCondition::ViscousTraction, kCp, kCs, th, w);
+      // Each wave: amplitude A, direction k (complex for evanescent), speed c, polarisation d; u = A d exp(i(k.x/c -
+      // t)).
+      struct Wave {
+        cd amp;
+        Eigen::Vector2cd k;
+        double c;
+        Eigen::Vector2cd d;
+      };
+      std::vector<Wave> waves;
+      const auto p_wave = [&](cd A, Eigen::Vector2cd k) { waves.push_back({A, k, kCp, k}); };
+      const auto s_wave = [&](cd A, Eigen::Vector2cd k) { waves.push_back({A, k, kCs, {-k[1], k[0]}}); };
+      if (w == WaveKind::P) {
+        p_wave(1.0, {a, b});
+        p_wave(r.to_p, {-a, b});
+        const double eta = kCs / kCp * b;
+        s_wave(r.to_s, {-std::sqrt(1 - eta * eta), eta});
+      } else {
+        s_wave(1.0, {a, b});
+        s_wave(r.to_s, {-a, b});
+        const double xi = kCp / kCs * b;
+        p_wave(r.to_p, {xi > 1 ? cd(0, -std::sqrt(xi * xi - 1)) : cd(-std::sqrt(1 - xi * xi)), xi});
+      }
+      Eigen::Matrix2cd grad = Eigen::Matrix2cd::Zero();  // du_a / dx_b at x = 0, t = 0
+      Eigen::Vector2cd v = Eigen::Vector2cd::Zero();
+      for (const Wave& q : waves) {
+        grad += q.amp * (I / q.c) * q.d * q.k.transpose();
+        v += q.amp * (-I) * q.d;
+      }
+      const cd sxx = (lambda + 2 * mu) * grad(0, 0) + lambda * grad(1, 1), sxy = mu * (grad(0, 1) + grad(1, 0));
+      EXPECT_LT(std::abs(sxx + kCp * v[0]) + std::abs(sxy + kCs * v[1]), 1e-13) << theta_deg;
+      if (theta_deg == 0) EXPECT_LT(std::abs(r.to_p) + std::abs(r.to_s), 1e-15);
+      if (theta_deg == 30) EXPECT_GT(std::abs(r.to_p) + std::abs(r.to_s), 1e-2);
+    }
+}
+
 TEST(PlaneWaveReflection, ScalarEngquistMajdaAndHigdon) {
   // The notes' values of tan^2(theta / 2) and the second-order tan^4 at 45 degrees.
   const double expected[] = {0.0077, 0.0718, 0.1716, 0.3333};

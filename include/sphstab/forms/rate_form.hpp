@@ -205,8 +205,11 @@ class RateFormScheme final : public SemiDiscreteSystem {
   /// empty set: none. Their acceleration is the absorbing condition's, Powell (2.62) in 2D and (2.69) in 1D, from the
   /// velocity gradient of their own velocities v (not the GMS XSPH vhat) with the scheme's gradient (plain or NCSPH,
   /// normalised over the neighbours used; upwind: the interior side only); everything else about them is unchanged.
-  /// Throws std::invalid_argument for mismatched sizes, an index out of range, a fixed, driven or repeated particle, a
-  /// normal that is not of unit length (1e-12; 1D: +-1) or the Higdon condition.
+  /// With AbsorbingCondition::ViscousTraction (Powell (2.75)) the momentum equation is kept and the traction's
+  /// acceleration added instead. Throws std::invalid_argument for mismatched sizes, an index out of range, a fixed,
+  /// driven or repeated particle, a normal that is not of unit length (1e-12; 1D: +-1), the Higdon condition, a
+  /// speed scale that is not finite and positive, or a viscous traction without a positive depth or with upwind or
+  /// convective set.
   void set_absorbing(AbsorbingParticles<Dim> boundary);
   const AbsorbingParticles<Dim>& absorbing() const { return m_absorbing; }
   bool is_absorbing(int particle) const { return !m_absorbing_slot.empty() && m_absorbing_slot[particle] >= 0; }
@@ -239,7 +242,8 @@ class RateFormScheme final : public SemiDiscreteSystem {
   const Eigen::VectorXd& mass() const { return m_mass; }
 
  private:
-  /// Overwrites the accelerations of the absorbing particles in dydt (after evaluate() on the same y).
+  /// Overwrites the accelerations of the absorbing particles in dydt (after evaluate() on the same y); the viscous
+  /// traction adds to them.
   template <class Scalar>
   void absorb(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& y, Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& dydt) const;
   template <class Scalar>
