@@ -31,7 +31,12 @@ namespace {
 // Powell's units (g, cm, us): rho 7.8, E 2.1, nu 0.3 (plane strain), v0 = 0.01.
 constexpr double kV0 = 0.01;
 
-enum class Boundary { Reference, Free, P, M };
+/// P, M: Powell (2.42), (2.45) on every detected boundary particle; HPowell / HHigdon: P with c_p, c_s times k.n or
+/// divided by it, k the a-priori direction of the waves (radial from the centre); Traction: the LS-DYNA viscous
+/// traction (2.75) on the outer layer (depth dx), momentum kept, with the plain SPH gradient (NCSPH's row momentum
+/// form has no traction-free surface to add a traction to); FreePlain: that scheme without the traction.
+/// ReferencePlain: the reference with the plain gradient, for those two.
+enum class Boundary { Reference, Free, P, M, HPowell, HHigdon, Traction, FreePlain, ReferencePlain };
 const char* boundary_name(Boundary b) {
   switch (b) {
     case Boundary::Reference:
@@ -42,16 +47,38 @@ const char* boundary_name(Boundary b) {
       return "P";
     case Boundary::M:
       return "M";
+    case Boundary::HPowell:
+      return "H-Powell";
+    case Boundary::HHigdon:
+      return "H-Higdon";
+    case Boundary::Traction:
+      return "traction";
+    case Boundary::FreePlain:
+      return "free-plain";
+    case Boundary::ReferencePlain:
+      return "reference-plain";
   }
   return "?";
 }
 
 /// Initial velocity: v0 x_mi / |x_mi| everywhere ((2.73), the infinite space collapsing), that field rotated by pi/8
-/// (2.74), or only within 0.25 of the centre and at rest elsewhere ((2.76), Powell's central disc).
-enum class Field { Centred, Skewed, Disc };
-const char* field_name(Field f) { return f == Field::Centred ? "centred" : f == Field::Skewed ? "skewed" : "disc"; }
+/// (2.74), or only within 0.25 of the centre and at rest elsewhere ((2.76), Powell's central disc, at v0 = 0.01 and
+/// at his second speed 0.05).
+enum class Field { Centred, Skewed, Disc, FastDisc };
+const char* field_name(Field f) {
+  return f == Field::Centred ? "centred" : f == Field::Skewed ? "skewed" : f == Field::Disc ? "disc" : "disc_fast";
+}
 const char* field_label(Field f) {
-  return f == Field::Centred ? "centred (2.73)" : f == Field::Skewed ? "skewed (2.74)" : "central disc (2.76)";
+  return f == Field::Centred  ? "centred (2.73)"
+         : f == Field::Skewed ? "skewed (2.74)"
+         : f == Field::Disc   ? "central disc (2.76)"
+                              : "central disc, v0 = 0.05";
+}
+bool is_disc(Field f) { return f == Field::Disc || f == Field::FastDisc; }
+bool is_reference(Boundary b) { return b == Boundary::Reference || b == Boundary::ReferencePlain; }
+bool absorbs(Boundary b) { return !is_reference(b) && b != Boundary::Free && b != Boundary::FreePlain; }
+bool plain_gradient(Boundary b) {
+  return b == Boundary::Traction || b == Boundary::FreePlain || b == Boundary::ReferencePlain;
 }
 
 struct SquareCase {
@@ -73,7 +100,7 @@ struct SquareRun {
 
 std::string tag_of(const SquareCase& c) {
   return std::string(boundary_name(c.boundary)) + "_" + field_name(c.field) +
-         (c.boundary == Boundary::P || c.boundary == Boundary::M ? (c.half_step ? "_half" : "_whole") : "");
+         (absorbs(c.boundary) ? (c.half_step ? "_half" : "_whole") : "");
 }
 
 SquareRun run_square(const SquareCase& c) {
@@ -93,18 +120,29 @@ SquareRun run_square(const SquareCase& c) {
     }
   auto disc = make_discretisation(p, Kernel<2>(KernelType::CubicSpline), c.h_over_dx * dx);
   const RateFormMaterial mat = RateFormMaterial::from_youngs(2.1, 0.3, 7.8);
-  RateFormScheme<2> scheme(disc, mat,
-                           {.continuity = ContinuityForm::Divergence,
-                            .viscosity = ViscositySwitch::Compression,
-                            .gradient = RateFormGradient::Ncsph});
+  RateFormScheme<2> scheme(
+      disc, mat,
+      {.continuity = ContinuityForm::Divergence,
+       .viscosity = ViscositySwitch::Compression,
+       .gradient = plain_gradient(c.boundary) ? RateFormGradient::Plain : RateFormGradient::Ncsph});
   SquareRun r{.c = c, .particles = side * side};
-  if (c.boundary == Boundary::P || c.boundary == Boundary::M) {
+  if (absorbs(c.boundary)) {
     const BoundaryParticles<2> b = boundary_particles(disc->particles, disc->kernel, disc->h, disc->neighbours);
-    AbsorbingParticles<2> a{.condition = c.boundary == Boundary::P ? AbsorbingCondition::ClaytonEngquist
-                                                                   : AbsorbingCondition::Sochaki};
-    for (int i : b.particles) a.particles.push_back(i), a.normals.emplace_back(b.normal.row(i).transpose());
+    AbsorbingParticles<2> a{.condition = c.boundary == Boundary::M          ? AbsorbingCondition::Sochaki
+                                         : c.boundary == Boundary::Traction ? AbsorbingCondition::ViscousTraction
+                                                                            : AbsorbingCondition::ClaytonEngquist,
+                            .traction_depth = dx};
+    for (int i : b.particles) {
+      if (c.boundary == Boundary::Traction && b.layer[i] != 0) continue;  // the outer face only
+      const Eigen::Vector2d n = b.normal.row(i).transpose();
+      a.particles.push_back(i), a.normals.push_back(n);
+      // H: the waves come from the centre, k = (x_i - x_m) / |x_i - x_m|.
+      const double kn = (p.x.row(i).transpose() - Eigen::Vector2d(0.5, 0.5)).normalized().dot(n);
+      if (c.boundary == Boundary::HPowell) a.speed_scale.push_back(kn);
+      if (c.boundary == Boundary::HHigdon) a.speed_scale.push_back(1 / kn);
+    }
     r.absorbing = static_cast<int>(a.particles.size());
-    r.layers = b.layers;
+    r.layers = c.boundary == Boundary::Traction ? 1 : b.layers;
     scheme.set_absorbing(a);
   }
   Eigen::VectorXd y0 = scheme.uniform_state();
@@ -112,9 +150,10 @@ SquareRun run_square(const SquareCase& c) {
   const Eigen::Matrix2d R{{std::cos(ang), -std::sin(ang)}, {std::sin(ang), std::cos(ang)}};
   // Powell: "the hypothetical infinite space surrounding the problem domain is supposed to be collapsing in on
   // itself", so the reference block moves inwards everywhere, not only in its central n x n.
+  const double v0 = c.field == Field::FastDisc ? 5 * kV0 : kV0;
   for (int k = 0; k < side * side; ++k) {
     const Eigen::Vector2d to_centre = Eigen::Vector2d(0.5, 0.5) - p.x.row(k).transpose();  // x_mi = x_m - x_i
-    if (c.field != Field::Disc || to_centre.norm() < 0.25) scheme.set_velocity(y0, k, kV0 * R * to_centre.normalized());
+    if (!is_disc(c.field) || to_centre.norm() < 0.25) scheme.set_velocity(y0, k, v0 * R * to_centre.normalized());
   }
   const auto central_ke = [&](const Eigen::VectorXd& y) {
     double e = 0;
@@ -134,7 +173,9 @@ SquareRun run_square(const SquareCase& c) {
                                                    },
                                                .integrator = RateFormIntegrator::Leapfrog,
                                                .leapfrog_xsph = 0.1,
-                                               .absorbing_half_step = c.half_step && r.absorbing > 0});
+                                               .absorbing_half_step = c.half_step && r.absorbing > 0,
+                                               // the fast disc's particles move by about dx: a Verlet list
+                                               .neighbour_skin = c.field == Field::FastDisc ? 0.5 * dx : 0.0});
   r.wall = study::seconds_since(t0);
   r.status = run_status_name(res.status);
   return r;
@@ -163,25 +204,42 @@ int main(int argc, char** argv) try {
                                 " too small: the reference's boundary is heard at t = " +
                                 format_number(margin / static_cast<double>(n) / cp) + " < t_end");
   std::vector<SquareCase> cases;
-  for (Field field : {Field::Centred, Field::Skewed, Field::Disc}) {
+  for (Field field : {Field::Centred, Field::Skewed, Field::Disc, Field::FastDisc}) {
     cases.push_back(
         {.boundary = Boundary::Reference, .field = field, .n = n, .margin = margin, .cfl = cfl, .t_end = t_end});
+    if (field == Field::Disc)
+      cases.push_back(
+          {.boundary = Boundary::ReferencePlain, .field = field, .n = n, .margin = margin, .cfl = cfl, .t_end = t_end});
     cases.push_back({.boundary = Boundary::Free, .field = field, .n = n, .cfl = cfl, .t_end = t_end});
     for (Boundary b : {Boundary::P, Boundary::M})
       for (bool half : {false, true})
-        cases.push_back({.boundary = b, .field = field, .half_step = half, .n = n, .cfl = cfl, .t_end = t_end});
+        if (!half || field != Field::FastDisc)
+          cases.push_back({.boundary = b, .field = field, .half_step = half, .n = n, .cfl = cfl, .t_end = t_end});
+    for (Boundary b : {Boundary::HPowell, Boundary::HHigdon, Boundary::Traction, Boundary::FreePlain})
+      if (field != Field::Skewed)  // H's a-priori direction is the radial one: not the skewed field's
+        cases.push_back({.boundary = b, .field = field, .n = n, .cfl = cfl, .t_end = t_end});
   }
+  // Most expensive (the references) first; rows stay in case order.
+  std::vector<std::size_t> order(cases.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return cases[a].margin > cases[b].margin; });
   std::vector<SquareRun> runs(cases.size());
-  study::parallel_for(cases.size(), threads, [&](std::size_t k) { runs[k] = run_square(cases[k]); });
+  study::parallel_for(cases.size(), threads, [&](std::size_t k) { runs[order[k]] = run_square(cases[order[k]]); });
 
   study::Summary sum;
   CsvWriter w(out + "/runs.csv", {"boundary", "field", "timing", "particles", "absorbing", "layers", "status",
                                   "max_deviation", "t_max_deviation", "ke_end", "ke_ref_end", "wall_seconds"});
   std::string md;
   for (const SquareRun& r : runs) {
-    const SquareRun& ref = *std::find_if(runs.begin(), runs.end(), [&](const SquareRun& q) {
-      return q.c.boundary == Boundary::Reference && q.c.field == r.c.field;
-    });
+    // The plain-gradient runs against the plain reference where there is one.
+    const auto reference = [&](Boundary kind) {
+      return std::find_if(runs.begin(), runs.end(),
+                          [&](const SquareRun& q) { return q.c.boundary == kind && q.c.field == r.c.field; });
+    };
+    auto it = plain_gradient(r.c.boundary) ? reference(Boundary::ReferencePlain) : runs.end();
+    if (it == runs.end()) it = reference(Boundary::Reference);
+    const SquareRun& ref = *it;
     double dev = 0, t_dev = NAN;
     const std::size_t m = std::min(r.ke.size(), ref.ke.size());
     for (std::size_t k = 0; k < m; ++k)
@@ -192,11 +250,13 @@ int main(int argc, char** argv) try {
     CsvWriter s(out + "/series/" + tag_of(r.c) + ".csv", {"t", "ke_over_ke0", "ke_ref_over_ke0"});
     for (std::size_t k = 0; k < m; ++k) s.row({r.t[k], r.ke[k], ref.ke[k]});
     if (r.c.boundary == Boundary::Reference) continue;
-    study::md_row(md, {field_label(r.c.field), boundary_name(r.c.boundary), timing,
-                       std::to_string(r.absorbing) + " (" + std::to_string(r.layers) + " layers)", r.status,
-                       study::sig(100 * dev, 3) + " % at t = " + study::sig(t_dev, 3),
-                       study::sig(100 * r.ke.back(), 3) + " % (" + study::sig(100 * ref.ke.back(), 3) + " %)",
-                       study::sig(r.wall, 3)});
+    study::md_row(
+        md, {field_label(r.c.field),
+             std::string(boundary_name(r.c.boundary)) + (&ref != &*reference(Boundary::Reference) ? " †" : ""), timing,
+             std::to_string(r.absorbing) + " (" + std::to_string(r.layers) + " layers)", r.status,
+             study::sig(100 * dev, 3) + " % at t = " + study::sig(t_dev, 3),
+             study::sig(100 * r.ke.back(), 3) + " % (" + study::sig(100 * ref.ke.back(), 3) + " %)",
+             study::sig(r.wall, 3)});
   }
   sum.set("table", md);
   sum.set("n", n);

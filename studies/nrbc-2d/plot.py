@@ -1,12 +1,18 @@
 #!/usr/bin/env python3
 """Plots of the 2D square-compression study (Powell 2012 ch. 2 §3.2(a), Figs. 2.13-2.16): kinetic energy of the block
-over KE0 against the large reference, and the deviation from it, for the centred (2.73), skewed (2.74) and central-disc (2.76) fields.
+over KE0 against the large reference, and the deviation from it, for the centred (2.73), skewed (2.74) and
+central-disc (2.76) fields (the disc at v0 = 0.01 and 0.05); P, M, Powell's and Higdon's H and the viscous traction
+(2.75).
 Usage: plot.py RESULTS_DIR (reads runs.csv and series/<tag>.csv)."""
 import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
 from plot_common import num, plt, read  # noqa: E402
+
+
+COLOURS = {"free": "tab:blue", "P": "tab:orange", "M": "tab:green", "H-Powell": "tab:red", "H-Higdon": "tab:purple",
+           "traction": "tab:brown", "free-plain": "tab:olive"}
 
 
 def tag(row):
@@ -17,8 +23,9 @@ def tag(row):
 
 def main(out):
     rows = read(os.path.join(out, "runs.csv"))
-    fields = {"centred": "centred (2.73)", "skewed": "skewed (2.74)", "disc": "central disc (2.76)"}
-    fig, axes = plt.subplots(2, 3, figsize=(17, 8), sharex=True)
+    fields = {"centred": "centred (2.73)", "skewed": "skewed (2.74)", "disc": "central disc (2.76), v0 = 0.01",
+              "disc_fast": "central disc, v0 = 0.05"}
+    fig, axes = plt.subplots(2, 4, figsize=(22, 8), sharex=True)
     for col, field in enumerate(fields):
         a_ke, a_dev = axes[0][col], axes[1][col]
         for r in rows:
@@ -28,17 +35,23 @@ def main(out):
             t = [num(x["t"]) for x in s]
             ke = [num(x["ke_over_ke0"]) for x in s]
             label = r["boundary"] + ("" if r["timing"] == "-" else f" ({r['timing']} step)")
-            style = dict(color="k", ls="--", lw=1.5) if r["boundary"] == "reference" else dict(lw=1)
+            style = (dict(color="k", ls="--", lw=1.5) if r["boundary"] == "reference"
+                     else dict(color=COLOURS.get(r["boundary"], "0.3"), lw=1))
+            if r["boundary"] == "reference-plain":
+                style = dict(color="0.5", ls="--", lw=1.5)
+            if r["timing"] == "half":
+                style["ls"] = ":"
             a_ke.plot(t, ke, label=label, **style)
-            if r["boundary"] in ("P", "M"):
-                a_dev.plot(t, [100 * (num(x["ke_over_ke0"]) - num(x["ke_ref_over_ke0"])) for x in s], label=label)
+            if r["boundary"] not in ("reference", "reference-plain", "free", "free-plain"):
+                a_dev.plot(t, [100 * (num(x["ke_over_ke0"]) - num(x["ke_ref_over_ke0"])) for x in s], label=label,
+                           **style)
         a_ke.set_ylim(0, 1.2)
         a_ke.set_ylabel("KE of the block / KE0")
         a_ke.set_title(fields[field])
         a_ke.legend(fontsize=8)
         a_dev.axhline(0.25, color="0.5", lw=0.6, ls=":")
         a_dev.axhline(-0.25, color="0.5", lw=0.6, ls=":")
-        a_dev.set_ylabel("(KE - KE_ref) / KE0  (%)")
+        a_dev.set_ylabel("(KE - KE_ref) / KE0  (%); traction: against reference-plain")
         a_dev.set_xlabel("t (us)")
         a_dev.legend(fontsize=8)
     fig.tight_layout()
