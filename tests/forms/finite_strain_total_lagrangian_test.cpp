@@ -101,6 +101,33 @@ TEST(FiniteStrainTotalLagrangian, JacobianAtRestIsTheAnalytic1DStiffness) {
   }
 }
 
+TEST(FiniteStrainTotalLagrangian, JacobianAtAHomogeneousStretchIsTheTangentTimesTheUnitStiffness) {
+  // 1D Neo-Hookean (1D strain), fixed layers two supports deep carrying u = (lambda - 1) X: every active particle has
+  // F = 1 + m1 (lambda - 1), so A(lambda) = (dP/dF(F) / rho) G_f G_f^T [Powell2012, (3.40)] exactly. It changes sign
+  // with the tangent: nu = 0.49 loses positive definiteness where dP/dF = 0 (tests/models: F = 3.6307).
+  auto d = test::lattice_discretisation<1>(
+      {.n = 40, .kernel = KernelType::ModifiedMollifier, .h = 2.75, .support_scale = 2.0});
+  const Eigen::MatrixXd K(analytic_jacobian_1d(d->particles, d->kernel, d->h, MomentumForm::Plus).A0);
+  auto nh = std::make_shared<NeoHookean<1>>(LameParameters::from_young_poisson(2 * 1.49, 0.49));
+  FiniteStrainTotalLagrangian<1> tl(d, nh, kRho);
+  Eigen::VectorXd x_fixed(d->size() - d->free_count());
+  for (int i = 0, k = 0; i < d->size(); ++i)
+    if (d->free_slot[i] < 0) x_fixed[k++] = d->particles.x(i, 0);
+  const Eigen::VectorXd x_free = d->free_positions().col(0);
+  for (double lambda : {1.5, 3.0, 4.5, 7.0}) {
+    tl.set_fixed_displacement((lambda - 1) * x_fixed);
+    const Eigen::VectorXd u = (lambda - 1) * x_free;
+    Eigen::VectorXd a;
+    tl.acceleration(u, a);
+    const double F = tl.deformation_gradients(u)(d->free[0], 0);
+    const double tangent = nh->tangent(Deformation<double, 1>(Deformation<double, 1>::Constant(F)))(0, 0);
+    EXPECT_LT(max_abs(a), 1e-12 * nh->lame().lambda / d->h) << lambda;  // an equilibrium
+    const Eigen::MatrixXd A(jacobian(tl, u));
+    EXPECT_LT(max_abs(A - (tangent / kRho) * K), 1e-11 * max_abs(A)) << lambda;
+    EXPECT_EQ(tangent > 0, lambda < 3.6 || lambda > 6.4) << lambda;
+  }
+}
+
 TEST(FiniteStrainTotalLagrangian, PlusDivergenceConservesLinearMomentumIsmailsPlainDoesNot) {
   // No fixed particles, perturbed lattice, unequal volumes and densities, large deformation.
   test::LatticeSpec spec{.n = 6, .perturbation = 0.2, .fixed_layers = 0};
