@@ -8,7 +8,8 @@
 //   3. loss of hyperbolicity at nu = 0.49: the root of the material tangent dP/dF (bisection on the model) and the
 //      stretch at which the linearised TL Jacobian A = -da/du (complex step, at the stretched equilibrium) stops
 //      being positive definite (secant iteration on the critical-load engine's definiteness routes).
-// Writes to --out DIR: table.csv, history_nu<nu>_ramp<r>.csv, ramps.csv, hyperbolicity.csv, summary.json.
+// Writes to --out DIR: table.csv, history_nu<nu>_ramp<r>[_n<n>].csv, ramps.csv, resolution.csv, hyperbolicity.csv,
+// summary.json.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
@@ -190,7 +191,7 @@ struct QuasiStaticRun {
 };
 
 QuasiStaticRun quasi_static_run(Bar& bar, double nu, double ramp_transits, const std::vector<double>& stretches,
-                                double spread_threshold, const std::string& out) {
+                                double spread_threshold, const std::string& out, const std::string& suffix = "") {
   QuasiStaticRun r;
   r.t_load = ramp_transits * kLength / bar.c_l();
   // leap-frog limit 2 / sqrt(mu_max(A)) at rest; the Neo-Hookean tangent only decreases below lambda = e^1.5
@@ -206,7 +207,7 @@ QuasiStaticRun quasi_static_run(Bar& bar, double nu, double ramp_transits, const
   sys.mass = bar.tl->dof_mass();
   sys.set_time(0);
   LeapfrogStepper stepper(sys, Eigen::VectorXd::Zero(bar.tl->dofs()), Eigen::VectorXd::Zero(bar.tl->dofs()));
-  CsvWriter csv(out + "/history_nu" + format_number(nu) + "_ramp" + format_number(ramp_transits) + ".csv",
+  CsvWriter csv(out + "/history_nu" + format_number(nu) + "_ramp" + format_number(ramp_transits) + suffix + ".csv",
                 {"t_us", "lambda_imposed", "F_centre", "t11_centre_over_mu", "t11_analytic_over_mu", "F_min", "F_max"},
                 false);
   r.t11_at.assign(stretches.size(), std::nan(""));
@@ -332,6 +333,22 @@ int main(int argc, char** argv) {
   summary.set("ramps", md_ramps);
   summary.set("worst_thesis_difference", worst_thesis, 2);
   summary.set("worst_static_relative", worst_static, 2);
+
+  // resolution: the departure at the slowest ramp for n / 2, n, 2 n (nu = 0.49)
+  {
+    std::string md_res;
+    CsvWriter ncsv(out + "/resolution.csv", {"n", "ramp_transits", "spread_at_3.5", "departure_lambda", "end"});
+    for (int nr : {n / 2, n, 2 * n}) {
+      Bar bar(nr, 0.49);
+      const QuasiStaticRun q =
+          quasi_static_run(bar, 0.49, ramps.back(), stretches, spread, out, "_n" + std::to_string(nr));
+      std::cout << "  n = " << nr << ", ramp " << ramps.back() << ": departure at lambda = " << q.departure << "\n";
+      ncsv.row({nr, ramps.back(), q.spread_before, q.departure, q.end});
+      study::md_row(md_res, {std::to_string(nr), study::sig(ramps.back(), 4), study::sig(q.spread_before, 2),
+                             std::isnan(q.departure) ? "none" : study::fixed(q.departure, 3)});
+    }
+    summary.set("resolution", md_res);
+  }
 
   // 3. loss of hyperbolicity at nu = 0.49
   {
