@@ -3,6 +3,7 @@
 // Cauchy stress table of the seed notes §7.3 [Ismail2009, (5.5)], and the loss of hyperbolicity at nu = 0.49.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <complex>
 #include <memory>
@@ -194,6 +195,18 @@ TEST(HyperelasticModels, NeoHookeanLosesHyperbolicityOnlyForNearlyIncompressible
   EXPECT_LT(tangent(nh49, 6.3996), 0);
   EXPECT_GT(tangent(nh49, 6.3998), 0);
   for (double f = 0.2; f <= 20; f += 0.01) EXPECT_GT(tangent(nh30, f), 0) << f;
+}
+
+TEST(HyperelasticModels, EigenExpressionsSelectTheOverloadOfTheirScalar) {
+  const NeoHookean<2> nh(lame_for(0.3));
+  Deformation<double, 2> F;
+  F << 1.3, 0.2, -0.1, 0.8;
+  const Deformation<double, 2> Q = Eigen::Rotation2Dd(0.4).toRotationMatrix();
+  EXPECT_EQ((nh.stress(Q * F) - nh.stress(Deformation<double, 2>(Q * F))).cwiseAbs().maxCoeff(), 0.0);
+  const std::complex<double> psi = nh.energy(F.cast<cd>() * cd(1, 0));
+  EXPECT_EQ(psi.real(), nh.energy(F));
+  EXPECT_EQ(NeoHookean<1>(lame_for(0.3)).tangent(Deformation<double, 1>::Constant(2.0))(0, 0),
+            NeoHookean<1>(lame_for(0.3)).tangent(stretch(2.0))(0, 0));
 }
 
 TEST(HyperelasticModels, BadInput) {

@@ -7,6 +7,11 @@
 /// Dim = 2: plane strain. Dim = 1: P = M (F - 1) with M = lambda + 2 mu (1D strain, (4.16)) or E (1D stress, (4.21)).
 /// It is the material of the small-strain forms (total_lagrangian.hpp, linear_elastic.hpp), which the finite-strain
 /// TL form reproduces with it.
+/// \code{.cpp}
+/// const auto lame = sphstab::LameParameters::from_young_poisson(200e9, 0.3);
+/// const sphstab::Hooke<1> bar(lame, sphstab::UniaxialState::Stress);  // T11 = E eps ([Ismail2009] algorithm 4.1)
+/// double T11 = bar.stress(sphstab::Deformation<double, 1>::Constant(1.0 + 5e-7))(0, 0);  // 100 kPa (expression)
+/// \endcode
 #include <string>
 
 #include "sphstab/models/hyperelastic_model.hpp"

@@ -50,6 +50,20 @@ class HyperelasticModel {
   /// dP/dF (layout in the file comment).
   virtual MaterialTangent<double, Dim> tangent(const Real& F) const = 0;
   virtual MaterialTangent<std::complex<double>, Dim> tangent(const Complex& F) const = 0;
+  /// Any Eigen expression (Deformation::Constant(f), Q * F, ...): evaluated to a Deformation of its scalar first (the
+  /// expression would otherwise convert to both the real and the complex overload).
+  template <class Derived>
+  auto energy(const Eigen::MatrixBase<Derived>& F) const {
+    return energy(Deformation<typename Derived::Scalar, Dim>(F));
+  }
+  template <class Derived>
+  auto stress(const Eigen::MatrixBase<Derived>& F) const {
+    return stress(Deformation<typename Derived::Scalar, Dim>(F));
+  }
+  template <class Derived>
+  auto tangent(const Eigen::MatrixBase<Derived>& F) const {
+    return tangent(Deformation<typename Derived::Scalar, Dim>(F));
+  }
   /// J = V/V0 of the 3D deformation: det F for plane strain and 1D strain, F s^2 for 1D stress (s the lateral
   /// stretch).
   virtual double volume_ratio(const Real& F) const { return F.determinant(); }
@@ -63,6 +77,9 @@ class HyperelasticModelT : public HyperelasticModel<Dim> {
  public:
   using typename HyperelasticModel<Dim>::Real;
   using typename HyperelasticModel<Dim>::Complex;
+  using HyperelasticModel<Dim>::energy;  // the expression overloads
+  using HyperelasticModel<Dim>::stress;
+  using HyperelasticModel<Dim>::tangent;
   double energy(const Real& F) const override { return self().energy_impl(F); }
   std::complex<double> energy(const Complex& F) const override { return self().energy_impl(F); }
   Real stress(const Real& F) const override { return self().stress_impl(F); }

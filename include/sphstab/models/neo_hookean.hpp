@@ -17,6 +17,13 @@
 /// \note The 1D-strain tangent vanishes where mu (F^2 + 1) + lambda (1 - ln F) = 0: for lambda/mu = 49 (nu = 0.49)
 ///       at F = 3.6307 and 6.3997 (loss of hyperbolicity; seed notes §7.3); for nu = 0.3 it stays positive.
 /// \note J <= 0 (an inverted particle) has no energy: every evaluation throws std::invalid_argument.
+/// \code{.cpp}
+/// const auto lame = sphstab::LameParameters::from_young_poisson(200e9, 0.49);
+/// const sphstab::NeoHookean<1> bar(lame);                      // 1D strain (algorithm 5.1)
+/// const sphstab::Deformation<double, 1> F = sphstab::Deformation<double, 1>::Constant(2.0);
+/// double P11 = bar.stress(F)(0, 0);                            // = T11 (J = F): 18.4821 mu
+/// double dP = bar.tangent(F)(0, 0);                            // < 0 for F in (3.6307, 6.3997)
+/// \endcode
 #include <cmath>
 #include <complex>
 #include <string>

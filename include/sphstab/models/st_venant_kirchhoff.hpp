@@ -7,6 +7,13 @@
 ///   against the complex-step derivative of P in tests/models/hyperelastic_models_test.cpp).
 /// Dim = 2: plane strain (E_33 = 0). Dim = 1: S = M E_11 with M = lambda + 2 mu (1D strain) or Young's E (1D stress:
 /// S is linear in E, so S_22 = S_33 = 0 gives E_22 = E_33 = -nu E_11 and S_11 = E E_11 exactly, at any stretch).
+/// \code{.cpp}
+/// const sphstab::StVenantKirchhoff<2> svk(sphstab::LameParameters{.lambda = 1.2, .mu = 0.8});  // plane strain
+/// sphstab::Deformation<double, 2> F;
+/// F << 1.2, 0.1, 0.0, 0.9;
+/// const sphstab::Deformation<double, 2> P = svk.stress(F);    // F S
+/// const sphstab::MaterialTangent<double, 2> A = svk.tangent(F);  // 4 x 4, row-major vec(F)
+/// \endcode
 #include <string>
 
 #include "sphstab/models/hyperelastic_model.hpp"
