@@ -1,0 +1,139 @@
+#pragma once
+/// \file finite_strain_total_lagrangian.hpp
+/// Finite-strain total-Lagrangian SPH [Ismail2009, ch. 5] for a hyperelastic material (models/hyperelastic_model.hpp)
+/// in 1D or 2D (plane strain), as a ForceFunction. Every operator is assembled ONCE at the reference positions X
+/// (Ismail's SPH matrices X, Y [Ismail2009, §2.6] are G^0, G^1 of docs/conventions.md §3, kernel gradient with
+/// respect to the first index, each column scaled by V_j); an evaluation is one strain pass, the constitutive law
+/// per particle and one divergence pass, with no kernel evaluation.
+///
+///   F_i = I + (Grad u)_i,  (Grad u)_i^{ab} = sum_j (u_j^a - u_i^a) K^b_ij     (StrainSum::Difference), or
+///                                          = sum_j u_j^a K^b_ij                (StrainSum::Direct: [Ismail2009,
+///                                          (5.7)],
+///                                                                               algorithm 5.1 line 11: F = X u + 1)
+///   P_i = P(F_i)                                                               ([Ismail2009, (3.64)] for Neo-Hookean)
+///   a_i^a = (1/rho0_i) sum_j (P_j^{ab} + alpha P_i^{ab}) G^b_ij                ([Ismail2009, (5.6), (5.8)]: alpha = 0,
+///                                                                               a = X P / rho, algorithm 5.1 l. 16-17)
+/// with K = G (plain reference gradient) or the reference gradient of a GradientProvider (e.g. the first-order
+/// corrected NCSPH gradient [Powell2012, (1.19)]) applied ONCE at X, and alpha = 0 (Plain, Ismail), +1 (Plus) or
+/// -1 (Minus).
+///
+/// \note Linear momentum: with the Plus divergence, sum_i m_i a_i = sum_i sum_j V_i V_j (P_i + P_j) grad_i W_ij = 0
+///       for any strain operator (grad_i W_ij = -grad_j W_ji, m_i = rho0_i V_i), when every particle is free.
+///       Ismail's plain divergence does not conserve it (sum_j V_j P_j grad W_ij is not antisymmetric in i, j).
+/// \note Variational pair: the plain reference gradient with StrainSum::Difference and the Plus divergence give
+///       M a = -dU/du with U = sum_i V_i Psi(F_i), M = diag(rho0_i V_i), for ANY volumes (V_i G_ik = -V_k G_ki); then
+///       conservative() is true and the Jacobian M A is symmetric.
+/// \note With Hooke's law (models/hooke.hpp), the minus gradient and the Plus divergence this is exactly the
+///       small-strain TotalLagrangianForm2D (without pre-stress), at any displacement.
+/// \note Fixed particles are Dirichlet particles: their displacement is prescribed (set_fixed_displacement, default 0)
+///       and they are never unknowns; their F and P enter the free rows. Only the particles that are free or within
+///       the neighbour list of a free particle ("active") are evaluated; an active particle with det F <= 0 throws.
+/// \note The form has no affine load parameter: load() is 0 and with_load() accepts only 0 (a copy). Load it through
+///       the prescribed displacements; linearise at a deformed state with ComplexStepJacobian::compute(u).
+///
+/// \code{.cpp}
+/// auto nh = std::make_shared<sphstab::NeoHookean<1>>(sphstab::LameParameters::from_young_poisson(200e9, 0.3));
+/// sphstab::FiniteStrainTotalLagrangian<1> tl(disc, nh, 8000.0);   // Plus divergence, difference strain
+/// tl.set_fixed_displacement(d);                                   // Dirichlet data of the fixed particles
+/// Eigen::VectorXd a;
+/// tl.acceleration(u, a);
+/// sphstab::SparseMatrix<> A = sphstab::ComplexStepJacobian(tl).compute(u);   // A = -da/du at u
+/// \endcode
+#include <Eigen/Core>
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sphstab/forms/discretisation.hpp"
+#include "sphstab/forms/elastic_bar.hpp"
+#include "sphstab/forms/gradient_provider.hpp"
+#include "sphstab/models/hyperelastic_model.hpp"
+#include "sphstab/system/force_function.hpp"
+
+namespace sphstab {
+
+template <int Dim>
+struct FiniteStrainOptions {
+  /// Strain sum: Difference (zeroth-order consistent, the variational partner of Plus) or Direct ([Ismail2009, (5.7)]).
+  StrainSum strain_sum = StrainSum::Difference;
+  /// Reference gradient of the strain (applied once at X); nullptr or plain: G itself.
+  std::shared_ptr<const GradientProvider<Dim>> gradient;
+  /// Plain ([Ismail2009, (5.8)]), Plus (momentum conserving) or Minus; Adjoint is rejected.
+  StressDivergence divergence = StressDivergence::Plus;
+};
+
+template <int Dim>
+class FiniteStrainTotalLagrangian final : public ForceFunction {
+ public:
+  /// @param[in] discretisation  reference set X, kernel, h, neighbours (shared)
+  /// @param[in] material        hyperelastic model (shared)
+  /// @param[in] density         rho0 per particle (N entries, > 0), or size 1 for a uniform rho0
+  /// @param[in] options         strain and divergence operators
+  /// Throws std::invalid_argument (one line) for a null discretisation or material, h <= 0, a density of the wrong
+  /// size or not > 0, the Adjoint divergence,.
+  FiniteStrainTotalLagrangian(std::shared_ptr<const Discretisation<Dim>> discretisation,
+                              std::shared_ptr<const HyperelasticModel<Dim>> material, const Eigen::VectorXd& density,
+                              FiniteStrainOptions<Dim> options = {});
+  FiniteStrainTotalLagrangian(std::shared_ptr<const Discretisation<Dim>> discretisation,
+                              std::shared_ptr<const HyperelasticModel<Dim>> material, double density,
+                              FiniteStrainOptions<Dim> options = {})
+      : FiniteStrainTotalLagrangian(std::move(discretisation), std::move(material),
+                                    Eigen::VectorXd::Constant(1, density), std::move(options)) {}
+
+  int dofs() const override { return m_disc->dofs(); }
+  int dim() const override { return Dim; }
+  std::string name() const override;
+  void acceleration(const Eigen::VectorXd& u, Eigen::VectorXd& a) const override { evaluate(u, a); }
+  void acceleration(const Eigen::VectorXcd& u, Eigen::VectorXcd& a) const override { evaluate(u, a); }
+  double load() const override { return 0; }
+  /// A copy for load == 0; throws std::invalid_argument otherwise (no affine load; see the file comment).
+  std::unique_ptr<ForceFunction> with_load(double load) const override;
+  SparsityPattern dof_pattern() const override;
+  /// Plain reference gradient, StrainSum::Difference and the Plus divergence (the variational pair).
+  bool conservative() const override;
+  /// U = sum_{active i} V_i Psi(F_i) (the potential of the conservative configuration).
+  double strain_energy(const Eigen::VectorXd& u) const override { return energy(u); }
+  std::complex<double> strain_energy(const Eigen::VectorXcd& u) const override { return energy(u); }
+  /// rho0_i V_i per DOF.
+  Eigen::VectorXd dof_mass() const override;
+
+  /// Prescribed displacements of the fixed particles, interleaved (Dim per fixed particle, ascending particle
+  /// index; default zero). Throws std::invalid_argument for a wrong size or non-finite entries.
+  void set_fixed_displacement(const Eigen::VectorXd& d);
+  const Eigen::VectorXd& fixed_displacement() const { return m_fixed_u; }
+  /// Deformation gradient F_i (row-major, Dim^2 entries per row) of every particle (N rows; rows of inactive
+  /// particles are NaN).
+  Eigen::MatrixXd deformation_gradients(const Eigen::VectorXd& u) const;
+  /// First Piola-Kirchhoff stress, as deformation_gradients.
+  Eigen::MatrixXd stresses(const Eigen::VectorXd& u) const;
+
+  const HyperelasticModel<Dim>& material() const { return *m_material; }
+  const Discretisation<Dim>& discretisation() const { return *m_disc; }
+  const Eigen::VectorXd& density() const { return m_rho; }
+  /// Particles whose F and P are evaluated: the free ones and their neighbours (ascending).
+  const std::vector<int>& active() const { return m_active; }
+
+ private:
+  template <class Scalar>
+  void deformation(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u, std::vector<Deformation<Scalar, Dim>>& F) const;
+  template <class Scalar>
+  void evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u, Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& a) const;
+  template <class Scalar>
+  Scalar energy(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u) const;
+
+  std::shared_ptr<const Discretisation<Dim>> m_disc;
+  std::shared_ptr<const HyperelasticModel<Dim>> m_material;
+  Eigen::VectorXd m_rho;  ///< N entries
+  FiniteStrainOptions<Dim> m_options;
+  bool m_plain_strain = true;                                  ///< K = G
+  std::shared_ptr<const std::array<SparseMatrix<>, Dim>> m_G;  ///< reference G^b (divergence), N x N
+  std::shared_ptr<const std::array<SparseMatrix<>, Dim>> m_K;  ///< reference strain gradient K^b, N x N
+  std::vector<int> m_active;
+  Eigen::VectorXd m_fixed_u;
+};
+
+extern template class FiniteStrainTotalLagrangian<1>;
+extern template class FiniteStrainTotalLagrangian<2>;
+
+}  // namespace sphstab

@@ -1,0 +1,203 @@
+#include "sphstab/forms/finite_strain_total_lagrangian.hpp"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "form_detail.hpp"
+#include "sphstab/core/format.hpp"
+#include "sphstab/numerics/real_part.hpp"
+
+namespace sphstab {
+
+namespace {
+const char* kWho = "FiniteStrainTotalLagrangian";
+}
+
+template <int Dim>
+FiniteStrainTotalLagrangian<Dim>::FiniteStrainTotalLagrangian(std::shared_ptr<const Discretisation<Dim>> discretisation,
+                                                              std::shared_ptr<const HyperelasticModel<Dim>> material,
+                                                              const Eigen::VectorXd& density,
+                                                              FiniteStrainOptions<Dim> options)
+    : m_disc(std::move(discretisation)), m_material(std::move(material)), m_options(std::move(options)) {
+  if (!m_disc) throw std::invalid_argument(std::string(kWho) + ": discretisation is null");
+  if (!m_material) throw std::invalid_argument(std::string(kWho) + ": material is null");
+  const Discretisation<Dim>& d = *m_disc;
+  if (!(d.h > 0) || !std::isfinite(d.h))
+    throw std::invalid_argument(std::string(kWho) + ": smoothing length h must be finite and > 0 (got " +
+                                format_number(d.h) + ")");
+  const int N = d.size();
+  if (density.size() != 1 && density.size() != N)
+    throw std::invalid_argument(std::string(kWho) + ": density has " + std::to_string(density.size()) +
+                                " entries, expected 1 or " + std::to_string(N) + " (one per particle)");
+  m_rho = density.size() == 1 ? Eigen::VectorXd::Constant(N, density[0]) : density;
+  for (int i = 0; i < N; ++i)
+    if (!(m_rho[i] > 0) || !std::isfinite(m_rho[i]))
+      throw std::invalid_argument(std::string(kWho) + ": density of particle " + std::to_string(i) +
+                                  " must be finite and > 0 (got " + format_number(m_rho[i]) + ")");
+  if (m_options.divergence == StressDivergence::Adjoint)
+    throw std::invalid_argument(std::string(kWho) +
+                                ": the adjoint divergence is not offered; use plain, plus or minus");
+
+  // Reference operators, assembled once at X (Ismail's SPH matrices X, Y).
+  const OperatorRequest request = detail::form_request<Dim>(m_options.gradient.get(), false);
+  Operators<Dim> ops = assemble_operators<Dim, double>(d.particles, d.neighbours, d.kernel, d.h, request);
+  auto G = std::make_shared<std::array<SparseMatrix<>, Dim>>();
+  for (int b = 0; b < Dim; ++b) (*G)[b] = ops.G[b];
+  m_G = G;
+  std::array<SparseMatrix<>, Dim> K;
+  const Positions<Dim> X = d.particles.x;
+  m_plain_strain = !detail::corrected_gradient<Dim, double>(m_options.gradient.get(), d, X, ops, K, true);
+  m_K = m_plain_strain ? m_G : std::make_shared<const std::array<SparseMatrix<>, Dim>>(std::move(K));
+
+  // Active particles: free ones and their neighbours.
+  std::vector<char> is_active(N, 0);
+  for (int i : d.free)
+    for (long k = d.neighbours.offsets[i]; k < d.neighbours.offsets[i + 1]; ++k) is_active[d.neighbours.indices[k]] = 1;
+  for (int i = 0; i < N; ++i)
+    if (is_active[i]) m_active.push_back(i);
+  m_fixed_u = Eigen::VectorXd::Zero(Dim * (N - d.free_count()));
+}
+
+template <int Dim>
+std::string FiniteStrainTotalLagrangian<Dim>::name() const {
+  std::ostringstream s;
+  s << "tl-finite-strain-" << Dim << "d/" << m_material->name() << "/"
+    << (m_plain_strain ? std::string("plain") : m_options.gradient->name()) << "-"
+    << (m_options.strain_sum == StrainSum::Difference ? "difference" : "direct") << "/"
+    << stress_divergence_name(m_options.divergence);
+  return s.str();
+}
+
+template <int Dim>
+bool FiniteStrainTotalLagrangian<Dim>::conservative() const {
+  return m_plain_strain && m_options.strain_sum == StrainSum::Difference &&
+         m_options.divergence == StressDivergence::Plus;
+}
+
+template <int Dim>
+std::unique_ptr<ForceFunction> FiniteStrainTotalLagrangian<Dim>::with_load(double load) const {
+  if (load != 0)
+    throw std::invalid_argument(std::string(kWho) + "::with_load: the finite-strain form has no affine load (got " +
+                                format_number(load) + "); prescribe displacements with set_fixed_displacement");
+  return std::make_unique<FiniteStrainTotalLagrangian<Dim>>(*this);
+}
+
+template <int Dim>
+SparsityPattern FiniteStrainTotalLagrangian<Dim>::dof_pattern() const {
+  // a_i reads P_j (j a neighbour of i), P_j reads u_k through row j of K: two hops for a local K.
+  bool local = true;
+  for (int b = 0; b < Dim; ++b) local = local && (*m_K)[b].nonZeros() == m_disc->neighbours.nonzeros();
+  return coupling_pattern(m_disc->neighbours, m_disc->free_slot, Dim, local ? 2 : kFullReach);
+}
+
+template <int Dim>
+Eigen::VectorXd FiniteStrainTotalLagrangian<Dim>::dof_mass() const {
+  Eigen::VectorXd m(dofs());
+  for (int f = 0; f < m_disc->free_count(); ++f) {
+    const int i = m_disc->free[f];
+    for (int a = 0; a < Dim; ++a) m[f * Dim + a] = m_rho[i] * m_disc->particles.volume[i];
+  }
+  return m;
+}
+
+template <int Dim>
+void FiniteStrainTotalLagrangian<Dim>::set_fixed_displacement(const Eigen::VectorXd& d) {
+  if (d.size() != m_fixed_u.size())
+    throw std::invalid_argument(std::string(kWho) + "::set_fixed_displacement: expected " +
+                                std::to_string(m_fixed_u.size()) + " entries (Dim per fixed particle), got " +
+                                std::to_string(d.size()));
+  if (!d.allFinite())
+    throw std::invalid_argument(std::string(kWho) + "::set_fixed_displacement: entries must be finite");
+  m_fixed_u = d;
+}
+
+template <int Dim>
+template <class Scalar>
+void FiniteStrainTotalLagrangian<Dim>::deformation(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u,
+                                                   std::vector<Deformation<Scalar, Dim>>& F) const {
+  const Discretisation<Dim>& d = *m_disc;
+  const Positions<Dim, Scalar> uall = detail::full_displacement<Dim, Scalar>(d, u, m_fixed_u, kWho);
+  F.assign(d.size(), Deformation<Scalar, Dim>::Constant(Scalar(std::numeric_limits<double>::quiet_NaN())));
+  const bool difference = m_options.strain_sum == StrainSum::Difference;
+  for (int i : m_active) {
+    Deformation<Scalar, Dim> f = Deformation<Scalar, Dim>::Identity();
+    for (int b = 0; b < Dim; ++b)
+      for (typename SparseMatrix<>::InnerIterator it((*m_K)[b], i); it; ++it) {
+        const int j = static_cast<int>(it.col());
+        for (int a = 0; a < Dim; ++a)
+          f(a, b) += (difference ? Scalar(uall(j, a) - uall(i, a)) : uall(j, a)) * it.value();  // (Grad u)^{ab}
+      }
+    const double J = detail::re(Scalar(f.determinant()));
+    if (!(J > 0))
+      throw std::invalid_argument(std::string(kWho) + ": J = det F = " + format_number(J) + " <= 0 at particle " +
+                                  std::to_string(i) + " (inverted; reduce the load or the time step)");
+    F[i] = f;
+  }
+}
+
+template <int Dim>
+template <class Scalar>
+void FiniteStrainTotalLagrangian<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u,
+                                                Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& a) const {
+  const Discretisation<Dim>& d = *m_disc;
+  std::vector<Deformation<Scalar, Dim>> F;
+  deformation(u, F);
+  std::vector<Deformation<Scalar, Dim>> P(d.size(), Deformation<Scalar, Dim>::Zero());
+  for (int i : m_active) P[i] = m_material->stress(F[i]);
+  const double alpha = m_options.divergence == StressDivergence::Plus    ? 1.0
+                       : m_options.divergence == StressDivergence::Minus ? -1.0
+                                                                         : 0.0;
+  a.setZero(d.dofs());
+  for (int f = 0; f < d.free_count(); ++f) {
+    const int i = d.free[f];
+    Eigen::Matrix<Scalar, Dim, 1> ai = Eigen::Matrix<Scalar, Dim, 1>::Zero();
+    for (int b = 0; b < Dim; ++b)
+      for (typename SparseMatrix<>::InnerIterator it((*m_G)[b], i); it; ++it) {
+        const int j = static_cast<int>(it.col());
+        // a_i^a = (1/rho0_i) sum_j (P_j^{ab} + alpha P_i^{ab}) G^b_ij   [Ismail2009, (5.6), (5.8)]
+        ai += (P[j].col(b) + alpha * P[i].col(b)) * it.value();
+      }
+    for (int c = 0; c < Dim; ++c) a[f * Dim + c] = ai[c] / m_rho[i];
+  }
+}
+
+template <int Dim>
+template <class Scalar>
+Scalar FiniteStrainTotalLagrangian<Dim>::energy(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u) const {
+  std::vector<Deformation<Scalar, Dim>> F;
+  deformation(u, F);
+  Scalar U(0);
+  for (int i : m_active) U += m_disc->particles.volume[i] * m_material->energy(F[i]);
+  return U;
+}
+
+template <int Dim>
+Eigen::MatrixXd FiniteStrainTotalLagrangian<Dim>::deformation_gradients(const Eigen::VectorXd& u) const {
+  std::vector<Deformation<double, Dim>> F;
+  deformation(u, F);
+  Eigen::MatrixXd out(m_disc->size(), Dim * Dim);
+  for (int i = 0; i < m_disc->size(); ++i)
+    for (int a = 0; a < Dim; ++a)
+      for (int b = 0; b < Dim; ++b) out(i, a * Dim + b) = F[i](a, b);
+  return out;
+}
+
+template <int Dim>
+Eigen::MatrixXd FiniteStrainTotalLagrangian<Dim>::stresses(const Eigen::VectorXd& u) const {
+  std::vector<Deformation<double, Dim>> F;
+  deformation(u, F);
+  Eigen::MatrixXd out = Eigen::MatrixXd::Constant(m_disc->size(), Dim * Dim, std::numeric_limits<double>::quiet_NaN());
+  for (int i : m_active) {
+    const Deformation<double, Dim> P = m_material->stress(F[i]);
+    for (int a = 0; a < Dim; ++a)
+      for (int b = 0; b < Dim; ++b) out(i, a * Dim + b) = P(a, b);
+  }
+  return out;
+}
+
+template class FiniteStrainTotalLagrangian<1>;
+template class FiniteStrainTotalLagrangian<2>;
+
+}  // namespace sphstab
