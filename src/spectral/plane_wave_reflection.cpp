@@ -46,9 +46,14 @@ Eigen::Vector2cd apply(AbsorbingCondition b, double c_p, double c_s, const Eigen
 
 }  // namespace
 
-Reflection elastic_reflection(AbsorbingCondition condition, double c_p, double c_s, double theta, WaveKind incident) {
+Reflection elastic_reflection(AbsorbingCondition condition, double c_p, double c_s, double theta, WaveKind incident,
+                              double speed_scale) {
   check_speeds(c_p, c_s, "elastic_reflection");
   check_angle(theta, "elastic_reflection");
+  if (!(speed_scale > 0) || !std::isfinite(speed_scale))
+    throw std::invalid_argument("elastic_reflection: speed_scale must be finite and > 0 (got " +
+                                format_number(speed_scale) + ")");
+  const double b_p = speed_scale * c_p, b_s = speed_scale * c_s;  // the condition's speeds
   const double a = std::cos(theta), b = std::sin(theta);
   // Directions (outgoing waves travel towards -x) and polarisations: P along k, S along (-k_y, k_x); an evanescent
   // P keeps k . k = 1, so its polarisation k is still of unit (complex-bilinear) length.
@@ -67,11 +72,11 @@ Reflection elastic_reflection(AbsorbingCondition condition, double c_p, double c
     r.p_evanescent = xi > 1;
     k_p = {r.p_evanescent ? cd(0, -std::sqrt(xi * xi - 1)) : cd(-std::sqrt(1 - xi * xi)), xi};
   }
-  const Eigen::Vector2cd f_in = incident == WaveKind::P ? apply(condition, c_p, c_s, k_in, c_p, p_pol(k_in))
-                                                        : apply(condition, c_p, c_s, k_in, c_s, s_pol(k_in));
+  const Eigen::Vector2cd f_in = incident == WaveKind::P ? apply(condition, b_p, b_s, k_in, c_p, p_pol(k_in))
+                                                        : apply(condition, b_p, b_s, k_in, c_s, s_pol(k_in));
   Eigen::Matrix2cd m;
-  m.col(0) = apply(condition, c_p, c_s, k_p, c_p, p_pol(k_p));
-  m.col(1) = apply(condition, c_p, c_s, k_s, c_s, s_pol(k_s));
+  m.col(0) = apply(condition, b_p, b_s, k_p, c_p, p_pol(k_p));
+  m.col(1) = apply(condition, b_p, b_s, k_s, c_s, s_pol(k_s));
   const cd det = m.determinant();
   if (std::abs(det) <= 1e-14 * m.cwiseAbs().maxCoeff() * m.cwiseAbs().maxCoeff())
     throw std::domain_error("elastic_reflection: singular system at theta = " + format_number(theta) +
@@ -80,6 +85,18 @@ Reflection elastic_reflection(AbsorbingCondition condition, double c_p, double c
   r.to_p = amp[0];
   r.to_s = amp[1];
   return r;
+}
+
+double reflected_energy(AbsorbingCondition condition, double c_p, double c_s, double theta, WaveKind incident,
+                        double speed_scale) {
+  const Reflection r = elastic_reflection(condition, c_p, c_s, theta, incident, speed_scale);
+  const double b = std::sin(theta), c_in = incident == WaveKind::P ? c_p : c_s;
+  const double flux_in = c_in * std::cos(theta);
+  // Reflected directions (elastic_reflection): the same-kind wave at -theta, the converted one by Snell's law.
+  const double sin_p = incident == WaveKind::P ? b : c_p / c_s * b, sin_s = incident == WaveKind::P ? c_s / c_p * b : b;
+  double e = std::norm(r.to_s) * c_s * std::sqrt(1 - sin_s * sin_s) / flux_in;
+  if (!r.p_evanescent) e += std::norm(r.to_p) * c_p * std::sqrt(std::max(0.0, 1 - sin_p * sin_p)) / flux_in;
+  return e;
 }
 
 double scalar_reflection(double theta, const std::vector<double>& absorbing_angles) {

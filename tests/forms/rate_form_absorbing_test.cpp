@@ -63,12 +63,15 @@ TEST(RateFormAbsorbing, LinearVelocityGivesTheConditionExactlyWithNcsph) {
   const Eigen::Matrix2d A{{0.013, -0.004}, {0.007, -0.011}};
   const Vec2 v0(0.002, -0.003);
   const double c_p = kSteel.p_wave_speed(), c_s = std::sqrt(kSteel.shear_modulus / kSteel.density);
+  // The same with a plain-gradient scheme whose absorbing particles normalise their own gradient (`normalised`).
   for (AbsorbingCondition condition : {AbsorbingCondition::ClaytonEngquist, AbsorbingCondition::Sochaki})
     for (bool upwind : {false, true})
-      for (bool convective : {false, true}) {
-        RateFormScheme<2> s(disc, kSteel, {.gradient = RateFormGradient::Ncsph});
+      for (int variant = 0; variant < 3; ++variant) {
+        const bool convective = variant == 1, plain = variant == 2;
+        RateFormScheme<2> s(disc, kSteel, {.gradient = plain ? RateFormGradient::Plain : RateFormGradient::Ncsph});
         AbsorbingParticles<2> b = right_and_top(7, 6, condition, upwind);
         b.convective = convective;
+        b.normalised = plain;
         s.set_absorbing(b);
         Eigen::VectorXd y = s.uniform_state(), f;
         for (int i = 0; i < disc->size(); ++i) s.set_velocity(y, i, v0 + A * disc->particles.x.row(i).transpose());

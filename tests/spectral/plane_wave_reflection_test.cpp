@@ -102,9 +102,43 @@ TEST(PlaneWaveReflection, ViscousTractionSatisfiesTheStressCondition) {
       }
       const cd sxx = (lambda + 2 * mu) * grad(0, 0) + lambda * grad(1, 1), sxy = mu * (grad(0, 1) + grad(1, 0));
       EXPECT_LT(std::abs(sxx + kCp * v[0]) + std::abs(sxy + kCs * v[1]), 1e-13) << theta_deg;
+      // Energy: the flux the reflected waves carry back is the incident flux less the dashpot's dissipation,
+      // <c_p v_x^2 + c_s v_y^2> = (c_p |v_x|^2 + c_s |v_y|^2) / 2 (rho = omega = 1; incident flux c_in cos(theta) / 2).
+      const double c_in = w == WaveKind::P ? kCp : kCs;
+      const double absorbed = (kCp * std::norm(v[0]) + kCs * std::norm(v[1])) / (c_in * a);
+      EXPECT_NEAR(reflected_energy(AbsorbingCondition::ViscousTraction, kCp, kCs, th, w), 1 - absorbed, 1e-13)
+          << theta_deg;
       if (theta_deg == 0) EXPECT_LT(std::abs(r.to_p) + std::abs(r.to_s), 1e-15);
       if (theta_deg == 30) EXPECT_GT(std::abs(r.to_p) + std::abs(r.to_s), 1e-2);
     }
+}
+
+TEST(PlaneWaveReflection, SpeedScaleScalesTheConditionOnly) {
+  // Powell's H (scale cos theta) and Higdon's factor (1 / cos theta) on ClaytonEngquist: the superposed field satisfies
+  // (d_t + s c_p d_x) u_x = 0 and (d_t + s c_s d_x) u_y = 0 at x = 0 to round-off; scale 1 is the default; a bad
+  // scale is an error.
+  using cd = std::complex<double>;
+  const cd I(0, 1);
+  for (double theta_deg : {15.0, 30.0, 50.0}) {
+    const double th = deg(theta_deg), a = std::cos(th), b = std::sin(th);
+    for (double scale : {a, 1 / a}) {
+      const Reflection r = elastic_reflection(AbsorbingCondition::ClaytonEngquist, kCp, kCs, th, WaveKind::P, scale);
+      const double eta = kCs / kCp * b, zeta = std::sqrt(1 - eta * eta);
+      // u = sum A d exp(i (k.x / c - t)): d_t -> -i, d_x -> i k_x / c.
+      const Eigen::Vector2cd ut =
+          -I * (Eigen::Vector2cd(a, b) + r.to_p * Eigen::Vector2cd(-a, b) + r.to_s * Eigen::Vector2cd(-eta, -zeta));
+      const Eigen::Vector2cd ux =
+          I * (a / kCp * Eigen::Vector2cd(a, b) + r.to_p * (-a / kCp) * Eigen::Vector2cd(-a, b) +
+               r.to_s * (-zeta / kCs) * Eigen::Vector2cd(-eta, -zeta));
+      EXPECT_LT(std::abs(ut[0] + scale * kCp * ux[0]) + std::abs(ut[1] + scale * kCs * ux[1]), 1e-13) << theta_deg;
+    }
+    const Reflection one = elastic_reflection(AbsorbingCondition::Sochaki, kCp, kCs, th, WaveKind::S, 1.0);
+    const Reflection def = elastic_reflection(AbsorbingCondition::Sochaki, kCp, kCs, th, WaveKind::S);
+    EXPECT_EQ(one.to_p, def.to_p);
+    EXPECT_EQ(one.to_s, def.to_s);
+  }
+  EXPECT_THROW(elastic_reflection(AbsorbingCondition::ClaytonEngquist, kCp, kCs, 0.1, WaveKind::P, 0.0),
+               std::invalid_argument);
 }
 
 TEST(PlaneWaveReflection, ScalarEngquistMajdaAndHigdon) {

@@ -80,6 +80,7 @@ Scalar absorbing_acceleration_1d(double c, double n, const Scalar& dvdx, const S
 
 /// The particles of a scheme whose momentum equation is replaced by an absorbing condition, Powell (2.62) and
 /// algorithm 2.3 (RateFormScheme::set_absorbing). Their velocity gradient is Powell (1.33) with the scheme's gradient
+/// (NCSPH whatever the scheme with `normalised`)
 /// (plain or NCSPH) over their neighbours, or with upwind over the neighbours on the interior side only,
 /// (x_j - x_i) . n_i <= 0 (Powell (2.67), "j < i" at a right end; the particles on the boundary's own line are kept so
 /// that the tangential derivative of the Sochaki condition exists in 2D). The speeds are the scheme material's:
@@ -96,6 +97,9 @@ struct AbsorbingParticles {
   bool convective = false;          ///< Powell (2.62)'s + (v . grad) v
   std::vector<double> speed_scale;  ///< per particle, positive: c_p and c_s times this (empty: 1)
   double traction_depth = 0;        ///< ViscousTraction: volume per unit face area (> 0; the spacing on a lattice)
+  /// The velocity gradient with the NCSPH normalisation (Powell (1.19)) even in a plain-gradient scheme: a boundary
+  /// particle's kernel sums are truncated, and the plain gradient underestimates d/dn there.
+  bool normalised = false;
   bool empty() const { return particles.empty(); }
 };
 

@@ -33,10 +33,20 @@ struct Reflection {
   bool p_evanescent = false;  ///< the reflected P does not propagate (S incidence beyond asin(c_s / c_p))
 };
 
-/// The reflection of an incident P or S wave at angle theta in [0, pi/2) from the normal. Throws
-/// std::invalid_argument unless 0 < c_s < c_p (finite) and theta is in [0, pi/2), and std::domain_error when the
+/// The reflection of an incident P or S wave at angle theta in [0, pi/2) from the normal. speed_scale multiplies the
+/// condition's c_p and c_s (not the waves'): Powell's "H" is ClaytonEngquist with k.n = cos theta, Higdon's first-order
+/// factor the same with 1 / cos theta (AbsorbingParticles::speed_scale). Throws std::invalid_argument unless
+/// 0 < c_s < c_p (finite), theta is in [0, pi/2) and speed_scale is finite and > 0, and std::domain_error when the
 /// 2 x 2 system is singular (the condition admits a free boundary wave at this angle).
-Reflection elastic_reflection(AbsorbingCondition condition, double c_p, double c_s, double theta, WaveKind incident);
+Reflection elastic_reflection(AbsorbingCondition condition, double c_p, double c_s, double theta, WaveKind incident,
+                              double speed_scale = 1.0);
+
+/// The fraction of the incident wave's energy flux through the boundary that the reflected waves carry back:
+/// |A_P|^2 (c_P cos theta_P) / (c_in cos theta) + |A_S|^2 (c_S cos theta_S) / (c_in cos theta) over the propagating
+/// reflected waves (an evanescent P carries none), for unit-polarisation amplitudes (energy flux of a plane wave:
+/// rho omega^2 |A|^2 c / 2 along its direction). Same arguments and errors as elastic_reflection.
+double reflected_energy(AbsorbingCondition condition, double c_p, double c_s, double theta, WaveKind incident,
+                        double speed_scale = 1.0);
 
 /// |R| of a scalar wave (u_tt = c^2 Lap u) at Higdon's condition prod_i (cos a_i d_t + c d_x) u = 0 [Powell2012,
 /// (2.32), with the factor corrected, see the notes]: prod_i |cos theta - cos a_i| / (cos theta + cos a_i). One a = 0
