@@ -22,7 +22,10 @@
 /// of the whole Linearisation plus its share of the PETSc copy; measured in results/critical-strain-petsc/.
 /// More ranks than lattice rows is bad input (std::invalid_argument, one line).
 ///
-/// Solvers (PetscCriticalLoadOptions): Krylov-Schur on K^{-1} L (SLEPc spectral transformation STSHIFT with shift 0,
+/// Solvers (PetscCriticalLoadOptions): the default is Krylov-Schur shift-invert (below, PetscEigenMethod::ShiftInvert),
+/// the analogue of the direct route's shifted Spectra: the top of the spectrum of K^{-1} L is clustered (the
+/// near-singular short-wave modes of A0), so unshifted methods need hundreds of K solves or LOBPCG steps. Also
+/// available: Krylov-Schur on K^{-1} L (SLEPc spectral transformation STSHIFT with shift 0,
 /// B-inner product), each K^{-1} v by the chosen KSP: a parallel sparse Cholesky (MUMPS, the default), or conjugate
 /// gradients preconditioned by algebraic multigrid (PETSc GAMG with the rigid-body near-null space, or hypre
 /// BoomerAMG) or by incomplete Cholesky (ICC(0); block Jacobi with ICC per rank on more than one rank), to ksp_rtol;
@@ -81,6 +84,10 @@ struct LatticeRowPartition {
 LatticeRowPartition lattice_row_partition(const Eigen::MatrixXd& x, int ranks);
 
 enum class PetscEigenMethod {
+  /// Krylov-Schur estimate on K^{-1} L to estimate_tol, then Krylov-Schur shift-invert (STSINVERT) about
+  /// sigma = theta (1 + shift_margin) > lambda_max, L - sigma K factored by MUMPS LDL^T; sigma is raised (margin x 4)
+  /// until the factor's inertia shows no eigenvalue above it, so the eigenvalue nearest sigma is lambda_max.
+  ShiftInvert,
   KrylovSchur,  ///< SLEPc Krylov-Schur on K^{-1} L (STSHIFT, shift 0), K solved by `solver`
   Lobpcg,       ///< SLEPc LOBPCG (STPRECOND), preconditioned by `solver` applied to K
 };
@@ -90,7 +97,7 @@ enum class PetscSolver {
   CgHypre,   ///< CG + hypre BoomerAMG
   CgIcc,     ///< CG + ICC(0) (block Jacobi with ICC(0) per rank on more than one rank)
 };
-/// "krylov-schur", "lobpcg"; throws std::invalid_argument otherwise.
+/// "shift-invert", "krylov-schur", "lobpcg"; throws std::invalid_argument otherwise.
 PetscEigenMethod parse_petsc_eigen_method(const std::string& name);
 /// "cholesky", "gamg", "hypre", "icc"; throws std::invalid_argument otherwise.
 PetscSolver parse_petsc_solver(const std::string& name);
@@ -98,12 +105,14 @@ std::string petsc_eigen_method_name(PetscEigenMethod method);
 std::string petsc_solver_name(PetscSolver solver);
 
 struct PetscCriticalLoadOptions {
-  PetscEigenMethod method = PetscEigenMethod::KrylovSchur;
-  PetscSolver solver = PetscSolver::Cholesky;
-  double tol = 1e-10;       ///< SLEPc: relative residual ||L x - lambda K x|| / |lambda| (eigenvalue error ~ tol^2)
-  int max_iterations = 0;   ///< SLEPc restarts (Krylov-Schur) or steps (LOBPCG); 0: SLEPc's default
-  int ncv = 0;              ///< Krylov-Schur basis size; 0: SLEPc's default
-  double ksp_rtol = 1e-12;  ///< iterative K solves (Krylov-Schur with CG): ||r|| <= ksp_rtol ||b||
+  PetscEigenMethod method = PetscEigenMethod::ShiftInvert;
+  PetscSolver solver = PetscSolver::Cholesky;  ///< K solves / preconditioner (ShiftInvert: Cholesky only)
+  double estimate_tol = 5e-2;  ///< ShiftInvert: tolerance of the Krylov-Schur estimate theta of lambda_max
+  double shift_margin = 1e-2;  ///< ShiftInvert: first shift theta (1 + shift_margin)
+  double tol = 1e-10;          ///< SLEPc: relative residual ||L x - lambda K x|| / |lambda| (eigenvalue error ~ tol^2)
+  int max_iterations = 0;      ///< SLEPc restarts (Krylov-Schur) or steps (LOBPCG); 0: SLEPc's default
+  int ncv = 0;                 ///< Krylov-Schur basis size; 0: SLEPc's default
+  double ksp_rtol = 1e-12;     ///< iterative K solves (Krylov-Schur with CG): ||r|| <= ksp_rtol ||b||
   int ksp_max_iterations = 20000;  ///< iterative K solves: CG steps per solve
   double residual_check = 1e-6;    ///< accepted relative residual of the returned pair, recomputed here
   bool from_options = true;        ///< let -eps_* / -st_* command-line options override the above (EPSSetFromOptions)
@@ -124,6 +133,8 @@ struct PetscCriticalLoad {
   double assembly_seconds = 0;  ///< wall time: partition, symmetrisation and PETSc matrices (this rank)
   double solve_seconds = 0;     ///< wall time of EPSSetUp + EPSSolve (this rank)
   double petsc_matrix_bytes = 0;  ///< PETSc memory held by K and L on this rank (MatGetInfo, memory)
+  double shift = nan;             ///< ShiftInvert: the final shift sigma (> lambda_max)
+  int factorisations = 0;         ///< ShiftInvert: LDL^T factorisations of L - sigma K (inertia checks)
   std::string solver;             ///< e.g. "krylovschur+cholesky(mumps)"
   Status status = Status::NotComputed;
   std::string reason;  ///< why status is not Successful (empty otherwise); one line
