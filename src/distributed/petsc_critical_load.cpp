@@ -3,8 +3,8 @@
 #include <slepceps.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <cmath>
+#include <cstdlib>
 #include <numeric>
 #include <stdexcept>
 
