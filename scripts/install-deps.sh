@@ -2,7 +2,8 @@
 # Installs the Debian 12 packages sphstab needs (run as root); does nothing for packages already present.
 set -euo pipefail
 packages=(cmake g++ make libeigen3-dev libspectra-dev libsuitesparse-dev liblapack-dev liblapacke-dev
-          libgtest-dev libbenchmark-dev libcli11-dev python3-matplotlib python3-numpy)
+          libgtest-dev libbenchmark-dev libcli11-dev python3-matplotlib python3-numpy
+          pkg-config petsc-dev libslepc-real-dev openmpi-bin libopenmpi-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
