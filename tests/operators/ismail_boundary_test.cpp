@@ -148,6 +148,27 @@ TEST(ModifiedMatrixDirichlet, AgreesWithADenseSolveOfIsmailsMatrixAndHitsTheBoun
   EXPECT_GT(miss, 1e-2);
 }
 
+TEST(ModifiedMatrixDirichlet, WorksInTwoDimensionsOnTheFixedLayers) {
+  // [Ismail2009] §2.9: the method is dimension-free; C = every fixed particle of a 2D lattice, prescribed values from
+  // a linear field, interior values random.
+  const Kernel<2> kernel(KernelType::ModifiedMollifier);
+  const double h = 1.5;
+  const ParticleSet<2> set =
+      make_lattice<2>(LatticeType::Square, 8, {.spacing = 1.0, .support_radius = kernel.support_radius(h)});
+  const NeighbourList nl = find_neighbours(set, kernel.support_radius(h));
+  const SparseMatrix<> w = kernel_matrix(set, nl, kernel, h);
+  const std::vector<int> c = set.indices(Role::Fixed);
+  Eigen::VectorXd fbar(static_cast<Eigen::Index>(c.size()));
+  for (std::size_t k = 0; k < c.size(); ++k) fbar[k] = 0.5 * set.x(c[k], 0) - set.x(c[k], 1);
+  const ModifiedMatrixDirichlet mm(w, c);
+  Eigen::VectorXd f = random_field(set.size(), 5);
+  const Eigen::VectorXd f0 = f;
+  mm.apply(f, fbar);
+  const Eigen::VectorXd wf = w * f;
+  for (std::size_t k = 0; k < c.size(); ++k) EXPECT_NEAR(wf[c[k]], fbar[k], 1e-9);
+  for (int i : set.indices(Role::Free)) EXPECT_EQ(f[i], f0[i]);
+}
+
 TEST(ModifiedMatrixDirichlet, SingularBlockAndBadInputAreOneLineErrors) {
   ParticleSet<1> set;
   set.x.resize(4, 1);
