@@ -22,11 +22,12 @@
 #include "common/study.hpp"
 #include "sphstab/forms/finite_strain_total_lagrangian.hpp"
 #include "sphstab/integrate/leapfrog.hpp"
+#include "sphstab/integrate/stable_time_step.hpp"
 #include "sphstab/io/csv.hpp"
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
-#include "sphstab/linalg/dense_symmetric_eigen.hpp"
 #include "sphstab/models/hooke.hpp"
 #include "sphstab/models/neo_hookean.hpp"
+#include "sphstab/operators/ismail_boundary.hpp"
 #include "sphstab/particles/lattice.hpp"
 
 using namespace sphstab;
@@ -60,10 +61,32 @@ double shape_integral(double t) {
   return 2 * rise + plateau;
 }
 
+/// The fixed (right) end: how the right ghost layers get their displacement from the free particles.
+enum class FixedEnd {
+  Clamped,   ///< u = 0 on every right ghost
+  Mirror,    ///< odd mirror about the wall x = L: u(L + s) = -u(L - s)
+  Eta,       ///< Ismail's eta method (2.42) at the wall point x = L, one-sided on the ghosts within its support
+  Modified,  ///< Ismail's modified SPH matrix (2.46)-(2.47): <u> = 0 on every right ghost row (exact form)
+};
+std::string fixed_end_name(FixedEnd e) {
+  switch (e) {
+    case FixedEnd::Clamped:
+      return "clamped";
+    case FixedEnd::Mirror:
+      return "mirror";
+    case FixedEnd::Eta:
+      return "eta";
+    case FixedEnd::Modified:
+      return "modified";
+  }
+  return "?";
+}
+
 struct Run {
   std::string name;
   std::shared_ptr<const HyperelasticModel<1>> material;
   double c = 0;  ///< small-strain speed of the material's 1D state
+  FixedEnd fixed_end = FixedEnd::Clamped;
 };
 
 struct Arrival {
@@ -86,7 +109,10 @@ int main(int argc, char** argv) {
   const std::vector<Run> runs{
       {"hooke-1d-stress", std::make_shared<Hooke<1>>(lame, UniaxialState::Stress), cb},
       {"neo-hookean-1d-strain", std::make_shared<NeoHookean<1>>(lame, UniaxialState::Strain), cl},
-      {"neo-hookean-1d-stress", std::make_shared<NeoHookean<1>>(lame, UniaxialState::Stress), cb}};
+      {"neo-hookean-1d-stress", std::make_shared<NeoHookean<1>>(lame, UniaxialState::Stress), cb},
+      {"hooke-1d-stress-mirror", std::make_shared<Hooke<1>>(lame, UniaxialState::Stress), cb, FixedEnd::Mirror},
+      {"hooke-1d-stress-eta", std::make_shared<Hooke<1>>(lame, UniaxialState::Stress), cb, FixedEnd::Eta},
+      {"hooke-1d-stress-modified", std::make_shared<Hooke<1>>(lame, UniaxialState::Stress), cb, FixedEnd::Modified}};
   study::Summary summary;
   summary.set("n", n);
   summary.set("dx_mm", kLength / n * 1e3, 4);
@@ -97,9 +123,9 @@ int main(int argc, char** argv) {
   summary.set("duration_us", kDuration * 1e6, 3);
   CsvWriter acsv(out + "/arrivals.csv", {"run", "c_model", "probe_x", "particle_x", "t_arrival_sph_us",
                                          "t_expected_cb_us", "t_expected_cl_us", "error_vs_model_us"});
-  CsvWriter scsv(out + "/speeds.csv", {"run", "n", "dx", "c_model", "speed_sph_005_010", "max_error_kpa_x0.05",
-                                       "max_error_kpa_x0.1", "max_error_kpa_x0.15", "steps"});
-  std::string md, md_speed;
+  CsvWriter scsv(out + "/speeds.csv", {"run", "fixed_end", "n", "dx", "c_model", "speed_sph_005_010",
+                                       "max_error_kpa_x0.05", "max_error_kpa_x0.1", "max_error_kpa_x0.15", "steps"});
+  std::string md, md_speed, md_fixed;
   for (const int level : {1, 2, 4}) {  // the resolution n, 2n, 4n at fixed h / dx
     const bool base = level == 1;
     const int n_level = n * level;
@@ -122,23 +148,55 @@ int main(int argc, char** argv) {
     }
     // the half-amplitude time of the incoming stress at x = 0: shape(t) = 1/2 at t = kRise / 2
     const double t_half = kRise / 2;
+    // the right end: ghosts (fixed particles beyond L), the mirror partner of each, the eta and modified-matrix
+    // operators (built once per resolution)
+    std::vector<int> fixed_index, right_ghosts, mirror_free(x_fixed.size(), -1);
+    for (int i = 0; i < disc->size(); ++i)
+      if (disc->free_slot[i] < 0) fixed_index.push_back(i);
+    std::vector<int> eta_targets;
+    for (std::size_t k = 0; k < x_fixed.size(); ++k) {
+      if (x_fixed[k] < kLength) continue;
+      right_ghosts.push_back(fixed_index[k]);
+      if (x_fixed[k] - kLength < kernel.support_radius(h)) eta_targets.push_back(fixed_index[k]);
+      for (int f = 0; f < disc->free_count(); ++f)
+        if (std::abs(disc->particles.x(disc->free[f], 0) - (2 * kLength - x_fixed[k])) < 1e-6 * dx) mirror_free[k] = f;
+    }
+    const EtaBoundary1D eta(disc->particles, kernel, h, kLength, eta_targets, BoundaryCondition::Dirichlet);
+    const ModifiedMatrixDirichlet modified(kernel_matrix(disc->particles, disc->neighbours, kernel, h), eta_targets);
     for (const Run& run : runs) {
       FiniteStrainTotalLagrangian<1> tl(disc, run.material, kRho);
       const double c = run.c, v0 = -kStress / (kRho * c);  // particle velocity of the incoming compressive wave
-      Eigen::VectorXd d(x_fixed.size());
-      auto set_time = [&](double t) {
+      Eigen::VectorXd d(x_fixed.size()), u_all = Eigen::VectorXd::Zero(disc->size());
+      double t_now = 0;
+      // the fixed displacements at t_now for the free displacements u: left, the incoming wave; right, the fixed end
+      auto set_fixed = [&](const Eigen::VectorXd& u) {
         for (std::size_t k = 0; k < x_fixed.size(); ++k)
-          d[k] = x_fixed[k] < 0 ? v0 * shape_integral(t - x_fixed[k] / c) : 0.0;  // left: incoming wave; right: clamp
+          d[k] = x_fixed[k] < 0 ? v0 * shape_integral(t_now - x_fixed[k] / c) : 0.0;
+        if (run.fixed_end == FixedEnd::Mirror) {
+          for (std::size_t k = 0; k < x_fixed.size(); ++k)
+            if (mirror_free[k] >= 0) d[k] = -u[mirror_free[k]];
+        } else if (run.fixed_end != FixedEnd::Clamped) {
+          for (int f = 0; f < disc->free_count(); ++f) u_all[disc->free[f]] = u[f];
+          for (std::size_t k = 0; k < x_fixed.size(); ++k) u_all[fixed_index[k]] = d[k];  // right ghosts start at 0
+          if (run.fixed_end == FixedEnd::Eta)
+            eta.apply(u_all, 0.0);  // Ismail (2.42): <u>(L) = 0
+          else
+            modified.apply(u_all, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(eta_targets.size())));
+          for (std::size_t k = 0; k < x_fixed.size(); ++k)
+            if (x_fixed[k] > kLength) d[k] = u_all[fixed_index[k]];
+        }
         tl.set_fixed_displacement(d);
       };
-      // time step: half the leap-frog limit 2 / sqrt(mu_max(A)) at rest
-      set_time(0);
-      const double mu_max =
-          symmetric_eigen(Eigen::MatrixXd(jacobian(tl, Eigen::VectorXd::Zero(tl.dofs())))).values.maxCoeff();
-      const double dt = 0.5 * 2 / std::sqrt(mu_max);
+      auto set_time = [&](double t) { t_now = t; };
+      // time step: half the leap-frog limit 2 / sqrt(lambda_max(M^-1 K)) at rest (clamped ghosts)
+      set_fixed(Eigen::VectorXd::Zero(tl.dofs()));
+      const double dt = 0.5 * stable_time_step(tl, Eigen::VectorXd::Zero(tl.dofs())).dt;
       const double t_end = 1.9 * kLength / c;  // before the fixed-end reflection reaches the source
       SecondOrderSystem sys;
-      sys.acceleration = [&](const Eigen::VectorXd& u, Eigen::VectorXd& a) { tl.acceleration(u, a); };
+      sys.acceleration = [&](const Eigen::VectorXd& u, Eigen::VectorXd& a) {
+        set_fixed(u);
+        tl.acceleration(u, a);
+      };
       sys.set_time = set_time;
       sys.mass = tl.dof_mass();
       LeapfrogStepper stepper(sys, Eigen::VectorXd::Zero(tl.dofs()), Eigen::VectorXd::Zero(tl.dofs()));
@@ -182,10 +240,11 @@ int main(int argc, char** argv) {
         if (t >= t_end) break;
         stepper.step(dt);
       }
-      if (base) summary.set("dt_ns_" + run.name, dt * 1e9, 4);
+      if (base && run.fixed_end == FixedEnd::Clamped) summary.set("dt_ns_" + run.name, dt * 1e9, 4);
       std::cout << run.name << ": dt = " << dt * 1e9 << " ns, " << stepper.steps()
                 << " steps, max |sigma - exact| = " << worst[0] << ", " << worst[1] << ", " << worst[2] << " kPa\n";
-      for (std::size_t p = 0; base && p < kProbes.size(); ++p) {
+      const bool arrivals = base && run.fixed_end == FixedEnd::Clamped;  // the arrival table: the three materials
+      for (std::size_t p = 0; arrivals && p < kProbes.size(); ++p) {
         const double xp = disc->particles.x(disc->free[probe_slot[p]], 0);
         const double tb = t_half + xp / cb, tlong = t_half + xp / cl, tm = t_half + xp / c;
         acsv.row({run.name, c, kProbes[p], xp, arrival[p] * 1e6, tb * 1e6, tlong * 1e6, (arrival[p] - tm) * 1e6});
@@ -197,7 +256,12 @@ int main(int argc, char** argv) {
       const double x0 = disc->particles.x(disc->free[probe_slot[0]], 0),
                    x1 = disc->particles.x(disc->free[probe_slot[1]], 0);
       const double speed = (x1 - x0) / (arrival[1] - arrival[0]);
-      scsv.row({run.name, n_level, dx, c, speed, worst[0], worst[1], worst[2], stepper.steps()});
+      scsv.row({run.name, fixed_end_name(run.fixed_end), n_level, dx, c, speed, worst[0], worst[1], worst[2],
+                stepper.steps()});
+      if (run.name.rfind("hooke", 0) == 0) {  // the fixed-end comparison: Hooke 1D stress, every method
+        study::md_row(md_fixed, {fixed_end_name(run.fixed_end), std::to_string(n_level), study::sig(worst[0], 3),
+                                 study::sig(worst[1], 3), study::sig(worst[2], 3)});
+      }
       study::md_row(md_speed, {run.name, std::to_string(n_level), study::sig(c, 6), study::sig(speed, 6),
                                study::fixed(100 * (speed / c - 1), 3, true) + " %", study::sig(worst[0], 3),
                                study::sig(worst[1], 3), study::sig(worst[2], 3), std::to_string(stepper.steps())});
@@ -205,6 +269,7 @@ int main(int argc, char** argv) {
   }
   summary.set("arrivals", md);
   summary.set("speeds", md_speed);
+  summary.set("fixed_end", md_fixed);
   summary.set("wall_seconds", study::seconds_since(t0), 3);
   summary.write(out);
   return 0;

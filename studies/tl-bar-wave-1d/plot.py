@@ -38,6 +38,35 @@ def main(out):
     ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "tl_bar_wave_1d.png"), dpi=110)
+    fixed_end(out, speeds)
+
+
+def fixed_end(out, speeds):
+    """The x = 0.15 m probe (fixed-end particle) for each fixed-end method, and its largest error against n."""
+    methods = ["clamped", "mirror", "eta", "modified"]
+    fig, axes = plt.subplots(1, 2, figsize=(14, 5))
+    ax = axes[0]
+    for m in methods:
+        rows = read(os.path.join(out, "probes_hooke-1d-stress" + ("" if m == "clamped" else f"-{m}") + ".csv"))
+        t = [num(r["t_us"]) for r in rows]
+        if m == "clamped":
+            ax.plot(t, [num(r["sigma_exact_kpa_x0.15"]) for r in rows], "k--", lw=0.8, label="exact")
+        ax.plot(t, [num(r["sigma_sph_kpa_x0.15"]) for r in rows], lw=1.1, label=m)
+    ax.set_xlabel("t (us)")
+    ax.set_ylabel("T11 at the fixed-end particle (kPa)")
+    ax.set_ylim(-450, 150)
+    ax.set_title("fixed end, Hooke 1D stress, base resolution")
+    ax.legend(fontsize=8)
+    ax = axes[1]
+    for m in methods:
+        rows = [r for r in speeds if r["run"].startswith("hooke") and r["fixed_end"] == m]
+        ax.loglog([num(r["n"]) for r in rows], [num(r["max_error_kpa_x0.15"]) for r in rows], "o-", label=m)
+    ax.set_xlabel("free particles n (h = 2.75 dx)")
+    ax.set_ylabel("max |T11 - exact| at the fixed-end particle (kPa)")
+    ax.set_title("fixed-end error against resolution")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "tl_bar_wave_1d_fixed_end.png"), dpi=110)
 
 
 if __name__ == "__main__":
