@@ -92,7 +92,9 @@ std::string FiniteStrainTotalLagrangian<Dim>::name() const {
     << (m_plain_strain ? std::string("plain") : m_options.gradient->name()) << "-"
     << (m_options.strain_sum == StrainSum::Difference ? "difference" : "direct") << "/"
     << stress_divergence_name(m_options.divergence);
-  if (m_options.hourglass > 0) s << "/hourglass-" << format_number(m_options.hourglass);
+  if (m_options.hourglass > 0)
+    s << "/hourglass-" << (m_options.hourglass_projection == HourglassProjection::Full ? "full-" : "")
+      << format_number(m_options.hourglass);
   return s.str();
 }
 
@@ -198,6 +200,7 @@ void FiniteStrainTotalLagrangian<Dim>::add_hourglass(const Eigen::Matrix<Scalar,
   const Discretisation<Dim>& d = *m_disc;
   const Positions<Dim, Scalar> uall = detail::full_displacement<Dim, Scalar>(d, u, m_fixed_u, kWho);
   using Vec = Eigen::Matrix<Scalar, Dim, 1>;
+  const bool full = m_options.hourglass_projection == HourglassProjection::Full;
   for (int f = 0; f < d.free_count(); ++f) {
     const int i = d.free[f];
     Vec ai = Vec::Zero();
@@ -207,7 +210,11 @@ void FiniteStrainTotalLagrangian<Dim>::add_hourglass(const Eigen::Matrix<Scalar,
       const Vec x = X + (uall.row(j) - uall.row(i)).transpose();          // x_ij, current
       const Scalar r = std::sqrt(Scalar((x.array() * x.array()).sum()));  // analytic (no conjugate): complex step
       const Vec eps = Scalar(0.5) * ((F[i] + F[j]) * X) - x;              // (eps^i_ij - eps^j_ji) / 2
-      const Scalar delta = (eps.array() * x.array()).sum() / r;           // along the bond
+      if (full) {
+        ai -= m_hg_c[k] * eps;  // the whole mean error (HourglassProjection::Full)
+        continue;
+      }
+      const Scalar delta = (eps.array() * x.array()).sum() / r;  // along the bond
       ai -= (m_hg_c[k] * delta / r) * x;  // [Ganzenmueller2015]: -c E V_i V_j W_ij / |X_ij|^2 delta_ij x^_ij / m_i
     }
     for (int c = 0; c < Dim; ++c) a[f * Dim + c] += ai[c];

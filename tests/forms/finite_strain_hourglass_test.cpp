@@ -1,7 +1,8 @@
 // Hourglass control of the finite-strain total-Lagrangian form (FiniteStrainOptions::hourglass, the pair term of
-// [Ganzenmueller2015] in forms/finite_strain_total_lagrangian.hpp): zero for affine fields (finite rotation and
-// stretch), linear and angular momentum to round-off, the complex-step Jacobian against central differences of the
-// force, the exact lift of the 1D sawtooth on a periodic lattice, coefficient 0 = the form without it, bad input.
+// [Ganzenmueller2015] in forms/finite_strain_total_lagrangian.hpp, bond-projected and full): zero for affine fields
+// (finite rotation and stretch), linear and (bond-projected) angular momentum to round-off, the complex-step Jacobian
+// against central differences of the force, the exact lift of the 1D sawtooth on a periodic lattice, coefficient 0 =
+// the form without it, bad input.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -77,6 +78,11 @@ TEST(FiniteStrainHourglass, VanishesForAFiniteRotationAndStretchWithTheCorrected
   const double scale = max_abs(hourglass_part<2>(d, nh, o, random_vector(d->dofs(), 0.05, 5), fixed0));
   EXPECT_GT(scale, 1e-3);
   EXPECT_LT(max_abs(ahg), 1e-12 * scale / 0.05);  // round-off of O(1) displacements against 0.05
+  FiniteStrainOptions<2> full = o;
+  full.hourglass_projection = HourglassProjection::Full;
+  const double scale_full = max_abs(hourglass_part<2>(d, nh, full, random_vector(d->dofs(), 0.05, 5), fixed0));
+  EXPECT_GT(scale_full, 1e-3);
+  EXPECT_LT(max_abs(hourglass_part<2>(d, nh, full, u, fixed)), 1e-12 * scale_full / 0.05);
   // 1D: a stretch by 1.7 and a translation
   auto d1 = test::lattice_discretisation<1>({.n = 20, .perturbation = 0.15});
   const FiniteStrainOptions<1> o1{.gradient = make_gradient_provider<1>(Correction::Ncsph)};
@@ -123,24 +129,30 @@ TEST(FiniteStrainHourglass, ConservesLinearAndAngularMomentumToRoundOff) {
   auto nh = std::make_shared<NeoHookean<2>>(kLame);
   const Eigen::VectorXd u = random_vector(d->dofs(), 0.15, 4);
   FiniteStrainTotalLagrangian<2> off(d, nh, rho, {.divergence = StressDivergence::Plain});
-  FiniteStrainTotalLagrangian<2> on(d, nh, rho, {.divergence = StressDivergence::Plain, .hourglass = 0.5});
-  Eigen::VectorXd a0, a1;
-  off.acceleration(u, a0);
-  on.acceleration(u, a1);
-  const Eigen::VectorXd ma = on.dof_mass().cwiseProduct(a1 - a0);
-  Eigen::Vector2d p = Eigen::Vector2d::Zero();
-  double L = 0, scale = 0, lscale = 0;
-  for (int i = 0; i < d->size(); ++i) {
-    const Eigen::Vector2d x = d->particles.x.row(i).transpose() + u.segment<2>(2 * i);
-    const Eigen::Vector2d f = ma.segment<2>(2 * i);
-    p += f;
-    L += x[0] * f[1] - x[1] * f[0];
-    scale += f.norm();
-    lscale += x.norm() * f.norm();
+  for (HourglassProjection proj : {HourglassProjection::Bond, HourglassProjection::Full}) {
+    FiniteStrainTotalLagrangian<2> on(
+        d, nh, rho, {.divergence = StressDivergence::Plain, .hourglass = 0.5, .hourglass_projection = proj});
+    Eigen::VectorXd a0, a1;
+    off.acceleration(u, a0);
+    on.acceleration(u, a1);
+    const Eigen::VectorXd ma = on.dof_mass().cwiseProduct(a1 - a0);
+    Eigen::Vector2d p = Eigen::Vector2d::Zero();
+    double L = 0, scale = 0, lscale = 0;
+    for (int i = 0; i < d->size(); ++i) {
+      const Eigen::Vector2d x = d->particles.x.row(i).transpose() + u.segment<2>(2 * i);
+      const Eigen::Vector2d f = ma.segment<2>(2 * i);
+      p += f;
+      L += x[0] * f[1] - x[1] * f[0];
+      scale += f.norm();
+      lscale += x.norm() * f.norm();
+    }
+    EXPECT_GT(scale, 1e-2);
+    EXPECT_LT(p.norm(), 1e-14 * scale);
+    if (proj == HourglassProjection::Bond)
+      EXPECT_LT(std::abs(L), 1e-14 * lscale);  // central pair forces
+    else
+      EXPECT_GT(std::abs(L), 1e-4 * lscale);  // the full error vector is not along the bond
   }
-  EXPECT_GT(scale, 1e-2);
-  EXPECT_LT(p.norm(), 1e-14 * scale);
-  EXPECT_LT(std::abs(L), 1e-14 * lscale);
 }
 
 TEST(FiniteStrainHourglass, ComplexStepJacobianIsTheCentralDifferenceOfTheForce) {
@@ -148,25 +160,27 @@ TEST(FiniteStrainHourglass, ComplexStepJacobianIsTheCentralDifferenceOfTheForce)
   // -(a(u + s e_k) - a(u - s e_k)) / (2 s), s = 1e-6: truncation O(s^2) and round-off O(1e-16 / s) both < 1e-8.
   auto d = test::lattice_discretisation<2>({.n = 5, .perturbation = 0.1});
   auto nh = std::make_shared<NeoHookean<2>>(kLame);
-  for (auto grad : {std::shared_ptr<const GradientProvider<2>>(), make_gradient_provider<2>(Correction::Ncsph)}) {
-    FiniteStrainTotalLagrangian<2> tl(d, nh, kRho, {.gradient = grad, .hourglass = 0.3});
-    const Eigen::VectorXd u = random_vector(tl.dofs(), 0.05, 8);
-    const Eigen::MatrixXd A(jacobian(tl, u));
-    Eigen::MatrixXd Afd(tl.dofs(), tl.dofs());
-    const double s = 1e-6;
-    for (int k = 0; k < tl.dofs(); ++k) {
-      Eigen::VectorXd up = u, um = u, ap, am;
-      up[k] += s;
-      um[k] -= s;
-      tl.acceleration(up, ap);
-      tl.acceleration(um, am);
-      Afd.col(k) = -(ap - am) / (2 * s);
+  for (auto grad : {std::shared_ptr<const GradientProvider<2>>(), make_gradient_provider<2>(Correction::Ncsph)})
+    for (HourglassProjection proj : {HourglassProjection::Bond, HourglassProjection::Full}) {
+      FiniteStrainTotalLagrangian<2> tl(d, nh, kRho,
+                                        {.gradient = grad, .hourglass = 0.3, .hourglass_projection = proj});
+      const Eigen::VectorXd u = random_vector(tl.dofs(), 0.05, 8);
+      const Eigen::MatrixXd A(jacobian(tl, u));
+      Eigen::MatrixXd Afd(tl.dofs(), tl.dofs());
+      const double s = 1e-6;
+      for (int k = 0; k < tl.dofs(); ++k) {
+        Eigen::VectorXd up = u, um = u, ap, am;
+        up[k] += s;
+        um[k] -= s;
+        tl.acceleration(up, ap);
+        tl.acceleration(um, am);
+        Afd.col(k) = -(ap - am) / (2 * s);
+      }
+      EXPECT_LT(max_abs(A - Afd), 1e-8 * max_abs(A)) << tl.name();
+      // and the hourglass part is really there (its Jacobian is not the one without it)
+      FiniteStrainTotalLagrangian<2> off(d, nh, kRho, {.gradient = grad});
+      EXPECT_GT(max_abs(A - Eigen::MatrixXd(jacobian(off, u))), 1e-3 * max_abs(A)) << tl.name();
     }
-    EXPECT_LT(max_abs(A - Afd), 1e-8 * max_abs(A)) << tl.name();
-    // and the hourglass part is really there (its Jacobian is not the one without it)
-    FiniteStrainTotalLagrangian<2> off(d, nh, kRho, {.gradient = grad});
-    EXPECT_GT(max_abs(A - Eigen::MatrixXd(jacobian(off, u))), 1e-3 * max_abs(A)) << tl.name();
-  }
 }
 
 TEST(FiniteStrainHourglass, LiftsThePeriodicSawtoothByTheClosedForm) {

@@ -46,6 +46,9 @@
 ///       The term is elastic, not dissipative: it lifts the zero-energy modes (sawtooth, checkerboard) to finite
 ///       frequencies, it does not damp them. It is not the gradient of a potential (F_j depends on u_k), so the
 ///       form is not conservative() with it. c_HG = 0 (default) evaluates exactly the code path without it.
+///       HourglassProjection::Full (not the paper's) replaces delta_ij x^_ij by the whole mean error
+///       1/2 (F_i X_ij - x_ij + F_j X_ij - x_ij): still antisymmetric (linear momentum) and zero for reproduced affine
+///       fields, but not central, so angular momentum is not conserved; it penalises transverse pair errors too.
 /// \note The form has no affine load parameter: load() is 0 and with_load() accepts only 0 (a copy). Load it through
 ///       the prescribed displacements; linearise at a deformed state with ComplexStepJacobian::compute(u).
 ///
@@ -71,6 +74,12 @@
 
 namespace sphstab {
 
+/// The direction of the hourglass pair force (see FiniteStrainTotalLagrangian).
+enum class HourglassProjection {
+  Bond,  ///< along the current bond x^_ij ([Ganzenmueller2015]: central, conserves angular momentum)
+  Full,  ///< the whole mean pair error vector (not central)
+};
+
 template <int Dim>
 struct FiniteStrainOptions {
   /// Strain sum: Difference (zeroth-order consistent, the variational partner of Plus) or Direct ([Ismail2009, (5.7)]).
@@ -81,6 +90,8 @@ struct FiniteStrainOptions {
   StressDivergence divergence = StressDivergence::Plus;
   /// Hourglass control coefficient c_HG >= 0 (finite) of the [Ganzenmueller2015] pair term (file comment); 0 = off.
   double hourglass = 0;
+  /// Direction of the hourglass pair force: Bond (the paper's) or Full.
+  HourglassProjection hourglass_projection = HourglassProjection::Bond;
 };
 
 template <int Dim>
