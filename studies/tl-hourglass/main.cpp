@@ -56,6 +56,7 @@ struct Variant {
   std::string name;
   bool ncsph;
   StrainSum sum;
+  HourglassProjection projection = HourglassProjection::Bond;
 };
 const std::vector<Config> kConfigs{
     {"1d-periodic-cubic", 1, true, KernelType::CubicSpline, 1.3, 40},
@@ -64,10 +65,13 @@ const std::vector<Config> kConfigs{
     {"2d-periodic-cubic", 2, true, KernelType::CubicSpline, 1.3, 12},
     {"2d-block-cubic", 2, false, KernelType::CubicSpline, 1.3, 12},
 };
-const std::vector<Variant> kVariants{{"plain-difference", false, StrainSum::Difference},
-                                     {"plain-direct", false, StrainSum::Direct},
-                                     {"ncsph-difference", true, StrainSum::Difference},
-                                     {"ncsph-direct", true, StrainSum::Direct}};
+const std::vector<Variant> kVariants{
+    {"plain-difference", false, StrainSum::Difference},
+    {"plain-direct", false, StrainSum::Direct},
+    {"ncsph-difference", true, StrainSum::Difference},
+    {"ncsph-direct", true, StrainSum::Direct},
+    // the term's full-vector variant (not the paper's); at c_HG = 0 plain-difference
+    {"plain-difference-full", false, StrainSum::Difference, HourglassProjection::Full}};
 
 template <int Dim>
 std::shared_ptr<const Discretisation<Dim>> lattice(const Config& c) {
@@ -84,7 +88,7 @@ template <int Dim>
 FiniteStrainTotalLagrangian<Dim> form(std::shared_ptr<const Discretisation<Dim>> d, const Variant& v, double chg,
                                       double E = 1.0, double rho = 1.0) {
   auto m = std::make_shared<NeoHookean<Dim>>(LameParameters::from_young_poisson(E, kNu));
-  FiniteStrainOptions<Dim> o{.strain_sum = v.sum, .hourglass = chg};
+  FiniteStrainOptions<Dim> o{.strain_sum = v.sum, .hourglass = chg, .hourglass_projection = v.projection};
   if (v.ncsph) o.gradient = make_gradient_provider<Dim>(Correction::Ncsph);
   return FiniteStrainTotalLagrangian<Dim>(d, m, rho, o);
 }
@@ -384,7 +388,7 @@ int main(int argc, char** argv) {
                                   std::isnan(closed) ? "-" : study::sig(closed, 4), study::sig(mu_smooth, 4),
                                   study::sig(mu_fund, 4), study::fixed(100 * (mu_fund / mu_fund0 - 1), 3, true) + " %",
                                   study::fixed(overlap, 3), std::to_string(zig_below)});
-        if (chg != 0) continue;
+        if (chg != 0 || v.projection == HourglassProjection::Full) continue;
         // ---- at c_HG = 0: null modes, symbols, shapes ----
         if (cfg.periodic) {
           for (const auto& [name, p] : patterns<Dim>(g)) {

@@ -55,7 +55,9 @@ def lift_plot(out):
     configs = ordered(rows, "config")
     fig, axes = plt.subplots(1, 3, figsize=(18, 5.5))
     for cfg in configs:
-        for var, ls in (("plain-difference", "-"), ("ncsph-difference", "--")):
+        for var, ls in (("plain-difference", "-"), ("ncsph-difference", "--"), ("plain-difference-full", ":")):
+            if var.endswith("full") and not cfg.startswith("2d"):
+                continue  # in 1D the full vector is the bond projection
             sel = [r for r in rows if r["config"] == cfg and r["variant"] == var and num(r["hourglass"]) > 0]
             c = [num(r["hourglass"]) for r in sel]
             line, = axes[0].loglog(c, [num(r["mu_zigzag_min"]) for r in sel], "o" + ls, label=f"{cfg} {var}")
