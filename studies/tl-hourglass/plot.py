@@ -54,6 +54,8 @@ def lift_plot(out):
     rows = read(os.path.join(out, "lift.csv"))
     configs = ordered(rows, "config")
     fig, axes = plt.subplots(1, 3, figsize=(18, 5.5))
+    for ax in axes:
+        ax.set_prop_cycle(color=[plt.get_cmap("tab20")(i) for i in range(20)])
     for cfg in configs:
         for var, ls in (("plain-difference", "-"), ("ncsph-difference", "--"), ("plain-difference-full", ":")):
             if var.endswith("full") and not cfg.startswith("2d"):
