@@ -32,7 +32,7 @@ def scatter(ax, out, tag, column, title, label):
 
 def main(out):
     cases = read(os.path.join(out, "cases.csv"))
-    lin = [r for r in cases if r["tag"].startswith("linear") and num(r["w_over_a"]) == 5]
+    lin = [r for r in cases if r["tag"].startswith("linear") and num(r["w_over_a"]) == 5 and "lumped" not in r["tag"]]
     finest = lin[-1]["tag"]
     fig, axes = plt.subplots(1, 2, figsize=(13, 5.5))
     scatter(axes[0], out, finest, "sigma_xx_over_S", f"{finest}: sigma_xx / S (Hooke, S/E = 1e-3)", "sigma_xx / S")
@@ -48,10 +48,10 @@ def main(out):
     ax = axes[0]
     ys = [1 + 4 * i / 400 for i in range(401)]
     ax.plot(ys, [kirsch_xx(y) for y in ys], "k-", lw=1.5, label="Kirsch (infinite plate), x = 0")
-    for r in lin + [c for c in cases if c["tag"].startswith("linear") and num(c["w_over_a"]) != 5]:
+    for r in lin + [c for c in cases if c["tag"].startswith("linear") and c not in lin]:
         p = read(os.path.join(out, f"profile_{r['tag']}.csv"))
         ax.plot([num(q["y_over_a"]) for q in p], [num(q["sigma_xx_over_S"]) for q in p], ".-", ms=4, lw=0.8,
-                label=f"SPH a/dx = {r['a_over_dx']}, W/a = {r['w_over_a']} (column x = dx/2)")
+                label=f"SPH a/dx = {r['a_over_dx']}, W/a = {r['w_over_a']}" + (", lumped load" if "lumped" in r["tag"] else ""))
     ax.set_xlim(1, 5)
     ax.set_xlabel("y / a")
     ax.set_ylabel("sigma_xx / S")
