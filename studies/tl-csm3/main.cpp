@@ -1,8 +1,11 @@
-// Turek & Hron (2006) CSM3: the elastic beam clamped to a rigid cylinder, oscillating under gravity from rest, with the
-// finite-strain total-Lagrangian SPH form (forms/finite_strain_total_lagrangian.hpp, St Venant-Kirchhoff, plane
-// strain) plus a constant body force (forms/body_force.hpp). Geometry and reference: problems/turek_hron_csm3.hpp.
-// Runs: the reference gradient chosen (--gradient) at three resolutions (--across), plus the other gradient and a
-// wider clamp at the coarsest one. Leap-frog at --cfl of the stability limit of the linearisation at rest, no damping.
+// Turek & Hron (2006) CSM3: the elastic beam clamped to a rigid cylinder, oscillating under gravity from rest, with
+// finite-strain total-Lagrangian SPH (St Venant-Kirchhoff, plane strain) plus a constant body force
+// (forms/body_force.hpp). Geometry and reference: problems/turek_hron_csm3.hpp. Forms (--gradient):
+//   ncsph-variational  forms/variational_total_lagrangian.hpp with the NCSPH reference gradient (M a = -dU/du);
+//   plain              forms/finite_strain_total_lagrangian.hpp, plain G, difference strain, plus divergence;
+//   ncsph              the same with the NCSPH strain gradient (its divergence stays the plain G).
+// Runs: the chosen form at the resolutions --across (the last three give the observed order), the two other forms
+// and a 1 dx clamp at the coarsest one. Leap-frog at --cfl of the stability limit of the linearisation at rest.
 // The displacement of A = (0.6, 0.2) is extrapolated linearly to x = 0.6 from the means of the two tip columns'
 // particles nearest y = 0.2: u_A = 1.5 u(col 0) - 0.5 u(col 1). Mean = (max + min) / 2 and amplitude
 // = (max - min) / 2 over the window t >= --t-measure, frequency = 1 / period from the zero crossings of u - mean.
@@ -13,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <numbers>
@@ -24,6 +28,7 @@
 #include "sphstab/forms/body_force.hpp"
 #include "sphstab/forms/correction_gradient.hpp"
 #include "sphstab/forms/finite_strain_total_lagrangian.hpp"
+#include "sphstab/forms/variational_total_lagrangian.hpp"
 #include "sphstab/integrate/leapfrog.hpp"
 #include "sphstab/integrate/stable_time_step.hpp"
 #include "sphstab/io/csv.hpp"
@@ -112,14 +117,16 @@ struct CaseResult {
 
 int main(int argc, char** argv) {
   CLI::App app{"Turek & Hron CSM3: elastic beam under gravity, finite-strain TL SPH (St Venant-Kirchhoff)"};
-  std::string out = "results/tl-csm3", gradient = "plain", divergence = "plus";
-  std::vector<int> across{4, 8, 16};
+  std::string out = "results/tl-csm3", gradient = "ncsph-variational", divergence = "plus";
+  std::vector<int> across{4, 8, 12, 16};
   double t_end = 6, t_measure = 2, cfl = 0.8, h_over_dx = 1.5;
   int clamp_layers = 4, wide_clamp = 1;
   app.add_option("--out", out, "output directory");
-  app.add_option("--across", across, "particles through the thickness, coarsest first (three for the order)");
-  app.add_option("--gradient", gradient, "reference gradient of the strain: ncsph or plain")
-      ->check(CLI::IsMember({"ncsph", "plain"}));
+  app.add_option("--across", across, "particles through the thickness, coarsest first (the last three give the order)");
+  app.add_option(
+         "--gradient", gradient,
+         "strain gradient and form: ncsph-variational, plain or ncsph (the latter two: FiniteStrainTotalLagrangian)")
+      ->check(CLI::IsMember({"ncsph", "plain", "ncsph-variational"}));
   app.add_option("--divergence", divergence, "stress divergence: plus, minus or plain")
       ->check(CLI::IsMember({"plus", "minus", "plain"}));
   app.add_option("--t-end", t_end, "physical time (s)")->check(CLI::PositiveNumber);
@@ -133,10 +140,13 @@ int main(int argc, char** argv) {
   if (across.empty()) throw std::invalid_argument("tl-csm3: --across needs at least one resolution");
   fs::create_directories(out);
   const auto t0 = study::Clock::now();
-  const std::string other = gradient == "ncsph" ? "plain" : "ncsph";
+  std::vector<std::string> others;
+  for (const std::string g : {"plain", "ncsph", "ncsph-variational"})
+    if (g != gradient) others.push_back(g);
+  const std::string other = others[0] + " and " + others[1];
   std::vector<RunSpec> specs;
   for (int n : across) specs.push_back({n, gradient, clamp_layers});
-  specs.push_back({across.front(), other, clamp_layers});
+  for (const std::string& g : others) specs.push_back({across.front(), g, clamp_layers});
   specs.push_back({across.front(), gradient, wide_clamp});
 
   const LameParameters lame{.lambda = 2 * C::shear_modulus * C::poisson / (1 - 2 * C::poisson), .mu = C::shear_modulus};
@@ -151,12 +161,27 @@ int main(int argc, char** argv) {
     const TurekHronBeam beam = turek_hron_beam({.across = spec.across, .clamp_layers = spec.clamp_layers});
     const double h = h_over_dx * beam.dx;
     const auto disc = make_discretisation(beam.particles, kernel, h);
-    FiniteStrainOptions<2> opt;
-    if (spec.gradient == "ncsph") opt.gradient = make_gradient_provider<2>(Correction::Ncsph);
-    opt.divergence = divergence == "plus"    ? StressDivergence::Plus
-                     : divergence == "minus" ? StressDivergence::Minus
-                                             : StressDivergence::Plain;
-    auto tl = std::make_shared<FiniteStrainTotalLagrangian<2>>(disc, svk, C::density, opt);
+    // the form: FiniteStrainTotalLagrangian (plain or NCSPH strain, divergence of the plain G) or the variational
+    // form with the NCSPH strain and its transpose as divergence ("ncsph-variational")
+    std::shared_ptr<const ForceFunction> tl;
+    std::function<Eigen::MatrixXd(const Eigen::VectorXd&)> stresses, deformation_gradients;
+    if (spec.gradient == "ncsph-variational") {
+      auto v = std::make_shared<VariationalTotalLagrangian<2>>(disc, svk, C::density,
+                                                               make_gradient_provider<2>(Correction::Ncsph));
+      stresses = [v](const Eigen::VectorXd& u) { return v->stresses(u); };
+      deformation_gradients = [v](const Eigen::VectorXd& u) { return v->deformation_gradients(u); };
+      tl = v;
+    } else {
+      FiniteStrainOptions<2> opt;
+      if (spec.gradient == "ncsph") opt.gradient = make_gradient_provider<2>(Correction::Ncsph);
+      opt.divergence = divergence == "plus"    ? StressDivergence::Plus
+                       : divergence == "minus" ? StressDivergence::Minus
+                                               : StressDivergence::Plain;
+      auto f = std::make_shared<FiniteStrainTotalLagrangian<2>>(disc, svk, C::density, opt);
+      stresses = [f](const Eigen::VectorXd& u) { return f->stresses(u); };
+      deformation_gradients = [f](const Eigen::VectorXd& u) { return f->deformation_gradients(u); };
+      tl = f;
+    }
     const BodyForce force(tl, Eigen::Vector2d(0, -C::gravity));
     const StableTimeStep limit = stable_time_step(*tl, Eigen::VectorXd::Zero(tl->dofs()));
     CaseResult r;
@@ -219,7 +244,7 @@ int main(int argc, char** argv) {
         if (finest && t >= t_end - 1 / C::frequency && uy[0] < snapshot_uy) {
           snapshot_uy = uy[0];
           snapshot_t = t;
-          const Eigen::MatrixXd P = tl->stresses(stepper.u()), F = tl->deformation_gradients(stepper.u());
+          const Eigen::MatrixXd P = stresses(stepper.u()), F = deformation_gradients(stepper.u());
           snapshot_x.resize(disc->size(), 2);
           snapshot_sigma.resize(disc->size(), 3);
           for (int i = 0; i < disc->size(); ++i) {
@@ -315,8 +340,8 @@ int main(int argc, char** argv) {
                            study::fixed(1e3 * C::uy_amplitude, 3), study::fixed(C::frequency, 4), "", "", "", "", ""});
   // observed order over the three resolutions of the chosen gradient
   std::string md_order;
-  CsvWriter ocsv(out + "/order.csv",
-                 {"quantity", "value_1", "value_2", "value_3", "reference", "observed_order", "loglog_slope_of_error"});
+  CsvWriter ocsv(out + "/order.csv", {"quantity", "value_1", "value_2", "value_3", "reference", "observed_order",
+                                      "loglog_slope_of_error", "richardson_extrapolated"});
   if (across.size() >= 3) {
     const CaseResult &a = results[across.size() - 3], &b = results[across.size() - 2], &c = results[across.size() - 1];
     const std::vector<std::tuple<std::string, std::array<double, 3>, double>> qs{
@@ -329,9 +354,12 @@ int main(int argc, char** argv) {
     for (const auto& [name, v, ref] : qs) {
       const double p = observed_order(a.dx, b.dx, c.dx, v[0], v[1], v[2]);
       const double slope = study::loglog_slope({a.dx, b.dx, c.dx}, {v[0] - ref, v[1] - ref, v[2] - ref});
-      ocsv.row({name, v[0], v[1], v[2], ref, p, slope});
+      // Richardson: f_h = f + C h^p, so f = f3 + (f3 - f2) / ((h2 / h3)^p - 1); NaN without an order
+      const double ext = v[2] + (v[2] - v[1]) / (std::pow(b.dx / c.dx, p) - 1);
+      ocsv.row({name, v[0], v[1], v[2], ref, p, slope, ext});
       study::md_row(md_order, {name, study::sig(v[0], 5), study::sig(v[1], 5), study::sig(v[2], 5), study::sig(ref, 5),
-                               study::sig(p, 3), study::sig(slope, 3)});
+                               study::sig(p, 3), study::sig(slope, 3), study::sig(ext, 5),
+                               std::isnan(ext) ? std::string("-") : rel(ext, ref)});
     }
   }
   if (snapshot_x.rows()) {
