@@ -273,5 +273,19 @@ Eigen::MatrixXd FiniteStrainTotalLagrangian<Dim>::stresses(const Eigen::VectorXd
 
 template class FiniteStrainTotalLagrangian<1>;
 template class FiniteStrainTotalLagrangian<2>;
+// The member templates the header's inline overrides call (acceleration, strain_energy): instantiated here, so the
+// symbols exist whether or not the compiler inlines them into the class's own instantiation.
+template void FiniteStrainTotalLagrangian<1>::evaluate<double>(const Eigen::VectorXd&, Eigen::VectorXd&) const;
+template double FiniteStrainTotalLagrangian<1>::energy<double>(const Eigen::VectorXd&) const;
+template void FiniteStrainTotalLagrangian<1>::evaluate<std::complex<double>>(const Eigen::VectorXcd&,
+                                                                             Eigen::VectorXcd&) const;
+template std::complex<double> FiniteStrainTotalLagrangian<1>::energy<std::complex<double>>(
+    const Eigen::VectorXcd&) const;
+template void FiniteStrainTotalLagrangian<2>::evaluate<double>(const Eigen::VectorXd&, Eigen::VectorXd&) const;
+template double FiniteStrainTotalLagrangian<2>::energy<double>(const Eigen::VectorXd&) const;
+template void FiniteStrainTotalLagrangian<2>::evaluate<std::complex<double>>(const Eigen::VectorXcd&,
+                                                                             Eigen::VectorXcd&) const;
+template std::complex<double> FiniteStrainTotalLagrangian<2>::energy<std::complex<double>>(
+    const Eigen::VectorXcd&) const;
 
 }  // namespace sphstab

@@ -198,5 +198,19 @@ Eigen::MatrixXd VariationalTotalLagrangian<Dim>::stresses(const Eigen::VectorXd&
 
 template class VariationalTotalLagrangian<1>;
 template class VariationalTotalLagrangian<2>;
+// The member templates the header's inline overrides call (acceleration, strain_energy): instantiated here, so the
+// symbols exist whether or not the compiler inlines them into the class's own instantiation.
+template void VariationalTotalLagrangian<1>::evaluate<double>(const Eigen::VectorXd&, Eigen::VectorXd&) const;
+template double VariationalTotalLagrangian<1>::energy<double>(const Eigen::VectorXd&) const;
+template void VariationalTotalLagrangian<1>::evaluate<std::complex<double>>(const Eigen::VectorXcd&,
+                                                                            Eigen::VectorXcd&) const;
+template std::complex<double> VariationalTotalLagrangian<1>::energy<std::complex<double>>(
+    const Eigen::VectorXcd&) const;
+template void VariationalTotalLagrangian<2>::evaluate<double>(const Eigen::VectorXd&, Eigen::VectorXd&) const;
+template double VariationalTotalLagrangian<2>::energy<double>(const Eigen::VectorXd&) const;
+template void VariationalTotalLagrangian<2>::evaluate<std::complex<double>>(const Eigen::VectorXcd&,
+                                                                            Eigen::VectorXcd&) const;
+template std::complex<double> VariationalTotalLagrangian<2>::energy<std::complex<double>>(
+    const Eigen::VectorXcd&) const;
 
 }  // namespace sphstab
