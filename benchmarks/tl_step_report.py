@@ -3,7 +3,7 @@
 one core (force evaluation, leap-frog step, constitutive update alone) and its ratio to the memory-bandwidth bound
 measured in the same run.
 
-    python3 benchmarks/tl_step_report.py benchmark.json benchmark.md
+    python3 benchmarks/tl_step_report.py benchmark.json benchmark.md [--commit HASH]
 
 Each row is the fastest repetition of its benchmark (the machine is shared); its counters come from that same
 repetition, so particle-steps/s and the bound ratio are from one measurement. The bound ratio is the benchmark's own
@@ -30,6 +30,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("json")
     ap.add_argument("md")
+    ap.add_argument("--commit", help="the source commit of the benchmark binary, printed in the report")
     a = ap.parse_args()
     with open(a.json) as f:
         data = json.load(f)
@@ -39,6 +40,7 @@ def main():
     tri = {n: b["bytes_per_second"] / 1e9 for n, b in triads.items() if b}
     ctx = data["context"]
     lines = ["# Finite-strain TL step: speed per particle-step (tl_step_benchmark)", "",
+             (f"Commit {a.commit}. " if a.commit else "") +
              f"Machine: {ctx.get('num_cpus')} CPUs at {ctx.get('mhz_per_cpu')} MHz, {ctx.get('date')}; one thread. "
              "STREAM triad in the same run: "
              + ", ".join(f"{n} {v:.2f} GB/s" for n, v in tri.items()) + " (before and after the scenes).", ""]
