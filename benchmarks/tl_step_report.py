@@ -80,8 +80,9 @@ def main():
               "Plus divergence; gradient Plain: K = G, Ncsph: the corrected reference gradient (a second operator set).",
               "- **model bytes**: the least data the operation must move (tl_step_benchmark.cpp eval_bytes / "
               "step_bytes): the two strain and the two divergence matrices once each (8 B value + 4 B index per "
-              "entry, 4 B per row), u read, P written and read back, a written (F never leaves the cache; the code "
-              "stores it, so it moves more than the model); the step adds nine vector passes. "
+              "entry, 4 B per row), u read, P written and read back, a written; F is not counted (the model has it "
+              "consumed in cache by the constitutive update; the form stores it, 64 B per particle more); the step "
+              "adds nine vector passes. "
               "**bound** = model bytes / triad bandwidth; **time / bound** > 1 is that many times slower than "
               "streaming those bytes at the triad's rate.",
               "- **ns per particle-step** = 1 / particle-steps/s (particle-evaluations for the evaluation and the "
