@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <memory>
+#include <string>
 
 #include "sphstab/forms/elasticity_2d.hpp"
 #include "sphstab/forms/finite_strain_total_lagrangian.hpp"
@@ -65,7 +66,14 @@ TEST_P(UlCritical2D, EngineInsideCholeskySweepBracket) {
 INSTANTIATE_TEST_SUITE_P(Forms, UlCritical2D,
                          testing::Values(std::pair{MomentumForm::Conservative, PreStrainKind::UniaxialX},
                                          std::pair{MomentumForm::Conservative, PreStrainKind::Isotropic},
-                                         std::pair{MomentumForm::Plus, PreStrainKind::Isotropic}));
+                                         std::pair{MomentumForm::Plus, PreStrainKind::Isotropic}),
+                         [](const testing::TestParamInfo<UlCritical2D::ParamType>& info) {
+                           std::string name =
+                               momentum_form_name(info.param.first) + "_" + prestrain_kind_name(info.param.second);
+                           for (char& c : name)
+                             if (c == '-') c = '_';
+                           return name;
+                         });
 
 // TL, Hooke plane strain, at the affinely pre-stretched states u = e d.X (fixed layers following): the Jacobian does
 // not depend on e (||A1|| / ||A0|| < 1e-12), so the engine gives an infinite critical pre-strain; the same block's UL
