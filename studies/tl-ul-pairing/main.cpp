@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "common/study.hpp"
+#include "section_2d.hpp"
 #include "sphstab/forms/finite_strain_total_lagrangian.hpp"
 #include "sphstab/forms/wave_1d.hpp"
 #include "sphstab/integrate/leapfrog.hpp"
@@ -75,10 +76,27 @@ int main(int argc, char** argv) {
   app.add_option("--tension", tension, "run tension T = E eps (E = 1: the pre-strain)");
   app.add_option("--t-end", t_end, "run length (dx / c)");
   app.add_option("--perturbation", perturbation, "relative perturbation of the centre particle's displacement");
+  std::string section = "both";
+  pairing2d::Options o2;
+  app.add_option("--section", section, "1d, 2d or both")->check(CLI::IsMember({"1d", "2d", "both"}));
+  app.add_option("--kernel-2d", o2.kernel, "2D kernel (default cubic; see README)");
+  app.add_option("--h-2d", o2.h, "2D h / dx");
+  app.add_option("--nx-2d", o2.nx, "2D free particles along x (odd)")->check(CLI::Range(5, 401));
+  app.add_option("--ny-2d", o2.ny, "2D free particles along y (odd)")->check(CLI::Range(1, 401));
+  app.add_option("--strain-2d", o2.strain, "2D run pre-strain e (E = 1)");
+  app.add_option("--t-end-2d", o2.t_end, "2D run length (dx / c with c^2 = E / rho)");
   CLI11_PARSE(app, argc, argv);
+  o2.perturbation = perturbation;
   if (n % 2 == 0) throw std::invalid_argument("tl-ul-pairing: --n must be odd (a centre particle)");
   fs::create_directories(out);
   const auto t0 = study::Clock::now();
+  if (section == "2d") {  // the 2D section alone (the 1D keys of summary.json are then absent)
+    study::Summary summary;
+    pairing2d::run(o2, out, summary);
+    summary.set("wall_seconds", study::seconds_since(t0), 3);
+    summary.write(out);
+    return 0;
+  }
   const Kernel<1> kernel(parse_kernel_type(kernel_arg));
   const double h = h_over_dx;
   const Bar bar = make_bar(n, kernel, h);
@@ -253,6 +271,7 @@ int main(int argc, char** argv) {
     std::cout << run << ": min gap " << gap_min_all << ", t_pair " << t_pair << ", " << status << "\n";
   }
   summary.set("runs", md_runs);
+  if (section == "both") pairing2d::run(o2, out, summary);
   summary.set("wall_seconds", study::seconds_since(t0), 3);
   summary.write(out);
   return 0;
