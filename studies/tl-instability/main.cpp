@@ -88,10 +88,26 @@ int main(int argc, char** argv) {
   sets.push_back({"block", make_lattice<2>(LatticeType::Square, block, {.spacing = dx, .fixed_layers = 0})});
   sets.push_back({"periodic", make_lattice<2>(LatticeType::Square, block, {.spacing = dx, .periodic = true})});
 
-  CsvWriter ccsv(out + "/cases.csv",
-                 {"set", "form", "particles", "dofs", "asymmetry", "gamma", "gamma_dx_over_c", "mu_re", "mu_im",
-                  "unstable_modes", "tolerance", "share_surface", "share_corner", "share_clamp", "particles_surface",
-                  "particles_corner", "particles_clamp", "correction_spread"});
+  CsvWriter ccsv(out + "/cases.csv", {"set",
+                                      "form",
+                                      "particles",
+                                      "dofs",
+                                      "asymmetry",
+                                      "gamma",
+                                      "gamma_dx_over_c",
+                                      "mu_re",
+                                      "mu_im",
+                                      "unstable_modes",
+                                      "gamma_real",
+                                      "gamma_complex",
+                                      "tolerance",
+                                      "share_surface",
+                                      "share_corner",
+                                      "share_clamp",
+                                      "particles_surface",
+                                      "particles_corner",
+                                      "particles_clamp",
+                                      "correction_spread"});
   CsvWriter mcsv(out + "/modes.csv", {"set", "form", "x", "y", "role", "depth", "corner", "mode_x", "mode_y"});
   CsvWriter scsv(out + "/spectrum.csv", {"set", "form", "mu_re", "mu_im"});
   study::Summary summary;
@@ -180,10 +196,35 @@ int main(int argc, char** argv) {
       const double nf = disc->free_count();
       if (set.name == "beam" && form != "plain")
         for (const auto& e : g.eigenvalues) scsv.row({set.name, form, e.real(), e.imag()});
+      // the two kinds of growing eigenvalue: real negative mu (divergence, e^{sqrt(-mu) t}) and complex pairs (flutter)
+      double gamma_real = 0, gamma_complex = 0;
+      for (const auto& e : g.eigenvalues) {
+        const double r = mode_growth(e);
+        if (r <= g.tolerance) continue;
+        (std::abs(e.imag()) <= 1e-9 * std::abs(e) ? gamma_real : gamma_complex) =
+            std::max(std::abs(e.imag()) <= 1e-9 * std::abs(e) ? gamma_real : gamma_complex, r);
+      }
       const double growth = unstable ? g.growth_rate : 0.0;  // below the tolerance: round-off, not a mode
-      ccsv.row({set.name, form, n, tl->dofs(), asym, g.growth_rate, g.growth_rate * dx / cp, mu.real(), mu.imag(),
-                static_cast<int>(g.unstable.size()), g.tolerance, share_surface, share_corner, share_clamp,
-                in_surface / nf, in_corner / nf, in_clamp / nf, spread});
+      ccsv.row({set.name,
+                form,
+                n,
+                tl->dofs(),
+                asym,
+                g.growth_rate,
+                g.growth_rate * dx / cp,
+                mu.real(),
+                mu.imag(),
+                static_cast<int>(g.unstable.size()),
+                gamma_real,
+                gamma_complex,
+                g.tolerance,
+                share_surface,
+                share_corner,
+                share_clamp,
+                in_surface / nf,
+                in_corner / nf,
+                in_clamp / nf,
+                spread});
       std::string kind = "-";
       if (unstable) kind = std::abs(mu.imag()) <= 1e-9 * std::abs(mu) ? "real, negative" : "complex pair";
       study::md_row(
@@ -193,7 +234,7 @@ int main(int argc, char** argv) {
            unstable
                ? study::sig(mu.real(), 4) + (mu.imag() < 0 ? " − " : " + ") + study::sig(std::abs(mu.imag()), 4) + "i"
                : "-",
-           std::to_string(g.unstable.size()),
+           std::to_string(g.unstable.size()), study::sig(gamma_real, 4), study::sig(gamma_complex, 4),
            unstable ? study::fixed(100 * share_surface, 0) + " (" + study::fixed(100 * in_surface / nf, 0) + ")" : "-",
            unstable ? study::fixed(100 * share_corner, 0) + " (" + study::fixed(100 * in_corner / nf, 0) + ")" : "-",
            unstable ? study::fixed(100 * share_clamp, 0) + " (" + study::fixed(100 * in_clamp / nf, 0) + ")" : "-"});
