@@ -153,4 +153,18 @@ double heun_excess_growth_rate(const Eigen::VectorXcd& eigenvalues, double dt) {
   return g;
 }
 
+double leapfrog_growth_rate(const Eigen::VectorXcd& mu, double dt) {
+  if (!(dt > 0) || !std::isfinite(dt))
+    throw std::invalid_argument("leapfrog_growth_rate: dt must be finite and > 0 (got " + std::to_string(dt) + ")");
+  double g = 0;
+  for (const auto& m : mu) {
+    // z^2 - b z + 1 = 0, b = 2 - dt^2 mu: the roots z = b/2 +- sqrt(b^2/4 - 1) have product 1, so the larger modulus
+    // is >= 1; take it from the larger root (no cancellation) rather than from both.
+    const std::complex<double> b = 2.0 - dt * dt * m, d = std::sqrt(0.25 * b * b - 1.0);
+    const double z = std::max(std::abs(0.5 * b + d), std::abs(0.5 * b - d));
+    g = std::max(g, std::log(z) / dt);
+  }
+  return g;
+}
+
 }  // namespace sphstab

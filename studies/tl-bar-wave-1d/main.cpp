@@ -10,6 +10,7 @@
 // end: sigma(x, t) = sigma_in(t - x / c) + sigma_in(t - (2L - x) / c) (full, same-sign reflection at the fixed end).
 // Writes to --out DIR: probes_<run>.csv (base resolution), arrivals.csv, speeds.csv (n, 2n, 4n), summary.json.
 #include <CLI/CLI.hpp>
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -21,8 +22,11 @@
 
 #include "common/study.hpp"
 #include "sphstab/forms/finite_strain_total_lagrangian.hpp"
+#include "sphstab/growth/growth_rate.hpp"
+#include "sphstab/growth/linear_growth.hpp"
 #include "sphstab/integrate/leapfrog.hpp"
 #include "sphstab/integrate/stable_time_step.hpp"
+#include "sphstab/integrate/time_step.hpp"
 #include "sphstab/io/csv.hpp"
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
 #include "sphstab/models/hooke.hpp"
@@ -39,6 +43,7 @@ constexpr double kE = 200e9, kRho = 8000, kNu = 0.3, kLength = 0.15, kStress = -
 constexpr double kHOverDx = 2.75;  // Ismail's h = 5.5 dx (mollifier support h) in sphstab's support-2h convention
 constexpr double kRise = 2e-6, kDuration = 10e-6;  // smoothed square pulse: sin^2 ramps of kRise, total kDuration
 const std::vector<double> kProbes{0.05, 0.10, 0.15};
+constexpr double kFitStart = 1.5;  // observed growth fitted over t in [1.5, 1.9] L / c: the pulse has left the end
 
 /// The pulse shape in [0, 1]: sin^2 rise over kRise, plateau, sin^2 fall, zero outside [0, kDuration].
 double shape(double t) {
@@ -93,6 +98,32 @@ struct Arrival {
   double x, t_sph, t_expected_cb, t_expected_cl;
 };
 
+/// Dense A = -da/du of an acceleration that is linear in u with a(0) = 0 (Hooke's law, the source at rest): column k
+/// is -a(s e_k) / s, exact to round-off for any s small enough to keep J > 0. The closure code that is time-stepped
+/// is probed itself, so A is the linearisation of exactly what runs.
+Eigen::MatrixXd probed_matrix(const AccelerationFunction& accel, int n, double s) {
+  Eigen::MatrixXd A(n, n);
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(n), a;
+  for (int k = 0; k < n; ++k) {
+    u[k] = s;
+    accel(u, a);
+    A.col(k) = -a / s;
+    u[k] = 0;
+  }
+  return A;
+}
+
+/// Least-squares slope of ln e(t) over the samples with t in [t0, t1] and e > 0: the observed exponential rate.
+double log_slope(const std::vector<double>& t, const std::vector<double>& e, double t0, double t1) {
+  double n = 0, st = 0, sy = 0, stt = 0, sty = 0;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    if (t[k] < t0 || t[k] > t1 || !(e[k] > 0)) continue;
+    const double y = std::log(e[k]);
+    n += 1, st += t[k], sy += y, stt += t[k] * t[k], sty += t[k] * y;
+  }
+  return n < 3 ? NAN : (n * sty - st * sy) / (n * stt - st * st);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -125,7 +156,18 @@ int main(int argc, char** argv) {
                                          "t_expected_cb_us", "t_expected_cl_us", "error_vs_model_us"});
   CsvWriter scsv(out + "/speeds.csv", {"run", "fixed_end", "n", "dx", "c_model", "speed_sph_005_010",
                                        "max_error_kpa_x0.05", "max_error_kpa_x0.1", "max_error_kpa_x0.15", "steps"});
-  std::string md, md_speed, md_fixed;
+  CsvWriter wcsv(out + "/wcc_conditioning.csv",
+                 {"n", "layers", "study_set", "cond2", "eig_min", "eig_max", "closure_gain_inf"});
+  CsvWriter ccsv(out + "/closure_growth.csv",
+                 {"fixed_end", "n", "dx", "dt", "gamma", "mu_re", "mu_im", "gamma_dx_over_c", "leapfrog_rate",
+                  "max_abs_mu_dx2_over_c2", "dt_limit_abs_mu", "asymmetry", "observed_rate", "leapfrog_efolds_window",
+                  "observed_efolds_window"});
+  CsvWriter spcsv(out + "/closure_spectrum.csv", {"fixed_end", "n", "mu_re_dx2_over_c2", "mu_im_dx2_over_c2"});
+  CsvWriter lcsv(out + "/closure_layers.csv",
+                 {"layers", "gamma", "mu_re", "mu_im", "gamma_dx_over_c", "unstable_modes"});
+  CsvWriter mcsv(out + "/closure_mode.csv", {"n", "x", "shape"});
+  CsvWriter ecsv(out + "/end_error.csv", {"fixed_end", "n", "t_us", "error_kpa"});
+  std::string md, md_speed, md_fixed, md_wcc, md_wcc_layers, md_closed, md_layers;
   for (const int level : {1, 2, 4}) {  // the resolution n, 2n, 4n at fixed h / dx
     const bool base = level == 1;
     const int n_level = n * level;
@@ -162,7 +204,43 @@ int main(int argc, char** argv) {
         if (std::abs(disc->particles.x(disc->free[f], 0) - (2 * kLength - x_fixed[k])) < 1e-6 * dx) mirror_free[k] = f;
     }
     const EtaBoundary1D eta(disc->particles, kernel, h, kLength, eta_targets, BoundaryCondition::Dirichlet);
-    const ModifiedMatrixDirichlet modified(kernel_matrix(disc->particles, disc->neighbours, kernel, h), eta_targets);
+    const SparseMatrix<> wmat = kernel_matrix(disc->particles, disc->neighbours, kernel, h);
+    const ModifiedMatrixDirichlet modified(wmat, eta_targets);
+    // Conditioning of W_CC (Ismail (2.46)) and the gain ||W_CC^-1 W_CI||_inf of the exact closure
+    // u_C = -W_CC^-1 W_CI u_I: for the study's constrained set (the ghosts within the wall's support) and, at the base
+    // resolution, for the first 1 .. all right ghost layers. W_CC is symmetric (equal volumes): its eigenvalues give
+    // the 2-norm condition number.
+    std::vector<int> by_distance = right_ghosts;  // the right ghosts, nearest to the wall first
+    std::sort(by_distance.begin(), by_distance.end(),
+              [&](int a, int b) { return disc->particles.x(a, 0) < disc->particles.x(b, 0); });
+    {
+      const Eigen::MatrixXd wd(wmat);
+      for (int layers = 1; layers <= static_cast<int>(by_distance.size()); ++layers) {
+        const bool study_set = layers == static_cast<int>(eta_targets.size());
+        if (!base && !study_set) continue;
+        const int m = layers;
+        Eigen::MatrixXd wcc(m, m), wci(m, disc->free_count());
+        for (int a = 0; a < m; ++a) {
+          for (int b = 0; b < m; ++b) wcc(a, b) = wd(by_distance[a], by_distance[b]);
+          for (int f = 0; f < disc->free_count(); ++f) wci(a, f) = wd(by_distance[a], disc->free[f]);
+        }
+        const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(wcc);
+        const Eigen::VectorXd ev = es.eigenvalues();
+        const double cond = ev.cwiseAbs().maxCoeff() / ev.cwiseAbs().minCoeff();
+        const double gain = (wcc.partialPivLu().solve(wci)).rowwise().lpNorm<1>().maxCoeff();
+        wcsv.row({n_level, layers, study_set ? 1 : 0, cond, ev.minCoeff(), ev.maxCoeff(), gain});
+        if (study_set)
+          study::md_row(md_wcc, {std::to_string(n_level), std::to_string(layers), study::sig(cond, 4),
+                                 study::sig(ev.minCoeff(), 4), study::sig(gain, 4)});
+        else if (base)
+          study::md_row(md_wcc_layers, {std::to_string(layers), study::sig(cond, 4), study::sig(ev.minCoeff(), 4),
+                                        study::sig(gain, 4)});
+      }
+    }
+    Eigen::VectorXd x_free(disc->free_count());
+    for (int f = 0; f < disc->free_count(); ++f) x_free[f] = disc->particles.x(disc->free[f], 0);
+    const ModifiedMatrixDirichlet* modified_op = &modified;  // the closure of the modified runs (the layer sweep
+                                                             // below points it elsewhere while probing)
     for (const Run& run : runs) {
       FiniteStrainTotalLagrangian<1> tl(disc, run.material, kRho);
       const double c = run.c, v0 = -kStress / (kRho * c);  // particle velocity of the incoming compressive wave
@@ -181,7 +259,8 @@ int main(int argc, char** argv) {
           if (run.fixed_end == FixedEnd::Eta)
             eta.apply(u_all, 0.0);  // Ismail (2.42): <u>(L) = 0
           else
-            modified.apply(u_all, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(eta_targets.size())));
+            modified_op->apply(u_all,
+                               Eigen::VectorXd::Zero(static_cast<Eigen::Index>(modified_op->constrained().size())));
           for (std::size_t k = 0; k < x_fixed.size(); ++k)
             if (x_fixed[k] > kLength) d[k] = u_all[fixed_index[k]];
         }
@@ -199,6 +278,50 @@ int main(int argc, char** argv) {
       };
       sys.set_time = set_time;
       sys.mass = tl.dof_mass();
+      // The closed loop linearised (Hooke: a is linear in u, so this is the whole run's operator): A = -da/du of the
+      // time-stepped acceleration with its ghost closure, probed with the source at rest (t - x / c < 0 on every left
+      // layer, so a(0) = 0). Non-symmetric for the eta and modified closures: complex mu, growth max Re sqrt(-mu)
+      // (Powell Thm 3.1) and the leap-frog rate at the run's dt from the roots z of z^2 - (2 - dt^2 mu) z + 1 = 0.
+      const bool fixed_end_run = run.name.rfind("hooke", 0) == 0;
+      GrowthAnalysis closed;
+      double lf_rate = NAN, asym = NAN, max_abs_mu = NAN;
+      if (fixed_end_run) {
+        t_now = -1;
+        const Eigen::MatrixXd A = probed_matrix(sys.acceleration, tl.dofs(), 1e-9);
+        if (base && run.fixed_end == FixedEnd::Modified) {  // the same closure on the first 1 .. all ghost layers
+          for (int layers = 1; layers <= static_cast<int>(by_distance.size()); ++layers) {
+            const ModifiedMatrixDirichlet mm(
+                wmat, std::vector<int>(by_distance.begin(), by_distance.begin() + layers));  // deeper ghosts: u = 0
+            modified_op = &mm;
+            const GrowthAnalysis g = growth_rate(probed_matrix(sys.acceleration, tl.dofs(), 1e-9), x_free);
+            modified_op = &modified;
+            const std::complex<double> mu = g.unstable.empty() ? std::complex<double>(0, 0) : g.unstable.front().mu;
+            lcsv.row({layers, g.growth_rate, mu.real(), mu.imag(), g.growth_rate * dx / c,
+                      static_cast<int>(g.unstable.size())});
+            study::md_row(md_layers,
+                          {std::to_string(layers), study::sig(g.growth_rate, 3), study::sig(g.growth_rate * dx / c, 3),
+                           g.unstable.empty() ? "-" : (std::abs(mu.imag()) > 0 ? "complex" : "real < 0"),
+                           std::to_string(g.unstable.size())});
+          }
+        }
+        t_now = 0;
+        asym = (A - A.transpose()).norm() / A.norm();
+        closed = growth_rate(A, x_free);
+        lf_rate = leapfrog_growth_rate(closed.eigenvalues, dt);
+        max_abs_mu = closed.eigenvalues.cwiseAbs().maxCoeff();
+        if (base)  // the leap-frog rate once more from the dense 2n x 2n one-step map (independent route)
+          summary.set(
+              "lf_map_check_" + fixed_end_name(run.fixed_end),
+              std::abs(leapfrog_map_growth(A, dt, Eigen::MatrixXd(), VelocityHookMode::DriftOnly).gamma - lf_rate) /
+                  std::max(lf_rate, 1.0),
+              2);
+        const double scale = dx * dx / (c * c);  // mu in units of (c / dx)^2: resolution-independent
+        for (const auto& mu : closed.eigenvalues)
+          spcsv.row({fixed_end_name(run.fixed_end), n_level, mu.real() * scale, mu.imag() * scale});
+        if (run.fixed_end == FixedEnd::Modified && !closed.unstable.empty())
+          for (int f = 0; f < disc->free_count(); ++f) mcsv.row({n_level, x_free[f], closed.unstable.front().shape[f]});
+      }
+      std::vector<double> end_t, end_err;  // |sigma - exact| at the fixed-end probe, every step (Hooke runs)
       LeapfrogStepper stepper(sys, Eigen::VectorXd::Zero(tl.dofs()), Eigen::VectorXd::Zero(tl.dofs()));
       std::vector<std::string> cols{"t_us"};
       for (double xp : kProbes) {
@@ -231,6 +354,8 @@ int main(int argc, char** argv) {
           row.push_back(s / 1e3);
           row.push_back(exact / 1e3);
           worst[p] = std::max(worst[p], std::abs(s - exact) / 1e3);
+          if (fixed_end_run && p + 1 == kProbes.size())
+            end_t.push_back(t), end_err.push_back(std::abs(s - exact) / 1e3);
           if (std::isnan(arrival[p]) && s <= threshold[p])
             arrival[p] = t_previous + (t - t_previous) * (threshold[p] - previous[p]) / (s - previous[p]);
           previous[p] = s;
@@ -258,7 +383,27 @@ int main(int argc, char** argv) {
       const double speed = (x1 - x0) / (arrival[1] - arrival[0]);
       scsv.row({run.name, fixed_end_name(run.fixed_end), n_level, dx, c, speed, worst[0], worst[1], worst[2],
                 stepper.steps()});
-      if (run.name.rfind("hooke", 0) == 0) {  // the fixed-end comparison: Hooke 1D stress, every method
+      if (fixed_end_run) {  // the closed-loop spectrum against the observed growth of the end-particle error
+        for (std::size_t k = 0; k < end_t.size(); ++k)
+          ecsv.row({fixed_end_name(run.fixed_end), n_level, end_t[k] * 1e6, end_err[k]});
+        const double t_fit = kFitStart * kLength / c;  // the pulse has left the fixed end's support
+        const double slope = log_slope(end_t, end_err, t_fit, t_end);
+        const std::complex<double> mu =
+            closed.unstable.empty() ? std::complex<double>(NAN, NAN) : closed.unstable.front().mu;
+        const double scale = dx * dx / (c * c);
+        ccsv.row({fixed_end_name(run.fixed_end), n_level, dx, dt, closed.growth_rate, mu.real(), mu.imag(),
+                  closed.growth_rate * dx / c, lf_rate, max_abs_mu * scale, 2 / std::sqrt(max_abs_mu), asym, slope,
+                  lf_rate * (t_end - t_fit), slope * (t_end - t_fit)});
+        study::md_row(md_closed,
+                      {fixed_end_name(run.fixed_end), std::to_string(n_level), study::sig(asym, 2),
+                       study::sig(closed.growth_rate, 3),
+                       closed.unstable.empty() ? "-"
+                                               : study::sig(mu.real() * scale, 4) + " " + (mu.imag() < 0 ? "−" : "+") +
+                                                     " " + study::sig(std::abs(mu.imag()) * scale, 4) + "i",
+                       study::sig(dt / (2 / std::sqrt(max_abs_mu)), 3), study::sig(lf_rate, 3), study::sig(slope, 3),
+                       study::sig(lf_rate * (t_end - t_fit), 3), study::sig(slope * (t_end - t_fit), 3)});
+      }
+      if (fixed_end_run) {  // the fixed-end comparison: Hooke 1D stress, every method
         study::md_row(md_fixed, {fixed_end_name(run.fixed_end), std::to_string(n_level), study::sig(worst[0], 3),
                                  study::sig(worst[1], 3), study::sig(worst[2], 3)});
       }
@@ -270,6 +415,11 @@ int main(int argc, char** argv) {
   summary.set("arrivals", md);
   summary.set("speeds", md_speed);
   summary.set("fixed_end", md_fixed);
+  summary.set("wcc", md_wcc);
+  summary.set("wcc_layers", md_wcc_layers);
+  summary.set("closed_loop", md_closed);
+  summary.set("closure_layers", md_layers);
+  summary.set("fit_start", kFitStart, 3);
   summary.set("wall_seconds", study::seconds_since(t0), 3);
   summary.write(out);
   return 0;

@@ -2,6 +2,7 @@
 """Plots of the 1D validation-bar study (Ismail 2009 §4.6.3, §5.3.1): stress histories at the probes x = 0.05, 0.10,
 0.15 m for each material against the exact linear d'Alembert solution, and the wave speed measured between the
 first two probes against resolution. Usage: plot.py RESULTS_DIR (reads probes_*.csv, speeds.csv)."""
+import math
 import os
 import sys
 
@@ -67,6 +68,61 @@ def fixed_end(out, speeds):
     ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "tl_bar_wave_1d_fixed_end.png"), dpi=110)
+    closure(out)
+
+
+def closure(out):
+    """The closed loop of each fixed end: the end-particle error against time with the modified closure's linear
+    growth e^(rate t) through the last point, the modified closure's fastest mode near the wall, and W_CC's condition
+    number and the modified closure's growth against the number of constrained ghost layers."""
+    growth = read(os.path.join(out, "closure_growth.csv"))
+    err = read(os.path.join(out, "end_error.csv"))
+    fig, axes = plt.subplots(1, 3, figsize=(17, 5))
+    ax = axes[0]
+    colours = {"300": "tab:blue", "600": "tab:orange", "1200": "tab:green"}
+    for n, colour in colours.items():
+        for m, ls in [("modified", "-"), ("mirror", ":")]:
+            rows = [r for r in err if r["fixed_end"] == m and r["n"] == n]
+            t = [num(r["t_us"]) for r in rows]
+            e = [max(num(r["error_kpa"]), 1e-6) for r in rows]
+            ax.semilogy(t, e, ls, color=colour, lw=1, label=f"{m}, n = {n}")
+            if m == "modified":
+                rate = [num(g["leapfrog_rate"]) for g in growth if g["fixed_end"] == m and g["n"] == n][0]
+                t0 = t[-1] - 15
+                ax.semilogy([t0, t[-1]], [e[-1] * math.exp(-rate * 15e-6), e[-1]], "k--", lw=0.8)
+    ax.set_ylim(1e-2, 1e5)
+    ax.set_xlabel("t (us)")
+    ax.set_ylabel("|T11 - exact| at the fixed-end particle (kPa)")
+    ax.set_title("end error; dashed: e^(rate t) of the linearised closed loop", fontsize=10)
+    ax.legend(fontsize=7)
+    ax = axes[1]
+    modes = read(os.path.join(out, "closure_mode.csv"))
+    for n, colour in colours.items():
+        rows = [r for r in modes if r["n"] == n]
+        dx = 0.15 / int(n)
+        xs = [(0.15 - num(r["x"])) / dx for r in rows]
+        sh = [num(r["shape"]) for r in rows]
+        sign = 1 if sh[-1] > 0 else -1
+        ax.plot(xs, [sign * v for v in sh], "o-", ms=3, color=colour, label=f"n = {n}")
+    ax.set_xlim(20, 0)
+    ax.set_xlabel("distance from the fixed end (L - x) / dx")
+    ax.set_ylabel("mode (unit norm)")
+    ax.set_title("modified closure: the growing mode (real mu < 0)", fontsize=10)
+    ax.legend(fontsize=8)
+    ax = axes[2]
+    wcc = [r for r in read(os.path.join(out, "wcc_conditioning.csv")) if r["n"] == "300"]
+    layers = [read(os.path.join(out, "closure_layers.csv"))][0]
+    ax.semilogy([num(r["layers"]) for r in wcc], [num(r["cond2"]) for r in wcc], "o-", label="cond2(W_CC)")
+    ax.semilogy([num(r["layers"]) for r in wcc], [num(r["closure_gain_inf"]) for r in wcc], "s-",
+                label="gain ||W_CC^-1 W_CI||_inf")
+    ax.semilogy([num(r["layers"]) for r in layers], [1e3 * num(r["gamma_dx_over_c"]) for r in layers], "^-",
+                label="1000 gamma dx / c of the closed loop")
+    ax.axvline(5, color="0.6", lw=0.6)
+    ax.set_xlabel("constrained ghost layers (5: the study's, within the wall's support)")
+    ax.set_title("modified matrix against the constrained set (n = 300)", fontsize=10)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "tl_bar_wave_1d_closure.png"), dpi=110)
 
 
 if __name__ == "__main__":

@@ -99,4 +99,12 @@ double heun_growth_rate(const Eigen::VectorXcd& eigenvalues, double dt);
 /// std::invalid_argument unless dt is finite and > 0.
 double heun_excess_growth_rate(const Eigen::VectorXcd& eigenvalues, double dt);
 
+/// Growth rate of leap-frog (kick-drift-kick, equivalently the central difference u_{n+1} = 2 u_n - u_{n-1} -
+/// dt^2 A u_n [Ismail2009, (4.46)]) for u'' = -A u, from the eigenvalues mu of A: a mode multiplies u by z per step
+/// with z^2 - (2 - dt^2 mu) z + 1 = 0, so the rate is max over mu of ln max|z| / dt. It is 0 when every mu is real
+/// in [0, 4 / dt^2] (|z| = 1); a real mu > 4 / dt^2 is the time-step instability, a complex or negative mu grows at
+/// every dt. The same number as leapfrog_map_growth's gamma (growth/linear_growth.hpp: the dense 2n x 2n map) without
+/// forming the map. Throws std::invalid_argument unless dt is finite and > 0; 0 for no eigenvalues.
+double leapfrog_growth_rate(const Eigen::VectorXcd& mu, double dt);
+
 }  // namespace sphstab
