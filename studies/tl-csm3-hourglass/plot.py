@@ -2,6 +2,7 @@
 """Plots of the CSM3 hourglass study: the fundamental and the softest zigzag modes of the beam at rest (c_HG = 0;
 whole beam coloured by |phi| and a zoom with arrows), the lift of the softest zigzag eigenvalue and the shift of the
 fundamental against c_HG, and the tip displacement u_y(A)(t) of the gravity runs against c_HG.
+Also writes mode_energy.csv (each shape mode's energy share in u_x and per grid row).
 Usage: plot.py RESULTS_DIR (reads modes.csv, lift.csv, runs.csv, tip_<run>.csv)."""
 import math
 import os
@@ -50,6 +51,25 @@ def modes_plot(out):
         fig.tight_layout()
         fig.savefig(os.path.join(out, f"modes_n{n}.png"), dpi=80)
         plt.close(fig)
+
+
+def mode_energy(out):
+    """mode_energy.csv: per shape mode of modes.csv, the share of |phi|^2 in u_x and per grid row (bottom to top)."""
+    rows = read(os.path.join(out, "modes.csv"))
+    groups = {}
+    for r in rows:
+        groups.setdefault((r["across"], r["form"], r["kind"], r["rank"]), []).append(r)
+    with open(os.path.join(out, "mode_energy.csv"), "w") as f:
+        f.write("across,form,kind,rank,ux_share,row_shares\n")
+        for (n, form, kind, rank), m in groups.items():
+            ex = sum(num(r["phi_x"]) ** 2 for r in m)
+            total = ex + sum(num(r["phi_y"]) ** 2 for r in m)
+            by_row = {}
+            for r in m:
+                key = round(num(r["y"]), 6)
+                by_row[key] = by_row.get(key, 0) + (num(r["phi_x"]) ** 2 + num(r["phi_y"]) ** 2) / total
+            shares = " ".join(f"{by_row[k]:.3f}" for k in sorted(by_row))
+            f.write(f"{n},{form},{kind},{rank},{ex / total:.4f},{shares}\n")
 
 
 def lift_plot(out):
@@ -120,6 +140,7 @@ def tip_plot(out):
 
 def main(out):
     modes_plot(out)
+    mode_energy(out)
     lift_plot(out)
     tip_plot(out)
 
