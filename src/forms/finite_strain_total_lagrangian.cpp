@@ -61,29 +61,9 @@ FiniteStrainTotalLagrangian<Dim>::FiniteStrainTotalLagrangian(std::shared_ptr<co
   m_fixed_u = Eigen::VectorXd::Zero(Dim * (N - d.free_count()));
 
   // Hourglass control [Ganzenmueller2015]: the pair coefficients, once at the reference positions.
-  const double chg = m_options.hourglass;
-  if (!(chg >= 0) || !std::isfinite(chg))
-    throw std::invalid_argument(std::string(kWho) + ": hourglass coefficient must be finite and >= 0 (got " +
-                                format_number(chg) + "; 0 switches the term off)");
-  if (chg > 0) {
-    const double E = m_material->lame().young();
-    m_hg_offsets.assign(1, 0);
-    for (int i : d.free) {
-      for (long k = d.neighbours.offsets[i]; k < d.neighbours.offsets[i + 1]; ++k) {
-        const int j = d.neighbours.indices[k];
-        if (j == i) continue;
-        const Eigen::Matrix<double, Dim, 1> Xij = -d.particles.separation(i, j).transpose();  // X_j - X_i
-        const double r = Xij.norm();
-        if (!(r > 0)) continue;  // coincident reference points carry no bond direction
-        const double w = d.kernel.value(r, d.h);
-        if (w == 0) continue;
-        m_hg_j.push_back(j);
-        m_hg_c.push_back(chg * E * d.particles.volume[j] * w / (r * r) / m_rho[i]);  // V_i cancels with m_i
-        m_hg_X.push_back(Xij);
-      }
-      m_hg_offsets.push_back(static_cast<int>(m_hg_j.size()));
-    }
-  }
+  m_hg =
+      HourglassControl<Dim>(d, m_options.hourglass > 0 ? m_material->lame().young() : 0.0, m_rho,
+                            {.coefficient = m_options.hourglass, .projection = m_options.hourglass_projection}, kWho);
 }
 
 template <int Dim>
@@ -203,35 +183,7 @@ void FiniteStrainTotalLagrangian<Dim>::evaluate(const Eigen::Matrix<Scalar, Eige
       }
     for (int c = 0; c < Dim; ++c) a[f * Dim + c] = ai[c] / m_rho[i];
   }
-  if (!m_hg_offsets.empty()) add_hourglass(ws.u, F, a);
-}
-
-template <int Dim>
-template <class Scalar>
-void FiniteStrainTotalLagrangian<Dim>::add_hourglass(const Positions<Dim, Scalar>& uall,
-                                                     const std::vector<Deformation<Scalar, Dim>>& F,
-                                                     Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& a) const {
-  const Discretisation<Dim>& d = *m_disc;
-  using Vec = Eigen::Matrix<Scalar, Dim, 1>;
-  const bool full = m_options.hourglass_projection == HourglassProjection::Full;
-  for (int f = 0; f < d.free_count(); ++f) {
-    const int i = d.free[f];
-    Vec ai = Vec::Zero();
-    for (int k = m_hg_offsets[f]; k < m_hg_offsets[f + 1]; ++k) {
-      const int j = m_hg_j[k];
-      const Vec X = m_hg_X[k].template cast<Scalar>();
-      const Vec x = X + (uall.row(j) - uall.row(i)).transpose();          // x_ij, current
-      const Scalar r = std::sqrt(Scalar((x.array() * x.array()).sum()));  // analytic (no conjugate): complex step
-      const Vec eps = Scalar(0.5) * ((F[i] + F[j]) * X) - x;              // (eps^i_ij - eps^j_ji) / 2
-      if (full) {
-        ai -= m_hg_c[k] * eps;  // the whole mean error (HourglassProjection::Full)
-        continue;
-      }
-      const Scalar delta = (eps.array() * x.array()).sum() / r;  // along the bond
-      ai -= (m_hg_c[k] * delta / r) * x;  // [Ganzenmueller2015]: -c E V_i V_j W_ij / |X_ij|^2 delta_ij x^_ij / m_i
-    }
-    for (int c = 0; c < Dim; ++c) a[f * Dim + c] += ai[c];
-  }
+  if (m_hg.active()) m_hg.add(d, ws.u, F, a);
 }
 
 template <int Dim>

@@ -19,7 +19,8 @@ template <int Dim>
 VariationalTotalLagrangian<Dim>::VariationalTotalLagrangian(std::shared_ptr<const Discretisation<Dim>> discretisation,
                                                             std::shared_ptr<const HyperelasticModel<Dim>> material,
                                                             const Eigen::VectorXd& density,
-                                                            std::shared_ptr<const GradientProvider<Dim>> gradient)
+                                                            std::shared_ptr<const GradientProvider<Dim>> gradient,
+                                                            HourglassOptions hourglass)
     : m_disc(std::move(discretisation)), m_material(std::move(material)), m_gradient(std::move(gradient)) {
   if (!m_disc) throw std::invalid_argument(std::string(kWho) + ": discretisation is null");
   if (!m_material) throw std::invalid_argument(std::string(kWho) + ": material is null");
@@ -54,11 +55,17 @@ VariationalTotalLagrangian<Dim>::VariationalTotalLagrangian(std::shared_ptr<cons
   for (int i = 0; i < N; ++i)
     if (is_active[i]) m_active.push_back(i);
   m_fixed_u = Eigen::VectorXd::Zero(Dim * (N - d.free_count()));
+  m_hg = HourglassControl<Dim>(d, hourglass.coefficient > 0 ? m_material->lame().young() : 0.0, m_rho, hourglass, kWho);
 }
 
 template <int Dim>
 std::string VariationalTotalLagrangian<Dim>::name() const {
-  return "tl-variational/" + m_material->name() + "/" + (m_gradient ? m_gradient->name() : std::string("plain"));
+  std::string s =
+      "tl-variational/" + m_material->name() + "/" + (m_gradient ? m_gradient->name() : std::string("plain"));
+  if (m_hg.active())
+    s += "/hourglass-" + std::string(m_hg.options().projection == HourglassProjection::Full ? "full-" : "") +
+         format_number(m_hg.options().coefficient);
+  return s;
 }
 
 template <int Dim>
@@ -157,6 +164,7 @@ void VariationalTotalLagrangian<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen
     const double m = m_rho[k] * d.particles.volume[k];
     for (int c = 0; c < Dim; ++c) a[f * Dim + c] = force(k, c) / m;
   }
+  if (m_hg.active()) m_hg.add(d, ws.u, F, a);  // [Ganzenmueller2015] with this form's F (forms/hourglass_control.hpp)
 }
 
 template <int Dim>

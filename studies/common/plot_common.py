@@ -22,6 +22,15 @@ def num(x):
         return math.nan
 
 
+def ordered(rows, key):
+    """The distinct values of column `key` in order of first appearance."""
+    out = []
+    for r in rows:
+        if r[key] not in out:
+            out.append(r[key])
+    return out
+
+
 def xi_colour(xi, xis):
     """Colour of a volume strain xi: black at 1, blue for compression, red for tension (coolwarm)."""
     if abs(xi - 1) < 1e-12:

@@ -23,14 +23,10 @@
 #include <string>
 #include <vector>
 
+#include "common/csm3.hpp"
 #include "common/study.hpp"
-#include "sphstab/analysis/oscillation.hpp"
-#include "sphstab/forms/body_force.hpp"
 #include "sphstab/forms/correction_gradient.hpp"
 #include "sphstab/forms/finite_strain_total_lagrangian.hpp"
-#include "sphstab/forms/variational_total_lagrangian.hpp"
-#include "sphstab/integrate/leapfrog.hpp"
-#include "sphstab/integrate/stable_time_step.hpp"
 #include "sphstab/io/csv.hpp"
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
 #include "sphstab/models/st_venant_kirchhoff.hpp"
@@ -52,40 +48,6 @@ struct RunSpec {
   }
 };
 
-struct Measure {
-  double mean = NAN, amplitude = NAN, frequency = NAN;
-  double last_mean = NAN, last_amplitude = NAN;  ///< over the last full period only
-  int half_cycles = 0;
-};
-
-/// Mean, amplitude over t >= t0 and the frequency from the zero crossings of y - mean; the last full period is the
-/// interval between the last two crossings of the same direction.
-Measure measure(const std::vector<double>& t, const std::vector<double>& y, double t0) {
-  std::vector<double> tw, yw;
-  for (std::size_t k = 0; k < t.size(); ++k)
-    if (t[k] >= t0) tw.push_back(t[k]), yw.push_back(y[k]);
-  Measure m;
-  if (tw.size() < 3) return m;
-  const auto [lo, hi] = std::minmax_element(yw.begin(), yw.end());
-  m.mean = 0.5 * (*hi + *lo);
-  m.amplitude = 0.5 * (*hi - *lo);
-  std::vector<double> d(yw.size());
-  for (std::size_t k = 0; k < yw.size(); ++k) d[k] = yw[k] - m.mean;
-  const OscillationMeasure osc = measure_oscillation(tw, d, true);
-  m.frequency = 1 / osc.period;
-  m.half_cycles = osc.half_cycles;
-  const auto& c = osc.crossings;
-  if (c.size() >= 3) {
-    const double a = c[c.size() - 3], b = c[c.size() - 1];
-    double mx = -1e300, mn = 1e300;
-    for (std::size_t k = 0; k < tw.size(); ++k)
-      if (tw[k] >= a && tw[k] <= b) mx = std::max(mx, yw[k]), mn = std::min(mn, yw[k]);
-    m.last_mean = 0.5 * (mx + mn);
-    m.last_amplitude = 0.5 * (mx - mn);
-  }
-  return m;
-}
-
 /// Observed order p of three values at spacings h1 > h2 > h3: (f1 - f2) / (f2 - f3) = (h1^p - h2^p) / (h2^p - h3^p),
 /// by bisection on p in [0.05, 8]; NaN when the differences change sign (no monotone convergence) or no root lies
 /// there.
@@ -101,6 +63,8 @@ double observed_order(double h1, double h2, double h3, double f1, double f2, dou
   }
   return 0.5 * (a + b);
 }
+
+using study::csm3::Measure;
 
 struct CaseResult {
   RunSpec spec;
@@ -149,7 +113,7 @@ int main(int argc, char** argv) {
   for (const std::string& g : others) specs.push_back({across.front(), g, clamp_layers});
   specs.push_back({across.front(), gradient, wide_clamp});
 
-  const LameParameters lame{.lambda = 2 * C::shear_modulus * C::poisson / (1 - 2 * C::poisson), .mu = C::shear_modulus};
+  const LameParameters lame = study::csm3::lame();
   auto svk = std::make_shared<StVenantKirchhoff<2>>(lame);
   const Kernel<2> kernel(KernelType::WendlandC2);
   std::vector<CaseResult> results;
@@ -162,35 +126,17 @@ int main(int argc, char** argv) {
     const double h = h_over_dx * beam.dx;
     const auto disc = make_discretisation(beam.particles, kernel, h);
     // the form: FiniteStrainTotalLagrangian (plain or NCSPH strain, divergence of the plain G) or the variational
-    // form with the NCSPH strain and its transpose as divergence ("ncsph-variational")
-    std::shared_ptr<const ForceFunction> tl;
-    std::function<Eigen::MatrixXd(const Eigen::VectorXd&)> stresses, deformation_gradients;
-    if (spec.gradient == "ncsph-variational") {
-      auto v = std::make_shared<VariationalTotalLagrangian<2>>(disc, svk, C::density,
-                                                               make_gradient_provider<2>(Correction::Ncsph));
-      stresses = [v](const Eigen::VectorXd& u) { return v->stresses(u); };
-      deformation_gradients = [v](const Eigen::VectorXd& u) { return v->deformation_gradients(u); };
-      tl = v;
-    } else {
-      FiniteStrainOptions<2> opt;
-      if (spec.gradient == "ncsph") opt.gradient = make_gradient_provider<2>(Correction::Ncsph);
-      opt.divergence = divergence == "plus"    ? StressDivergence::Plus
-                       : divergence == "minus" ? StressDivergence::Minus
-                                               : StressDivergence::Plain;
-      auto f = std::make_shared<FiniteStrainTotalLagrangian<2>>(disc, svk, C::density, opt);
-      stresses = [f](const Eigen::VectorXd& u) { return f->stresses(u); };
-      deformation_gradients = [f](const Eigen::VectorXd& u) { return f->deformation_gradients(u); };
-      tl = f;
-    }
-    const BodyForce force(tl, Eigen::Vector2d(0, -C::gravity));
-    const StableTimeStep limit = stable_time_step(*tl, Eigen::VectorXd::Zero(tl->dofs()));
+    // form with the NCSPH strain and its transpose as divergence ("ncsph-variational"): common/csm3.hpp
+    const study::csm3::Form form = study::csm3::make_form(spec.gradient, divergence, disc, svk);
+    const std::shared_ptr<const ForceFunction> tl = form.force;
+    const auto& stresses = form.stresses;
+    const auto& deformation_gradients = form.deformation_gradients;
     CaseResult r;
     r.spec = spec;
     r.particles = beam.particles.size();
     r.free = beam.free_count;
     r.clamp = beam.clamp_count;
     r.dx = beam.dx;
-    r.dt_limit = limit.dt;
     if (tl->dofs() <= 1200) {  // dense nonsymmetric eigenvalues of the linearisation at rest (coarse runs only)
       const Eigen::EigenSolver<Eigen::MatrixXd> es(Eigen::MatrixXd(jacobian(*tl, Eigen::VectorXd::Zero(tl->dofs()))),
                                                    false);
@@ -202,83 +148,41 @@ int main(int argc, char** argv) {
       const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(0.5 * (A + A.transpose()), Eigen::EigenvaluesOnly);
       r.f_linear = std::sqrt(es.eigenvalues()[0]) / (2 * std::numbers::pi);
     }
-    const long nsteps = static_cast<long>(std::ceil(t_end / (cfl * limit.dt)));
-    r.dt = t_end / nsteps;
-    SecondOrderSystem sys;
-    sys.acceleration = [&](const Eigen::VectorXd& u, Eigen::VectorXd& a) { force.acceleration(u, a); };
-    sys.dofs_per_particle = 2;
-    sys.mass.resize(tl->dofs() / 2);
-    for (int f = 0; f < tl->dofs() / 2; ++f) sys.mass[f] = tl->dof_mass()[2 * f];
-    const int nf = tl->dofs();
-    LeapfrogStepper stepper(sys, Eigen::VectorXd::Zero(nf), Eigen::VectorXd::Zero(nf));
-    auto tip = [&](const Eigen::VectorXd& u, int c) {
-      double m[2] = {0, 0};
-      for (int col = 0; col < 2; ++col) {
-        for (int f : beam.tip[col]) m[col] += u[2 * f + c];
-        m[col] /= static_cast<double>(beam.tip[col].size());
-      }
-      return std::array<double, 2>{1.5 * m[0] - 0.5 * m[1], m[0]};
-    };
     const bool finest = spec.across == across.back() && spec.gradient == gradient && spec.clamp_layers == clamp_layers;
-    CsvWriter csv(out + "/tip_" + spec.name() + ".csv",
-                  {"t", "ux_A", "uy_A", "ux_tip_column", "uy_tip_column", "total_energy"}, false);
-    std::vector<double> ts, uxs, uys;
-    const long every = std::max(1L, static_cast<long>(std::round(1e-3 / r.dt)));  // ~1 ms
-    const long energy_every = 20 * every;  // a multiple of 5 every: every energy sample is written
-    const double e_scale = C::density * C::thickness * 0.35 * C::gravity * std::abs(C::uy_amplitude);  // ~ m g A
-    double e0 = 0;
-    for (long s = 0;; ++s) {
-      const double t = stepper.time();
-      if (s % every == 0 || s == nsteps) {
-        const auto ux = tip(stepper.u(), 0), uy = tip(stepper.u(), 1);
-        double e = NAN;
-        if (s % energy_every == 0 || s == nsteps) {
-          e = total_energy(force, stepper.u(), stepper.v());
-          if (s == 0) e0 = e;
-          r.energy_drift = std::max(r.energy_drift, std::abs(e - e0) / e_scale);
-        }
-        if (s % (5 * every) == 0 || s == nsteps) csv.row({t, ux[0], uy[0], ux[1], uy[1], e});  // CSV every ~5 ms
-        ts.push_back(t);
-        uxs.push_back(ux[0]);
-        uys.push_back(uy[0]);
-        if (finest && t >= t_end - 1 / C::frequency && uy[0] < snapshot_uy) {
-          snapshot_uy = uy[0];
-          snapshot_t = t;
-          const Eigen::MatrixXd P = stresses(stepper.u()), F = deformation_gradients(stepper.u());
-          snapshot_x.resize(disc->size(), 2);
-          snapshot_sigma.resize(disc->size(), 3);
-          for (int i = 0; i < disc->size(); ++i) {
-            const int f = disc->free_slot[i];
-            snapshot_x.row(i) = disc->particles.x.row(i);
-            if (f >= 0) snapshot_x.row(i) += Eigen::RowVector2d(stepper.u()[2 * f], stepper.u()[2 * f + 1]);
-            Deformation<double, 2> Fi, Pi;
-            Fi << F(i, 0), F(i, 1), F(i, 2), F(i, 3);
-            Pi << P(i, 0), P(i, 1), P(i, 2), P(i, 3);
-            const Deformation<double, 2> sigma = Pi * Fi.transpose() / Fi.determinant();
-            snapshot_sigma.row(i) << sigma(0, 0), sigma(1, 1), sigma(0, 1);
-          }
-        }
+    // snapshot (finest run): x + u and the Cauchy stress at the largest deflection of the last reference period
+    auto on_sample = [&](double t, const Eigen::VectorXd& u, double uy) {
+      if (!(finest && t >= t_end - 1 / C::frequency && uy < snapshot_uy)) return;
+      snapshot_uy = uy;
+      snapshot_t = t;
+      const Eigen::MatrixXd P = stresses(u), F = deformation_gradients(u);
+      snapshot_x.resize(disc->size(), 2);
+      snapshot_sigma.resize(disc->size(), 3);
+      for (int i = 0; i < disc->size(); ++i) {
+        const int f = disc->free_slot[i];
+        snapshot_x.row(i) = disc->particles.x.row(i);
+        if (f >= 0) snapshot_x.row(i) += Eigen::RowVector2d(u[2 * f], u[2 * f + 1]);
+        Deformation<double, 2> Fi, Pi;
+        Fi << F(i, 0), F(i, 1), F(i, 2), F(i, 3);
+        Pi << P(i, 0), P(i, 1), P(i, 2), P(i, 3);
+        const Deformation<double, 2> sigma = Pi * Fi.transpose() / Fi.determinant();
+        snapshot_sigma.row(i) << sigma(0, 0), sigma(1, 1), sigma(0, 1);
       }
-      if (s == nsteps) break;
-      if (s % 20000 == 0)
-        std::cerr << spec.name() << ": t = " << t << " s of " << t_end << " (" << s << "/" << nsteps << " steps)\n";
-      try {
-        stepper.step(r.dt);
-      } catch (const std::invalid_argument& e) {
-        r.status = std::string("stopped: ") + e.what();
-        break;
-      }
-      if (!stepper.u().allFinite()) {
-        r.status = "non-finite";
-        break;
-      }
-    }
-    r.steps = stepper.steps();
+    };
+    const study::csm3::Run run = study::csm3::gravity_run(tl, beam,
+                                                          {.name = spec.name(),
+                                                           .csv_path = out + "/tip_" + spec.name() + ".csv",
+                                                           .t_end = t_end,
+                                                           .t_measure = t_measure,
+                                                           .cfl = cfl},
+                                                          on_sample);
+    r.dt = run.dt;
+    r.dt_limit = run.dt_limit;
+    r.steps = run.steps;
+    r.energy_drift = run.energy_drift;
+    r.status = run.status;
+    r.ux = run.ux;
+    r.uy = run.uy;
     r.wall = study::seconds_since(tr);
-    if (r.status == "completed") {
-      r.ux = measure(ts, uxs, t_measure);
-      r.uy = measure(ts, uys, t_measure);
-    }
     std::cout << spec.name() << ": " << r.particles << " particles (" << r.free << " free), dt = " << r.dt << " s ("
               << r.dt / r.dt_limit << " of the limit), growth at rest " << r.growth << " 1/s, f_linear " << r.f_linear
               << " Hz, " << r.steps << " steps, " << r.wall << " s wall, " << r.status << "; ux " << r.ux.mean << " +- "
@@ -428,16 +332,12 @@ int main(int argc, char** argv) {
   summary.set("snapshot_t", snapshot_t, 4);
   summary.set("snapshot_uy_mm", 1e3 * snapshot_uy, 4);
   summary.set("load", study::load_average());
-  {  // linear beam theory for the 0.35 m cantilever (plane strain bending modulus E / (1 - nu^2))
-    const double young = lame.young(), nu = lame.poisson(), length = C::tip_x - C::attachment_x(C::bottom_y);
-    summary.set("f_euler_bernoulli", 1 / thin_plate_period(young, nu, C::density, C::thickness, length), 4);
-    summary.set(
-        "f_timoshenko",
-        1 / timoshenko_cantilever_period(young / (1 - nu * nu), lame.mu, 5.0 / 6.0, C::density, C::thickness, length),
-        4);
-    const double q = C::density * C::gravity * C::thickness, inertia = std::pow(C::thickness, 3) / 12;
-    summary.set("static_tip_mm", 1e3 * q * std::pow(length, 4) / (8 * young / (1 - nu * nu) * inertia), 4);
-    summary.set("beam_length", length, 6);
+  {  // linear beam theory for the 0.35 m cantilever (common/csm3.hpp)
+    const study::csm3::BeamTheory b = study::csm3::beam_theory();
+    summary.set("f_euler_bernoulli", b.f_euler_bernoulli, 4);
+    summary.set("f_timoshenko", b.f_timoshenko, 4);
+    summary.set("static_tip_mm", b.static_tip_mm, 4);
+    summary.set("beam_length", b.length, 6);
   }
   summary.set("wall_seconds", study::seconds_since(t0), 3);
   summary.write(out);

@@ -33,6 +33,7 @@
 #include "sphstab/models/hooke.hpp"
 #include "sphstab/models/neo_hookean.hpp"
 #include "sphstab/particles/lattice.hpp"
+#include "sphstab/spectral/zigzag_modes.hpp"
 
 using namespace sphstab;
 namespace fs = std::filesystem;
@@ -42,7 +43,8 @@ namespace {
 // Lattice units for (a), (b) and the noise runs: dx = 1, E = 1, rho = 1 (eigenvalues in E / (rho dx^2)).
 constexpr double kNu = 0.3;
 const std::vector<double> kCoefficients{0, 0.01, 0.03, 0.1, 0.3, 1};
-constexpr double kZigzag = 0.5;  // a mode is "zigzag" when its hourglass_fraction (below) exceeds this
+constexpr double kZigzag =
+    0.5;  // a mode is "zigzag" when its hourglass_fraction (spectral/zigzag_modes.hpp) exceeds this
 
 struct Config {
   std::string name;
@@ -93,15 +95,6 @@ FiniteStrainTotalLagrangian<Dim> form(std::shared_ptr<const Discretisation<Dim>>
   return FiniteStrainTotalLagrangian<Dim>(d, m, rho, o);
 }
 
-/// Integer lattice index (per axis) of each free particle (free block at (i + 1/2) dx).
-template <int Dim>
-std::vector<std::array<int, Dim>> grid_index(const Discretisation<Dim>& d) {
-  std::vector<std::array<int, Dim>> g(d.free_count());
-  for (int f = 0; f < d.free_count(); ++f)
-    for (int a = 0; a < Dim; ++a) g[f][a] = static_cast<int>(std::lround(d.particles.x(d.free[f], a) - 0.5));
-  return g;
-}
-
 /// Zigzag fraction of a displacement field phi (dofs): max over axes a of ||D2_a phi||^2 / (16 ||phi||^2), D2_a the
 /// second difference along a over the free block (zero outside it, wrapped when periodic). The sawtooth and every
 /// pattern alternating along an axis give 1, smooth fields ~ 0, a wave of wavenumber k along a gives
@@ -136,69 +129,6 @@ double zigzag_fraction(const Eigen::VectorXd& phi, const std::vector<std::array<
     best = std::max(best, s / (16 * phi.squaredNorm()));
   }
   return best;
-}
-
-/// Hourglass fraction of an eigenvector: the share of sum_c |DFT(phi_c)|^2 (DFT over the n^Dim free block, treated as
-/// periodic) at wavevectors with |k_a| > pi / (2 dx) along some axis a. A mixture of degenerate modes alternating
-/// along different axes (2D symmetry) stays at 1, where the per-axis second difference would see half of it.
-template <int Dim>
-double hourglass_fraction(const Eigen::VectorXd& phi, const std::vector<std::array<int, Dim>>& g, int n) {
-  const long cells = static_cast<long>(std::pow(n, Dim));
-  std::vector<std::complex<double>> w(n);
-  for (int q = 0; q < n; ++q) w[q] = std::exp(std::complex<double>(0, -2 * std::numbers::pi * q / n));
-  auto high = [n](int q) { return 4 * std::min(q, n - q) > n; };  // |k| > pi / 2
-  double total = 0, hi = 0;
-  for (int c = 0; c < Dim; ++c) {
-    std::vector<std::complex<double>> field(cells, 0.0), tmp(cells);
-    for (std::size_t f = 0; f < g.size(); ++f) {
-      long key = 0;
-      for (int a = Dim - 1; a >= 0; --a) key = key * n + g[f][a];
-      field[key] = phi[Dim * f + c];
-    }
-    long stride = 1;  // separable DFT, one axis at a time (axis a has stride n^a)
-    for (int a = 0; a < Dim; ++a, stride *= n) {
-      for (long k = 0; k < cells; ++k) {
-        const int qk = static_cast<int>(k / stride % n);
-        const long base = k - qk * stride;
-        std::complex<double> s = 0;
-        for (int j = 0; j < n; ++j) s += field[base + j * stride] * w[(static_cast<long>(qk) * j) % n];
-        tmp[k] = s;
-      }
-      field.swap(tmp);
-    }
-    for (long k = 0; k < cells; ++k) {
-      const double e = std::norm(field[k]);
-      total += e;
-      bool h = false;
-      long r = k;
-      for (int a = 0; a < Dim; ++a, r /= n) h = h || high(static_cast<int>(r % n));
-      if (h) hi += e;
-    }
-  }
-  return total > 0 ? hi / total : 0;
-}
-
-struct Mode {
-  double mu;      // Re eigenvalue
-  double imag;    // |Im eigenvalue|
-  double zigzag;  // zigzag fraction of the eigenvector
-  Eigen::VectorXd phi;
-};
-
-/// Eigenpairs of the dense A, ascending real part (A is non-symmetric for NCSPH, the direct sum or c_HG > 0).
-template <int Dim>
-std::vector<Mode> spectrum(const Eigen::MatrixXd& A, const std::vector<std::array<int, Dim>>& g, int n) {
-  Eigen::EigenSolver<Eigen::MatrixXd> es(A);
-  std::vector<Mode> modes;
-  for (int k = 0; k < A.rows(); ++k) {
-    Eigen::VectorXd phi = es.eigenvectors().col(k).real();
-    if (phi.norm() < 1e-8) phi = es.eigenvectors().col(k).imag();
-    phi /= phi.norm();
-    modes.push_back(
-        {es.eigenvalues()[k].real(), std::abs(es.eigenvalues()[k].imag()), hourglass_fraction<Dim>(phi, g, n), phi});
-  }
-  std::sort(modes.begin(), modes.end(), [](const Mode& a, const Mode& b) { return a.mu < b.mu; });
-  return modes;
 }
 
 /// The periodic hourglass patterns: translations and, per wavevector with components in {0, pi} (not all 0), each
@@ -305,7 +235,8 @@ int main(int argc, char** argv) {
   // ---------------- (a) + (b): spectra at u = 0 against the coefficient ----------------
   auto run_config = [&]<int Dim>(const Config& cfg) {
     auto d = lattice<Dim>(cfg);
-    const auto g = grid_index<Dim>(*d);
+    const GridIndices<Dim> grid = grid_indices<Dim>(*d, 1.0);
+    const auto& g = grid.index;
     for (const Variant& v : kVariants) {
       // the fundamental: the softest smooth mode at c_HG = 0, followed to c_HG > 0 by the largest overlap |phi . phi0|
       double mu_fund0 = std::nan("");
@@ -313,34 +244,34 @@ int main(int argc, char** argv) {
       for (double chg : kCoefficients) {
         auto tl = form<Dim>(d, v, chg);
         const Eigen::MatrixXd A(jacobian(tl, Eigen::VectorXd::Zero(tl.dofs())));
-        const std::vector<Mode> modes = spectrum<Dim>(A, g, cfg.n);
+        const std::vector<ZigzagMode> modes = zigzag_spectrum<Dim>(A, grid);
         const double mu_max = modes.back().mu;
         double max_imag = 0;
-        for (const Mode& m : modes) max_imag = std::max(max_imag, m.imag);
+        for (const ZigzagMode& m : modes) max_imag = std::max(max_imag, m.imag);
         for (std::size_t r = 0; r < std::min<std::size_t>(modes.size(), 30); ++r)
           spec_csv.row({cfg.name, v.name, chg, static_cast<long>(r), modes[r].mu, modes[r].imag, modes[r].zigzag});
         // zero modes (periodic): |mu| < 1e-10 mu_max; the patterns' residuals ||A p|| / ||A||
         const double zero_tol = 1e-10 * mu_max;
         int zeros = 0;
-        for (const Mode& m : modes) zeros += std::abs(m.mu) < zero_tol;
+        for (const ZigzagMode& m : modes) zeros += std::abs(m.mu) < zero_tol;
         // the softest smooth mode (not zigzag, not a zero mode) and the softest zigzag mode that is not a rigid
         // translation (zero modes whose zigzag fraction is small)
         double mu_smooth = std::nan(""), mu_zig = std::nan("");
         int zig_below = 0;
-        for (const Mode& m : modes)
+        for (const ZigzagMode& m : modes)
           if (m.zigzag < kZigzag && std::abs(m.mu) >= zero_tol && std::isnan(mu_smooth)) mu_smooth = m.mu;
-        for (const Mode& m : modes)
+        for (const ZigzagMode& m : modes)
           if (m.zigzag >= kZigzag && std::isnan(mu_zig)) mu_zig = m.mu;
-        for (const Mode& m : modes) zig_below += m.zigzag >= kZigzag && m.mu < mu_smooth;
+        for (const ZigzagMode& m : modes) zig_below += m.zigzag >= kZigzag && m.mu < mu_smooth;
         if (chg == 0)
-          for (const Mode& m : modes)
+          for (const ZigzagMode& m : modes)
             if (m.zigzag < kZigzag && std::abs(m.mu) >= zero_tol) {
               mu_fund0 = m.mu;
               phi_fund0 = m.phi;
               break;
             }
         double mu_fund = std::nan(""), overlap = 0;
-        for (const Mode& m : modes)
+        for (const ZigzagMode& m : modes)
           if (std::abs(m.phi.dot(phi_fund0)) > overlap) {
             overlap = std::abs(m.phi.dot(phi_fund0));
             mu_fund = m.mu;
@@ -369,7 +300,7 @@ int main(int argc, char** argv) {
               closed = std::min(closed, lam);
               // is it in the spectrum of A? distance to the nearest eigenvalue
               double dist = std::numeric_limits<double>::infinity();
-              for (const Mode& m : modes) dist = std::min(dist, std::abs(m.mu - lam));
+              for (const ZigzagMode& m : modes) dist = std::min(dist, std::abs(m.mu - lam));
               closed_res = std::max(closed_res, dist / mu_max);  // each symbol eigenvalue is in the spectrum
               if (chg == 1 && v.sum == StrainSum::Difference)
                 study::md_row(md_bloch, {cfg.name, v.name, study::sig(chg, 2),
@@ -548,7 +479,7 @@ int main(int argc, char** argv) {
     std::string md_noise;
     auto noise_run = [&]<int Dim>(const Config& cfg) {
       auto d = lattice<Dim>(cfg);
-      const auto g = grid_index<Dim>(*d);
+      const auto g = grid_indices<Dim>(*d, 1.0).index;
       for (double chg : {0.0, 0.1, 1.0}) {
         auto tl = form<Dim>(d, kVariants[0], chg);
         Eigen::VectorXd v0 = study::random_vector(tl.dofs(), 1e-3, 11);  // |v| <= 1e-3 c

@@ -6,15 +6,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from plot_common import num, plt, read  # noqa: E402
-
-
-def ordered(rows, key):
-    out = []
-    for r in rows:
-        if r[key] not in out:
-            out.append(r[key])
-    return out
+from plot_common import num, ordered, plt, read  # noqa: E402
 
 
 def modes_plot(out):

@@ -30,8 +30,9 @@
 ///       and they are never unknowns; their F and P enter the free rows. Only the particles that are free or within
 ///       the neighbour list of a free particle ("active") are evaluated; an active particle with det F <= 0 throws.
 /// \note Hourglass control (FiniteStrainOptions::hourglass = c_HG > 0), the pair term of [Ganzenmueller2015] as
-///       sphstab implements it: with X_ij = X_j - X_i (reference, minimum image), x_ij = X_ij + u_j - u_i (current),
-///       x^_ij = x_ij / |x_ij| and W_ij = W(|X_ij|, h) at the reference,
+///       sphstab implements it (forms/hourglass_control.hpp, shared with VariationalTotalLagrangian): with X_ij = X_j -
+///       X_i (reference, minimum image), x_ij = X_ij + u_j - u_i (current), x^_ij = x_ij / |x_ij| and W_ij = W(|X_ij|,
+///       h) at the reference,
 ///         delta_ij = 1/2 (F_i X_ij - x_ij + F_j X_ij - x_ij) . x^_ij       (the pair's mean prediction error along
 ///                                                                          the bond: eps^i_ij = F_i X_ij - x_ij and
 ///                                                                          eps^j_ji = F_j X_ji - x_ji = -(F_j X_ij -
@@ -73,17 +74,12 @@
 #include "sphstab/forms/discretisation.hpp"
 #include "sphstab/forms/elastic_bar.hpp"
 #include "sphstab/forms/gradient_provider.hpp"
+#include "sphstab/forms/hourglass_control.hpp"
 #include "sphstab/models/hyperelastic_model.hpp"
 #include "sphstab/operators/operators.hpp"
 #include "sphstab/system/force_function.hpp"
 
 namespace sphstab {
-
-/// The direction of the hourglass pair force (see FiniteStrainTotalLagrangian).
-enum class HourglassProjection {
-  Bond,  ///< along the current bond x^_ij ([Ganzenmueller2015]: central, conserves angular momentum)
-  Full,  ///< the whole mean pair error vector (not central)
-};
 
 template <int Dim>
 struct FiniteStrainOptions {
@@ -186,15 +182,7 @@ class FiniteStrainTotalLagrangian final : public ForceFunction {
   std::shared_ptr<const std::array<SparseMatrix<>, Dim>> m_K;  ///< reference strain gradient K^b, N x N
   std::vector<int> m_active;
   Eigen::VectorXd m_fixed_u;
-  // Hourglass pairs of each free particle (free order): m_hg_offsets[f] .. m_hg_offsets[f + 1] index m_hg_j (the
-  // neighbour), m_hg_c (c_HG E V_i V_j W_ij / |X_ij|^2 / (rho0_i V_i)) and m_hg_X (X_ij = X_j - X_i). Empty when off.
-  std::vector<int> m_hg_offsets;
-  std::vector<int> m_hg_j;
-  std::vector<double> m_hg_c;
-  std::vector<Eigen::Matrix<double, Dim, 1>> m_hg_X;
-  template <class Scalar>
-  void add_hourglass(const Positions<Dim, Scalar>& uall, const std::vector<Deformation<Scalar, Dim>>& F,
-                     Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& a) const;
+  HourglassControl<Dim> m_hg;  ///< [Ganzenmueller2015] pair term (forms/hourglass_control.hpp); inactive when off
   mutable Workspace<double> m_work_real;                   ///< acceleration(VectorXd), strain_energy(VectorXd)
   mutable Workspace<std::complex<double>> m_work_complex;  ///< the complex overloads (complex-step Jacobians)
 };

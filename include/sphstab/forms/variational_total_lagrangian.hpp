@@ -15,7 +15,9 @@
 ///
 /// \note Conservative: energy and linear momentum (when every particle is free and K rows sum to 0) are conserved by
 ///       the semi-discrete system; M A is symmetric. Zero-energy modes of U other than rigid motions (hourglass
-///       modes of the corrected K) are not controlled here: they are neutrally stable, not damped.
+///       modes of the corrected K) are neutrally stable, not damped, unless the hourglass argument switches on the
+///       [Ganzenmueller2015] pair term (forms/hourglass_control.hpp, with this form's F): a_i += a_i^HG. The term is
+///       not the gradient of a potential, so with it the form is not conservative() (M A no longer symmetric).
 /// \note Fixed particles: prescribed displacement (set_fixed_displacement, default 0), never unknowns; their F and
 ///       P enter the sums. An active particle with det F <= 0 throws std::invalid_argument.
 /// \note Not thread-safe: acceleration() and strain_energy() reuse scratch arrays owned by the object (one set per
@@ -36,6 +38,7 @@
 
 #include "sphstab/forms/discretisation.hpp"
 #include "sphstab/forms/gradient_provider.hpp"
+#include "sphstab/forms/hourglass_control.hpp"
 #include "sphstab/models/hyperelastic_model.hpp"
 #include "sphstab/operators/operators.hpp"
 #include "sphstab/system/force_function.hpp"
@@ -49,16 +52,19 @@ class VariationalTotalLagrangian final : public ForceFunction {
   /// @param[in] material        hyperelastic model (shared, not null)
   /// @param[in] density         rho0 per particle (N entries) or 1 entry; finite and > 0
   /// @param[in] gradient        reference strain gradient K (nullptr or plain: G); must keep the neighbour pattern
-  /// Throws std::invalid_argument (one line) for a null input, a density of the wrong size or not > 0, or a
-  /// non-local (dense) gradient provider.
+  /// @param[in] hourglass       [Ganzenmueller2015] hourglass control (coefficient 0 = off, the default)
+  /// Throws std::invalid_argument (one line) for a null input, a density of the wrong size or not > 0, a
+  /// non-local (dense) gradient provider, or an hourglass coefficient that is negative or not finite.
   VariationalTotalLagrangian(std::shared_ptr<const Discretisation<Dim>> discretisation,
                              std::shared_ptr<const HyperelasticModel<Dim>> material, const Eigen::VectorXd& density,
-                             std::shared_ptr<const GradientProvider<Dim>> gradient = nullptr);
+                             std::shared_ptr<const GradientProvider<Dim>> gradient = nullptr,
+                             HourglassOptions hourglass = {});
   VariationalTotalLagrangian(std::shared_ptr<const Discretisation<Dim>> discretisation,
                              std::shared_ptr<const HyperelasticModel<Dim>> material, double density,
-                             std::shared_ptr<const GradientProvider<Dim>> gradient = nullptr)
+                             std::shared_ptr<const GradientProvider<Dim>> gradient = nullptr,
+                             HourglassOptions hourglass = {})
       : VariationalTotalLagrangian(std::move(discretisation), std::move(material),
-                                   Eigen::VectorXd::Constant(1, density), std::move(gradient)) {}
+                                   Eigen::VectorXd::Constant(1, density), std::move(gradient), hourglass) {}
 
   int dofs() const override { return m_disc->dofs(); }
   int dim() const override { return Dim; }
@@ -69,7 +75,8 @@ class VariationalTotalLagrangian final : public ForceFunction {
   /// A copy for load == 0; throws std::invalid_argument otherwise (no affine load).
   std::unique_ptr<ForceFunction> with_load(double load) const override;
   SparsityPattern dof_pattern() const override;
-  bool conservative() const override { return true; }
+  /// True unless the hourglass term is on.
+  bool conservative() const override { return !m_hg.active(); }
   double strain_energy(const Eigen::VectorXd& u) const override { return energy(u); }
   std::complex<double> strain_energy(const Eigen::VectorXcd& u) const override { return energy(u); }
   Eigen::VectorXd dof_mass() const override;
@@ -116,6 +123,7 @@ class VariationalTotalLagrangian final : public ForceFunction {
   Eigen::Matrix<double, Eigen::Dynamic, Dim> m_rowsum;         ///< sum_j K^b_ij, N x Dim
   std::vector<int> m_active;
   Eigen::VectorXd m_fixed_u;
+  HourglassControl<Dim> m_hg;                              ///< inactive unless the hourglass coefficient is > 0
   mutable Workspace<double> m_work_real;                   ///< acceleration(VectorXd), strain_energy(VectorXd)
   mutable Workspace<std::complex<double>> m_work_complex;  ///< the complex overloads (complex-step Jacobians)
 };
