@@ -58,6 +58,31 @@ FiniteStrainTotalLagrangian<Dim>::FiniteStrainTotalLagrangian(std::shared_ptr<co
   for (int i = 0; i < N; ++i)
     if (is_active[i]) m_active.push_back(i);
   m_fixed_u = Eigen::VectorXd::Zero(Dim * (N - d.free_count()));
+
+  // Hourglass control [Ganzenmueller2015]: the pair coefficients, once at the reference positions.
+  const double chg = m_options.hourglass;
+  if (!(chg >= 0) || !std::isfinite(chg))
+    throw std::invalid_argument(std::string(kWho) + ": hourglass coefficient must be finite and >= 0 (got " +
+                                format_number(chg) + "; 0 switches the term off)");
+  if (chg > 0) {
+    const double E = m_material->lame().young();
+    m_hg_offsets.assign(1, 0);
+    for (int i : d.free) {
+      for (long k = d.neighbours.offsets[i]; k < d.neighbours.offsets[i + 1]; ++k) {
+        const int j = d.neighbours.indices[k];
+        if (j == i) continue;
+        const Eigen::Matrix<double, Dim, 1> Xij = -d.particles.separation(i, j).transpose();  // X_j - X_i
+        const double r = Xij.norm();
+        if (!(r > 0)) continue;  // coincident reference points carry no bond direction
+        const double w = d.kernel.value(r, d.h);
+        if (w == 0) continue;
+        m_hg_j.push_back(j);
+        m_hg_c.push_back(chg * E * d.particles.volume[j] * w / (r * r) / m_rho[i]);  // V_i cancels with m_i
+        m_hg_X.push_back(Xij);
+      }
+      m_hg_offsets.push_back(static_cast<int>(m_hg_j.size()));
+    }
+  }
 }
 
 template <int Dim>
@@ -67,13 +92,16 @@ std::string FiniteStrainTotalLagrangian<Dim>::name() const {
     << (m_plain_strain ? std::string("plain") : m_options.gradient->name()) << "-"
     << (m_options.strain_sum == StrainSum::Difference ? "difference" : "direct") << "/"
     << stress_divergence_name(m_options.divergence);
+  if (m_options.hourglass > 0)
+    s << "/hourglass-" << (m_options.hourglass_projection == HourglassProjection::Full ? "full-" : "")
+      << format_number(m_options.hourglass);
   return s.str();
 }
 
 template <int Dim>
 bool FiniteStrainTotalLagrangian<Dim>::conservative() const {
   return m_plain_strain && m_options.strain_sum == StrainSum::Difference &&
-         m_options.divergence == StressDivergence::Plus;
+         m_options.divergence == StressDivergence::Plus && m_options.hourglass == 0;
 }
 
 template <int Dim>
@@ -160,6 +188,36 @@ void FiniteStrainTotalLagrangian<Dim>::evaluate(const Eigen::Matrix<Scalar, Eige
         ai += (P[j].col(b) + alpha * P[i].col(b)) * it.value();
       }
     for (int c = 0; c < Dim; ++c) a[f * Dim + c] = ai[c] / m_rho[i];
+  }
+  if (!m_hg_offsets.empty()) add_hourglass(u, F, a);
+}
+
+template <int Dim>
+template <class Scalar>
+void FiniteStrainTotalLagrangian<Dim>::add_hourglass(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u,
+                                                     const std::vector<Deformation<Scalar, Dim>>& F,
+                                                     Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& a) const {
+  const Discretisation<Dim>& d = *m_disc;
+  const Positions<Dim, Scalar> uall = detail::full_displacement<Dim, Scalar>(d, u, m_fixed_u, kWho);
+  using Vec = Eigen::Matrix<Scalar, Dim, 1>;
+  const bool full = m_options.hourglass_projection == HourglassProjection::Full;
+  for (int f = 0; f < d.free_count(); ++f) {
+    const int i = d.free[f];
+    Vec ai = Vec::Zero();
+    for (int k = m_hg_offsets[f]; k < m_hg_offsets[f + 1]; ++k) {
+      const int j = m_hg_j[k];
+      const Vec X = m_hg_X[k].template cast<Scalar>();
+      const Vec x = X + (uall.row(j) - uall.row(i)).transpose();          // x_ij, current
+      const Scalar r = std::sqrt(Scalar((x.array() * x.array()).sum()));  // analytic (no conjugate): complex step
+      const Vec eps = Scalar(0.5) * ((F[i] + F[j]) * X) - x;              // (eps^i_ij - eps^j_ji) / 2
+      if (full) {
+        ai -= m_hg_c[k] * eps;  // the whole mean error (HourglassProjection::Full)
+        continue;
+      }
+      const Scalar delta = (eps.array() * x.array()).sum() / r;  // along the bond
+      ai -= (m_hg_c[k] * delta / r) * x;  // [Ganzenmueller2015]: -c E V_i V_j W_ij / |X_ij|^2 delta_ij x^_ij / m_i
+    }
+    for (int c = 0; c < Dim; ++c) a[f * Dim + c] += ai[c];
   }
 }
 

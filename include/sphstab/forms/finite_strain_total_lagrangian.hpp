@@ -13,6 +13,7 @@
 ///   P_i = P(F_i)                                                               ([Ismail2009, (3.64)] for Neo-Hookean)
 ///   a_i^a = (1/rho0_i) sum_j (P_j^{ab} + alpha P_i^{ab}) G^b_ij                ([Ismail2009, (5.6), (5.8)]: alpha = 0,
 ///                                                                               a = X P / rho, algorithm 5.1 l. 16-17)
+///           + a_i^HG                                                            (hourglass control, off by default)
 /// with K = G (plain reference gradient) or the reference gradient of a GradientProvider (e.g. the first-order
 /// corrected NCSPH gradient [Powell2012, (1.19)]) applied ONCE at X, and alpha = 0 (Plain, Ismail), +1 (Plus) or
 /// -1 (Minus).
@@ -28,6 +29,26 @@
 /// \note Fixed particles are Dirichlet particles: their displacement is prescribed (set_fixed_displacement, default 0)
 ///       and they are never unknowns; their F and P enter the free rows. Only the particles that are free or within
 ///       the neighbour list of a free particle ("active") are evaluated; an active particle with det F <= 0 throws.
+/// \note Hourglass control (FiniteStrainOptions::hourglass = c_HG > 0), the pair term of [Ganzenmueller2015] as
+///       sphstab implements it: with X_ij = X_j - X_i (reference, minimum image), x_ij = X_ij + u_j - u_i (current),
+///       x^_ij = x_ij / |x_ij| and W_ij = W(|X_ij|, h) at the reference,
+///         delta_ij = 1/2 (F_i X_ij - x_ij + F_j X_ij - x_ij) . x^_ij       (the pair's mean prediction error along
+///                                                                          the bond: eps^i_ij = F_i X_ij - x_ij and
+///                                                                          eps^j_ji = F_j X_ji - x_ji = -(F_j X_ij -
+///                                                                          x_ij))
+///         a_i^HG = -(c_HG E / (rho0_i V_i)) sum_{j != i} V_i V_j W_ij / |X_ij|^2 delta_ij x^_ij,
+///       E = material().lame().young() (Young's modulus in every dimension and uniaxial state). The pair force is
+///       central and antisymmetric (delta_ij = delta_ji, x^_ji = -x^_ij), so with every particle free it conserves
+///       linear and angular momentum exactly; it vanishes for any affine field x = A X + b whenever the strain
+///       operator reproduces it (F_i = A at every active particle: a first-order corrected gradient such as NCSPH
+///       with the difference sum); with the plain gradient F_i = I + (A - I) S, S = sum_j X_ij (x) G_ij != I, so an
+///       affine field leaves a residual wherever S differs between i and j or the neighbourhood is not symmetric.
+///       The term is elastic, not dissipative: it lifts the zero-energy modes (sawtooth, checkerboard) to finite
+///       frequencies, it does not damp them. It is not the gradient of a potential (F_j depends on u_k), so the
+///       form is not conservative() with it. c_HG = 0 (default) evaluates exactly the code path without it.
+///       HourglassProjection::Full (not the paper's) replaces delta_ij x^_ij by the whole mean error
+///       1/2 (F_i X_ij - x_ij + F_j X_ij - x_ij): still antisymmetric (linear momentum) and zero for reproduced affine
+///       fields, but not central, so angular momentum is not conserved; it penalises transverse pair errors too.
 /// \note The form has no affine load parameter: load() is 0 and with_load() accepts only 0 (a copy). Load it through
 ///       the prescribed displacements; linearise at a deformed state with ComplexStepJacobian::compute(u).
 ///
@@ -53,6 +74,12 @@
 
 namespace sphstab {
 
+/// The direction of the hourglass pair force (see FiniteStrainTotalLagrangian).
+enum class HourglassProjection {
+  Bond,  ///< along the current bond x^_ij ([Ganzenmueller2015]: central, conserves angular momentum)
+  Full,  ///< the whole mean pair error vector (not central)
+};
+
 template <int Dim>
 struct FiniteStrainOptions {
   /// Strain sum: Difference (zeroth-order consistent, the variational partner of Plus) or Direct ([Ismail2009, (5.7)]).
@@ -61,6 +88,10 @@ struct FiniteStrainOptions {
   std::shared_ptr<const GradientProvider<Dim>> gradient;
   /// Plain ([Ismail2009, (5.8)]), Plus (momentum conserving) or Minus; Adjoint is rejected.
   StressDivergence divergence = StressDivergence::Plus;
+  /// Hourglass control coefficient c_HG >= 0 (finite) of the [Ganzenmueller2015] pair term (file comment); 0 = off.
+  double hourglass = 0;
+  /// Direction of the hourglass pair force: Bond (the paper's) or Full.
+  HourglassProjection hourglass_projection = HourglassProjection::Bond;
 };
 
 template <int Dim>
@@ -71,7 +102,7 @@ class FiniteStrainTotalLagrangian final : public ForceFunction {
   /// @param[in] density         rho0 per particle (N entries, > 0), or size 1 for a uniform rho0
   /// @param[in] options         strain and divergence operators
   /// Throws std::invalid_argument (one line) for a null discretisation or material, h <= 0, a density of the wrong
-  /// size or not > 0, the Adjoint divergence,.
+  /// size or not > 0, the Adjoint divergence, an hourglass coefficient that is negative or not finite.
   FiniteStrainTotalLagrangian(std::shared_ptr<const Discretisation<Dim>> discretisation,
                               std::shared_ptr<const HyperelasticModel<Dim>> material, const Eigen::VectorXd& density,
                               FiniteStrainOptions<Dim> options = {});
@@ -90,7 +121,8 @@ class FiniteStrainTotalLagrangian final : public ForceFunction {
   /// A copy for load == 0; throws std::invalid_argument otherwise (no affine load; see the file comment).
   std::unique_ptr<ForceFunction> with_load(double load) const override;
   SparsityPattern dof_pattern() const override;
-  /// Plain reference gradient, StrainSum::Difference and the Plus divergence (the variational pair).
+  /// Plain reference gradient, StrainSum::Difference and the Plus divergence (the variational pair), without
+  /// hourglass control.
   bool conservative() const override;
   /// U = sum_{active i} V_i Psi(F_i) (the potential of the conservative configuration).
   double strain_energy(const Eigen::VectorXd& u) const override { return energy(u); }
@@ -131,6 +163,15 @@ class FiniteStrainTotalLagrangian final : public ForceFunction {
   std::shared_ptr<const std::array<SparseMatrix<>, Dim>> m_K;  ///< reference strain gradient K^b, N x N
   std::vector<int> m_active;
   Eigen::VectorXd m_fixed_u;
+  // Hourglass pairs of each free particle (free order): m_hg_offsets[f] .. m_hg_offsets[f + 1] index m_hg_j (the
+  // neighbour), m_hg_c (c_HG E V_i V_j W_ij / |X_ij|^2 / (rho0_i V_i)) and m_hg_X (X_ij = X_j - X_i). Empty when off.
+  std::vector<int> m_hg_offsets;
+  std::vector<int> m_hg_j;
+  std::vector<double> m_hg_c;
+  std::vector<Eigen::Matrix<double, Dim, 1>> m_hg_X;
+  template <class Scalar>
+  void add_hourglass(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u, const std::vector<Deformation<Scalar, Dim>>& F,
+                     Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& a) const;
 };
 
 extern template class FiniteStrainTotalLagrangian<1>;

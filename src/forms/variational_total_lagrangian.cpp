@@ -1,0 +1,184 @@
+#include "sphstab/forms/variational_total_lagrangian.hpp"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "form_detail.hpp"
+#include "sphstab/core/format.hpp"
+#include "sphstab/numerics/real_part.hpp"
+
+namespace sphstab {
+
+namespace {
+const char* kWho = "VariationalTotalLagrangian";
+}
+
+template <int Dim>
+VariationalTotalLagrangian<Dim>::VariationalTotalLagrangian(std::shared_ptr<const Discretisation<Dim>> discretisation,
+                                                            std::shared_ptr<const HyperelasticModel<Dim>> material,
+                                                            const Eigen::VectorXd& density,
+                                                            std::shared_ptr<const GradientProvider<Dim>> gradient)
+    : m_disc(std::move(discretisation)), m_material(std::move(material)), m_gradient(std::move(gradient)) {
+  if (!m_disc) throw std::invalid_argument(std::string(kWho) + ": discretisation is null");
+  if (!m_material) throw std::invalid_argument(std::string(kWho) + ": material is null");
+  const Discretisation<Dim>& d = *m_disc;
+  const int N = d.size();
+  if (density.size() != 1 && density.size() != N)
+    throw std::invalid_argument(std::string(kWho) + ": density has " + std::to_string(density.size()) +
+                                " entries, expected 1 or " + std::to_string(N) + " (one per particle)");
+  m_rho = density.size() == 1 ? Eigen::VectorXd::Constant(N, density[0]) : density;
+  for (int i = 0; i < N; ++i)
+    if (!(m_rho[i] > 0) || !std::isfinite(m_rho[i]))
+      throw std::invalid_argument(std::string(kWho) + ": density of particle " + std::to_string(i) +
+                                  " must be finite and > 0 (got " + format_number(m_rho[i]) + ")");
+  if (m_gradient && !m_gradient->keeps_pattern())
+    throw std::invalid_argument(std::string(kWho) + ": gradient '" + m_gradient->name() +
+                                "' is non-local (dense); use a local correction such as ncsph");
+  // reference operators, once at X
+  const OperatorRequest request = detail::form_request<Dim>(m_gradient.get(), false);
+  Operators<Dim> ops = assemble_operators<Dim, double>(d.particles, d.neighbours, d.kernel, d.h, request);
+  std::array<SparseMatrix<>, Dim> K;
+  const Positions<Dim> X = d.particles.x;
+  if (!detail::corrected_gradient<Dim, double>(m_gradient.get(), d, X, ops, K))
+    for (int b = 0; b < Dim; ++b) K[b] = ops.G[b];
+  m_rowsum.setZero(N, Dim);
+  for (int b = 0; b < Dim; ++b)
+    for (int i = 0; i < N; ++i)
+      for (SparseMatrix<>::InnerIterator it(K[b], i); it; ++it) m_rowsum(i, b) += it.value();
+  m_K = std::make_shared<const std::array<SparseMatrix<>, Dim>>(std::move(K));
+  std::vector<char> is_active(N, 0);
+  for (int i : d.free)
+    for (long k = d.neighbours.offsets[i]; k < d.neighbours.offsets[i + 1]; ++k) is_active[d.neighbours.indices[k]] = 1;
+  for (int i = 0; i < N; ++i)
+    if (is_active[i]) m_active.push_back(i);
+  m_fixed_u = Eigen::VectorXd::Zero(Dim * (N - d.free_count()));
+}
+
+template <int Dim>
+std::string VariationalTotalLagrangian<Dim>::name() const {
+  return "tl-variational/" + m_material->name() + "/" + (m_gradient ? m_gradient->name() : std::string("plain"));
+}
+
+template <int Dim>
+std::unique_ptr<ForceFunction> VariationalTotalLagrangian<Dim>::with_load(double load) const {
+  if (load != 0)
+    throw std::invalid_argument(std::string(kWho) + "::with_load: no affine load (got " + format_number(load) +
+                                "); prescribe displacements with set_fixed_displacement");
+  return std::make_unique<VariationalTotalLagrangian<Dim>>(*this);
+}
+
+template <int Dim>
+SparsityPattern VariationalTotalLagrangian<Dim>::dof_pattern() const {
+  // a_k reads P_i for i a neighbour of k, and P_i reads u through row i of K: two hops
+  return coupling_pattern(m_disc->neighbours, m_disc->free_slot, Dim, 2);
+}
+
+template <int Dim>
+Eigen::VectorXd VariationalTotalLagrangian<Dim>::dof_mass() const {
+  Eigen::VectorXd m(dofs());
+  for (int f = 0; f < m_disc->free_count(); ++f) {
+    const int i = m_disc->free[f];
+    for (int a = 0; a < Dim; ++a) m[f * Dim + a] = m_rho[i] * m_disc->particles.volume[i];
+  }
+  return m;
+}
+
+template <int Dim>
+void VariationalTotalLagrangian<Dim>::set_fixed_displacement(const Eigen::VectorXd& d) {
+  if (d.size() != m_fixed_u.size())
+    throw std::invalid_argument(std::string(kWho) + "::set_fixed_displacement: expected " +
+                                std::to_string(m_fixed_u.size()) + " entries (Dim per fixed particle), got " +
+                                std::to_string(d.size()));
+  if (!d.allFinite())
+    throw std::invalid_argument(std::string(kWho) + "::set_fixed_displacement: entries must be finite");
+  m_fixed_u = d;
+}
+
+template <int Dim>
+template <class Scalar>
+void VariationalTotalLagrangian<Dim>::deformation(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u,
+                                                  std::vector<Deformation<Scalar, Dim>>& F) const {
+  const Discretisation<Dim>& d = *m_disc;
+  const Positions<Dim, Scalar> uall = detail::full_displacement<Dim, Scalar>(d, u, m_fixed_u, kWho);
+  F.assign(d.size(), Deformation<Scalar, Dim>::Constant(Scalar(std::numeric_limits<double>::quiet_NaN())));
+  for (int i : m_active) {
+    Deformation<Scalar, Dim> f = Deformation<Scalar, Dim>::Identity();
+    for (int b = 0; b < Dim; ++b)
+      for (typename SparseMatrix<>::InnerIterator it((*m_K)[b], i); it; ++it) {
+        const int j = static_cast<int>(it.col());
+        for (int a = 0; a < Dim; ++a) f(a, b) += Scalar(uall(j, a) - uall(i, a)) * it.value();
+      }
+    const double J = detail::re(Scalar(f.determinant()));
+    if (!(J > 0))
+      throw std::invalid_argument(std::string(kWho) + ": J = det F = " + format_number(J) + " <= 0 at particle " +
+                                  std::to_string(i) + " (inverted; reduce the load or the time step)");
+    F[i] = f;
+  }
+}
+
+template <int Dim>
+template <class Scalar>
+void VariationalTotalLagrangian<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u,
+                                               Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& a) const {
+  const Discretisation<Dim>& d = *m_disc;
+  std::vector<Deformation<Scalar, Dim>> F;
+  deformation(u, F);
+  // f_k^a = -sum_i V_i P_i^{ab} K^b_ik + V_k P_k^{ab} rowsum_k^b, accumulated row by row of K
+  Eigen::Matrix<Scalar, Eigen::Dynamic, Dim> force = Eigen::Matrix<Scalar, Eigen::Dynamic, Dim>::Zero(d.size(), Dim);
+  for (int i : m_active) {
+    const Deformation<Scalar, Dim> VP = m_material->stress(F[i]) * d.particles.volume[i];
+    for (int b = 0; b < Dim; ++b) {
+      for (typename SparseMatrix<>::InnerIterator it((*m_K)[b], i); it; ++it) {
+        const int k = static_cast<int>(it.col());
+        for (int c = 0; c < Dim; ++c) force(k, c) -= VP(c, b) * it.value();
+      }
+      for (int c = 0; c < Dim; ++c) force(i, c) += VP(c, b) * m_rowsum(i, b);
+    }
+  }
+  a.resize(d.dofs());
+  for (int f = 0; f < d.free_count(); ++f) {
+    const int k = d.free[f];
+    const double m = m_rho[k] * d.particles.volume[k];
+    for (int c = 0; c < Dim; ++c) a[f * Dim + c] = force(k, c) / m;
+  }
+}
+
+template <int Dim>
+template <class Scalar>
+Scalar VariationalTotalLagrangian<Dim>::energy(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u) const {
+  std::vector<Deformation<Scalar, Dim>> F;
+  deformation(u, F);
+  Scalar U(0);
+  for (int i : m_active) U += m_disc->particles.volume[i] * m_material->energy(F[i]);
+  return U;
+}
+
+template <int Dim>
+Eigen::MatrixXd VariationalTotalLagrangian<Dim>::deformation_gradients(const Eigen::VectorXd& u) const {
+  std::vector<Deformation<double, Dim>> F;
+  deformation(u, F);
+  Eigen::MatrixXd out(m_disc->size(), Dim * Dim);
+  for (int i = 0; i < m_disc->size(); ++i)
+    for (int a = 0; a < Dim; ++a)
+      for (int b = 0; b < Dim; ++b) out(i, a * Dim + b) = F[i](a, b);
+  return out;
+}
+
+template <int Dim>
+Eigen::MatrixXd VariationalTotalLagrangian<Dim>::stresses(const Eigen::VectorXd& u) const {
+  std::vector<Deformation<double, Dim>> F;
+  deformation(u, F);
+  Eigen::MatrixXd out = Eigen::MatrixXd::Constant(m_disc->size(), Dim * Dim, std::numeric_limits<double>::quiet_NaN());
+  for (int i : m_active) {
+    const Deformation<double, Dim> P = m_material->stress(F[i]);
+    for (int a = 0; a < Dim; ++a)
+      for (int b = 0; b < Dim; ++b) out(i, a * Dim + b) = P(a, b);
+  }
+  return out;
+}
+
+template class VariationalTotalLagrangian<1>;
+template class VariationalTotalLagrangian<2>;
+
+}  // namespace sphstab
