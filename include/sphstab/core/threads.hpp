@@ -3,9 +3,9 @@
 /// The thread count of sphstab's OpenMP loops (CMake option SPHSTAB_WITH_OPENMP, ON by default).
 ///
 /// Which loops run threaded: the rate-form evaluation (RateFormScheme::rate, every gradient and momentum form) and
-/// the sparse operator products of linalg/parallel_product.hpp. Each thread owns whole particle rows and every row is
-/// summed in the same order as in one thread, so results are the same bits for any thread count (tested with 1 and 2
-/// threads: tests/core/threads_test.cpp). Eigen's own parallel products are switched off (EIGEN_DONT_PARALLELIZE):
+/// the operator passes and pair loops of LinearElasticSph (small-strain TL and UL). Each thread owns whole particle
+/// rows and every row is summed in the same order as in one thread, so results are the same bits for any thread count
+/// (tested with 1 and 2 threads: tests/forms/threads_determinism_test.cpp). Eigen's own parallel products are switched off (EIGEN_DONT_PARALLELIZE):
 /// its dense GEMM chooses its blocking by the thread count, which would change rounding.
 ///
 /// The count is OpenMP's: OMP_NUM_THREADS, or set_threads(). Without OpenMP every function here reports one thread.
