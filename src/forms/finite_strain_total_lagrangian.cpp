@@ -4,6 +4,7 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
 
 #include "form_detail.hpp"
 #include "sphstab/core/format.hpp"
@@ -143,10 +144,21 @@ void FiniteStrainTotalLagrangian<Dim>::set_fixed_displacement(const Eigen::Vecto
 
 template <int Dim>
 template <class Scalar>
+typename FiniteStrainTotalLagrangian<Dim>::template Workspace<Scalar>& FiniteStrainTotalLagrangian<Dim>::workspace()
+    const {
+  if constexpr (std::is_same_v<Scalar, double>)
+    return m_work_real;
+  else
+    return m_work_complex;
+}
+
+template <int Dim>
+template <class Scalar>
 void FiniteStrainTotalLagrangian<Dim>::deformation(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u,
+                                                   Positions<Dim, Scalar>& uall,
                                                    std::vector<Deformation<Scalar, Dim>>& F) const {
   const Discretisation<Dim>& d = *m_disc;
-  const Positions<Dim, Scalar> uall = detail::full_displacement<Dim, Scalar>(d, u, m_fixed_u, kWho);
+  detail::full_displacement_into<Dim, Scalar>(d, u, m_fixed_u, kWho, uall);
   F.assign(d.size(), Deformation<Scalar, Dim>::Constant(Scalar(std::numeric_limits<double>::quiet_NaN())));
   const bool difference = m_options.strain_sum == StrainSum::Difference;
   for (int i : m_active) {
@@ -170,9 +182,11 @@ template <class Scalar>
 void FiniteStrainTotalLagrangian<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u,
                                                 Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& a) const {
   const Discretisation<Dim>& d = *m_disc;
-  std::vector<Deformation<Scalar, Dim>> F;
-  deformation(u, F);
-  std::vector<Deformation<Scalar, Dim>> P(d.size(), Deformation<Scalar, Dim>::Zero());
+  // Scratch kept between calls (the header's thread-safety note): no allocation once sized.
+  Workspace<Scalar>& ws = workspace<Scalar>();
+  std::vector<Deformation<Scalar, Dim>>&F = ws.F, &P = ws.P;
+  deformation(u, ws.u, F);
+  P.assign(d.size(), Deformation<Scalar, Dim>::Zero());
   for (int i : m_active) P[i] = m_material->stress(F[i]);
   const double alpha = m_options.divergence == StressDivergence::Plus    ? 1.0
                        : m_options.divergence == StressDivergence::Minus ? -1.0
@@ -189,16 +203,15 @@ void FiniteStrainTotalLagrangian<Dim>::evaluate(const Eigen::Matrix<Scalar, Eige
       }
     for (int c = 0; c < Dim; ++c) a[f * Dim + c] = ai[c] / m_rho[i];
   }
-  if (!m_hg_offsets.empty()) add_hourglass(u, F, a);
+  if (!m_hg_offsets.empty()) add_hourglass(ws.u, F, a);
 }
 
 template <int Dim>
 template <class Scalar>
-void FiniteStrainTotalLagrangian<Dim>::add_hourglass(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u,
+void FiniteStrainTotalLagrangian<Dim>::add_hourglass(const Positions<Dim, Scalar>& uall,
                                                      const std::vector<Deformation<Scalar, Dim>>& F,
                                                      Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& a) const {
   const Discretisation<Dim>& d = *m_disc;
-  const Positions<Dim, Scalar> uall = detail::full_displacement<Dim, Scalar>(d, u, m_fixed_u, kWho);
   using Vec = Eigen::Matrix<Scalar, Dim, 1>;
   const bool full = m_options.hourglass_projection == HourglassProjection::Full;
   for (int f = 0; f < d.free_count(); ++f) {
@@ -224,8 +237,9 @@ void FiniteStrainTotalLagrangian<Dim>::add_hourglass(const Eigen::Matrix<Scalar,
 template <int Dim>
 template <class Scalar>
 Scalar FiniteStrainTotalLagrangian<Dim>::energy(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u) const {
-  std::vector<Deformation<Scalar, Dim>> F;
-  deformation(u, F);
+  Workspace<Scalar>& ws = workspace<Scalar>();
+  std::vector<Deformation<Scalar, Dim>>& F = ws.F;
+  deformation(u, ws.u, F);
   Scalar U(0);
   for (int i : m_active) U += m_disc->particles.volume[i] * m_material->energy(F[i]);
   return U;
@@ -233,8 +247,9 @@ Scalar FiniteStrainTotalLagrangian<Dim>::energy(const Eigen::Matrix<Scalar, Eige
 
 template <int Dim>
 Eigen::MatrixXd FiniteStrainTotalLagrangian<Dim>::deformation_gradients(const Eigen::VectorXd& u) const {
+  Positions<Dim> uall;
   std::vector<Deformation<double, Dim>> F;
-  deformation(u, F);
+  deformation(u, uall, F);
   Eigen::MatrixXd out(m_disc->size(), Dim * Dim);
   for (int i = 0; i < m_disc->size(); ++i)
     for (int a = 0; a < Dim; ++a)
@@ -244,8 +259,9 @@ Eigen::MatrixXd FiniteStrainTotalLagrangian<Dim>::deformation_gradients(const Ei
 
 template <int Dim>
 Eigen::MatrixXd FiniteStrainTotalLagrangian<Dim>::stresses(const Eigen::VectorXd& u) const {
+  Positions<Dim> uall;
   std::vector<Deformation<double, Dim>> F;
-  deformation(u, F);
+  deformation(u, uall, F);
   Eigen::MatrixXd out = Eigen::MatrixXd::Constant(m_disc->size(), Dim * Dim, std::numeric_limits<double>::quiet_NaN());
   for (int i : m_active) {
     const Deformation<double, Dim> P = m_material->stress(F[i]);
@@ -257,5 +273,19 @@ Eigen::MatrixXd FiniteStrainTotalLagrangian<Dim>::stresses(const Eigen::VectorXd
 
 template class FiniteStrainTotalLagrangian<1>;
 template class FiniteStrainTotalLagrangian<2>;
+// The member templates the header's inline overrides call (acceleration, strain_energy): instantiated here, so the
+// symbols exist whether or not the compiler inlines them into the class's own instantiation.
+template void FiniteStrainTotalLagrangian<1>::evaluate<double>(const Eigen::VectorXd&, Eigen::VectorXd&) const;
+template double FiniteStrainTotalLagrangian<1>::energy<double>(const Eigen::VectorXd&) const;
+template void FiniteStrainTotalLagrangian<1>::evaluate<std::complex<double>>(const Eigen::VectorXcd&,
+                                                                             Eigen::VectorXcd&) const;
+template std::complex<double> FiniteStrainTotalLagrangian<1>::energy<std::complex<double>>(
+    const Eigen::VectorXcd&) const;
+template void FiniteStrainTotalLagrangian<2>::evaluate<double>(const Eigen::VectorXd&, Eigen::VectorXd&) const;
+template double FiniteStrainTotalLagrangian<2>::energy<double>(const Eigen::VectorXd&) const;
+template void FiniteStrainTotalLagrangian<2>::evaluate<std::complex<double>>(const Eigen::VectorXcd&,
+                                                                             Eigen::VectorXcd&) const;
+template std::complex<double> FiniteStrainTotalLagrangian<2>::energy<std::complex<double>>(
+    const Eigen::VectorXcd&) const;
 
 }  // namespace sphstab

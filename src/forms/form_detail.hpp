@@ -11,15 +11,15 @@
 namespace sphstab {
 namespace detail {
 
-/// Displacement of every particle: free slots from u, fixed particles from `fixed` (ascending order).
+/// Displacement of every particle into `all` (resized to N x Dim; no allocation when it already has that size): free
+/// slots from u, fixed particles from `fixed` (ascending order).
 template <int Dim, class Scalar>
-inline Positions<Dim, Scalar> full_displacement(const Discretisation<Dim>& d,
-                                                const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u,
-                                                const Eigen::VectorXd& fixed, const char* who) {
+inline void full_displacement_into(const Discretisation<Dim>& d, const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u,
+                                   const Eigen::VectorXd& fixed, const char* who, Positions<Dim, Scalar>& all) {
   if (u.size() != d.dofs())
     throw std::invalid_argument(std::string(who) + ": displacement has " + std::to_string(u.size()) +
                                 " entries, expected " + std::to_string(d.dofs()) + " (Dim x free particles)");
-  Positions<Dim, Scalar> all(d.size(), Dim);
+  all.resize(d.size(), Dim);
   long next_fixed = 0;
   for (int i = 0; i < d.size(); ++i) {
     const int f = d.free_slot[i];
@@ -27,6 +27,15 @@ inline Positions<Dim, Scalar> full_displacement(const Discretisation<Dim>& d,
       all(i, a) = f >= 0 ? u[f * Dim + a] : Scalar(fixed.size() ? fixed[next_fixed * Dim + a] : 0.0);
     if (f < 0) ++next_fixed;
   }
+}
+
+/// Displacement of every particle (a new N x Dim array; see full_displacement_into).
+template <int Dim, class Scalar>
+inline Positions<Dim, Scalar> full_displacement(const Discretisation<Dim>& d,
+                                                const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u,
+                                                const Eigen::VectorXd& fixed, const char* who) {
+  Positions<Dim, Scalar> all;
+  full_displacement_into<Dim, Scalar>(d, u, fixed, who, all);
   return all;
 }
 

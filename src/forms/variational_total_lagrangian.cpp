@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 
 #include "form_detail.hpp"
 #include "sphstab/core/format.hpp"
@@ -97,10 +98,21 @@ void VariationalTotalLagrangian<Dim>::set_fixed_displacement(const Eigen::Vector
 
 template <int Dim>
 template <class Scalar>
+typename VariationalTotalLagrangian<Dim>::template Workspace<Scalar>& VariationalTotalLagrangian<Dim>::workspace()
+    const {
+  if constexpr (std::is_same_v<Scalar, double>)
+    return m_work_real;
+  else
+    return m_work_complex;
+}
+
+template <int Dim>
+template <class Scalar>
 void VariationalTotalLagrangian<Dim>::deformation(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u,
+                                                  Positions<Dim, Scalar>& uall,
                                                   std::vector<Deformation<Scalar, Dim>>& F) const {
   const Discretisation<Dim>& d = *m_disc;
-  const Positions<Dim, Scalar> uall = detail::full_displacement<Dim, Scalar>(d, u, m_fixed_u, kWho);
+  detail::full_displacement_into<Dim, Scalar>(d, u, m_fixed_u, kWho, uall);
   F.assign(d.size(), Deformation<Scalar, Dim>::Constant(Scalar(std::numeric_limits<double>::quiet_NaN())));
   for (int i : m_active) {
     Deformation<Scalar, Dim> f = Deformation<Scalar, Dim>::Identity();
@@ -122,10 +134,13 @@ template <class Scalar>
 void VariationalTotalLagrangian<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u,
                                                Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& a) const {
   const Discretisation<Dim>& d = *m_disc;
-  std::vector<Deformation<Scalar, Dim>> F;
-  deformation(u, F);
+  // Scratch kept between calls (the header's thread-safety note): no allocation once sized.
+  Workspace<Scalar>& ws = workspace<Scalar>();
+  std::vector<Deformation<Scalar, Dim>>& F = ws.F;
+  deformation(u, ws.u, F);
   // f_k^a = -sum_i V_i P_i^{ab} K^b_ik + V_k P_k^{ab} rowsum_k^b, accumulated row by row of K
-  Eigen::Matrix<Scalar, Eigen::Dynamic, Dim> force = Eigen::Matrix<Scalar, Eigen::Dynamic, Dim>::Zero(d.size(), Dim);
+  Eigen::Matrix<Scalar, Eigen::Dynamic, Dim>& force = ws.force;
+  force.setZero(d.size(), Dim);
   for (int i : m_active) {
     const Deformation<Scalar, Dim> VP = m_material->stress(F[i]) * d.particles.volume[i];
     for (int b = 0; b < Dim; ++b) {
@@ -147,8 +162,9 @@ void VariationalTotalLagrangian<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen
 template <int Dim>
 template <class Scalar>
 Scalar VariationalTotalLagrangian<Dim>::energy(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u) const {
-  std::vector<Deformation<Scalar, Dim>> F;
-  deformation(u, F);
+  Workspace<Scalar>& ws = workspace<Scalar>();
+  std::vector<Deformation<Scalar, Dim>>& F = ws.F;
+  deformation(u, ws.u, F);
   Scalar U(0);
   for (int i : m_active) U += m_disc->particles.volume[i] * m_material->energy(F[i]);
   return U;
@@ -156,8 +172,9 @@ Scalar VariationalTotalLagrangian<Dim>::energy(const Eigen::Matrix<Scalar, Eigen
 
 template <int Dim>
 Eigen::MatrixXd VariationalTotalLagrangian<Dim>::deformation_gradients(const Eigen::VectorXd& u) const {
+  Positions<Dim> uall;
   std::vector<Deformation<double, Dim>> F;
-  deformation(u, F);
+  deformation(u, uall, F);
   Eigen::MatrixXd out(m_disc->size(), Dim * Dim);
   for (int i = 0; i < m_disc->size(); ++i)
     for (int a = 0; a < Dim; ++a)
@@ -167,8 +184,9 @@ Eigen::MatrixXd VariationalTotalLagrangian<Dim>::deformation_gradients(const Eig
 
 template <int Dim>
 Eigen::MatrixXd VariationalTotalLagrangian<Dim>::stresses(const Eigen::VectorXd& u) const {
+  Positions<Dim> uall;
   std::vector<Deformation<double, Dim>> F;
-  deformation(u, F);
+  deformation(u, uall, F);
   Eigen::MatrixXd out = Eigen::MatrixXd::Constant(m_disc->size(), Dim * Dim, std::numeric_limits<double>::quiet_NaN());
   for (int i : m_active) {
     const Deformation<double, Dim> P = m_material->stress(F[i]);
@@ -180,5 +198,19 @@ Eigen::MatrixXd VariationalTotalLagrangian<Dim>::stresses(const Eigen::VectorXd&
 
 template class VariationalTotalLagrangian<1>;
 template class VariationalTotalLagrangian<2>;
+// The member templates the header's inline overrides call (acceleration, strain_energy): instantiated here, so the
+// symbols exist whether or not the compiler inlines them into the class's own instantiation.
+template void VariationalTotalLagrangian<1>::evaluate<double>(const Eigen::VectorXd&, Eigen::VectorXd&) const;
+template double VariationalTotalLagrangian<1>::energy<double>(const Eigen::VectorXd&) const;
+template void VariationalTotalLagrangian<1>::evaluate<std::complex<double>>(const Eigen::VectorXcd&,
+                                                                            Eigen::VectorXcd&) const;
+template std::complex<double> VariationalTotalLagrangian<1>::energy<std::complex<double>>(
+    const Eigen::VectorXcd&) const;
+template void VariationalTotalLagrangian<2>::evaluate<double>(const Eigen::VectorXd&, Eigen::VectorXd&) const;
+template double VariationalTotalLagrangian<2>::energy<double>(const Eigen::VectorXd&) const;
+template void VariationalTotalLagrangian<2>::evaluate<std::complex<double>>(const Eigen::VectorXcd&,
+                                                                            Eigen::VectorXcd&) const;
+template std::complex<double> VariationalTotalLagrangian<2>::energy<std::complex<double>>(
+    const Eigen::VectorXcd&) const;
 
 }  // namespace sphstab

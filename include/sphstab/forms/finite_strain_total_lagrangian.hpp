@@ -49,6 +49,10 @@
 ///       HourglassProjection::Full (not the paper's) replaces delta_ij x^_ij by the whole mean error
 ///       1/2 (F_i X_ij - x_ij + F_j X_ij - x_ij): still antisymmetric (linear momentum) and zero for reproduced affine
 ///       fields, but not central, so angular momentum is not conserved; it penalises transverse pair errors too.
+/// \note Not thread-safe: acceleration() and strain_energy() reuse scratch arrays owned by the object (the full
+///       displacement, F and P of every particle; one set per scalar type, kept between calls), so an evaluation
+///       allocates nothing once the arrays have their size. One object must not be evaluated from two threads at
+///       once; give each thread its own copy (a copy starts with empty scratch arrays of its own).
 /// \note The form has no affine load parameter: load() is 0 and with_load() accepts only 0 (a copy). Load it through
 ///       the prescribed displacements; linearise at a deformed state with ComplexStepJacobian::compute(u).
 ///
@@ -70,6 +74,7 @@
 #include "sphstab/forms/elastic_bar.hpp"
 #include "sphstab/forms/gradient_provider.hpp"
 #include "sphstab/models/hyperelastic_model.hpp"
+#include "sphstab/operators/operators.hpp"
 #include "sphstab/system/force_function.hpp"
 
 namespace sphstab {
@@ -147,8 +152,26 @@ class FiniteStrainTotalLagrangian final : public ForceFunction {
   const std::vector<int>& active() const { return m_active; }
 
  private:
+  /// evaluate()'s and energy()'s scratch arrays, kept between calls (resized, not reallocated, while N is unchanged).
+  /// Every entry an evaluation reads is written earlier in the same call. Copying a form does not copy them: the
+  /// copy starts empty.
   template <class Scalar>
-  void deformation(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u, std::vector<Deformation<Scalar, Dim>>& F) const;
+  struct Workspace {
+    Workspace() = default;
+    Workspace(const Workspace&) {}
+    Workspace(Workspace&&) = default;
+    Workspace& operator=(const Workspace&) { return *this; }
+    Workspace& operator=(Workspace&&) = default;
+    Positions<Dim, Scalar> u;                    ///< displacement of every particle, N x Dim
+    std::vector<Deformation<Scalar, Dim>> F, P;  ///< per particle (NaN / zero outside the active set)
+  };
+  template <class Scalar>
+  Workspace<Scalar>& workspace() const;
+
+  /// Fills uall (N x Dim, the full displacement) and F (N entries, NaN for inactive particles).
+  template <class Scalar>
+  void deformation(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u, Positions<Dim, Scalar>& uall,
+                   std::vector<Deformation<Scalar, Dim>>& F) const;
   template <class Scalar>
   void evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u, Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& a) const;
   template <class Scalar>
@@ -170,8 +193,10 @@ class FiniteStrainTotalLagrangian final : public ForceFunction {
   std::vector<double> m_hg_c;
   std::vector<Eigen::Matrix<double, Dim, 1>> m_hg_X;
   template <class Scalar>
-  void add_hourglass(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u, const std::vector<Deformation<Scalar, Dim>>& F,
+  void add_hourglass(const Positions<Dim, Scalar>& uall, const std::vector<Deformation<Scalar, Dim>>& F,
                      Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& a) const;
+  mutable Workspace<double> m_work_real;                   ///< acceleration(VectorXd), strain_energy(VectorXd)
+  mutable Workspace<std::complex<double>> m_work_complex;  ///< the complex overloads (complex-step Jacobians)
 };
 
 extern template class FiniteStrainTotalLagrangian<1>;

@@ -18,6 +18,9 @@
 ///       modes of the corrected K) are not controlled here: they are neutrally stable, not damped.
 /// \note Fixed particles: prescribed displacement (set_fixed_displacement, default 0), never unknowns; their F and
 ///       P enter the sums. An active particle with det F <= 0 throws std::invalid_argument.
+/// \note Not thread-safe: acceleration() and strain_energy() reuse scratch arrays owned by the object (one set per
+///       scalar type, kept between calls: no allocation once sized); give each thread its own copy (a copy starts
+///       with empty scratch arrays).
 ///
 /// \code{.cpp}
 /// auto ncsph = sphstab::make_gradient_provider<2>(sphstab::Correction::Ncsph);
@@ -34,6 +37,7 @@
 #include "sphstab/forms/discretisation.hpp"
 #include "sphstab/forms/gradient_provider.hpp"
 #include "sphstab/models/hyperelastic_model.hpp"
+#include "sphstab/operators/operators.hpp"
 #include "sphstab/system/force_function.hpp"
 
 namespace sphstab {
@@ -79,8 +83,26 @@ class VariationalTotalLagrangian final : public ForceFunction {
   const std::vector<int>& active() const { return m_active; }
 
  private:
+  /// evaluate()'s and energy()'s scratch arrays, kept between calls; every entry read is written earlier in the same
+  /// call. Copying a form does not copy them: the copy starts empty.
   template <class Scalar>
-  void deformation(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u, std::vector<Deformation<Scalar, Dim>>& F) const;
+  struct Workspace {
+    Workspace() = default;
+    Workspace(const Workspace&) {}
+    Workspace(Workspace&&) = default;
+    Workspace& operator=(const Workspace&) { return *this; }
+    Workspace& operator=(Workspace&&) = default;
+    Positions<Dim, Scalar> u;                          ///< displacement of every particle, N x Dim
+    std::vector<Deformation<Scalar, Dim>> F;           ///< per particle (NaN outside the active set)
+    Eigen::Matrix<Scalar, Eigen::Dynamic, Dim> force;  ///< -dU/du per particle, N x Dim
+  };
+  template <class Scalar>
+  Workspace<Scalar>& workspace() const;
+
+  /// Fills uall (N x Dim, the full displacement) and F (N entries, NaN for inactive particles).
+  template <class Scalar>
+  void deformation(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u, Positions<Dim, Scalar>& uall,
+                   std::vector<Deformation<Scalar, Dim>>& F) const;
   template <class Scalar>
   void evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u, Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& a) const;
   template <class Scalar>
@@ -94,6 +116,8 @@ class VariationalTotalLagrangian final : public ForceFunction {
   Eigen::Matrix<double, Eigen::Dynamic, Dim> m_rowsum;         ///< sum_j K^b_ij, N x Dim
   std::vector<int> m_active;
   Eigen::VectorXd m_fixed_u;
+  mutable Workspace<double> m_work_real;                   ///< acceleration(VectorXd), strain_energy(VectorXd)
+  mutable Workspace<std::complex<double>> m_work_complex;  ///< the complex overloads (complex-step Jacobians)
 };
 
 extern template class VariationalTotalLagrangian<1>;
