@@ -34,8 +34,8 @@ int run(int argc, const char* const* argv) {
   const int threads_before = max_threads();
   app.add_option_function<int>(
          "--threads", [](const int& threads) { set_threads(threads); },
-         "OpenMP threads of the rate-form evaluation and the operator products (default: OMP_NUM_THREADS or every "
-         "core); results are the same bits for any count")
+         "OpenMP threads of the rate-form evaluation and the operator products (default: OMP_NUM_THREADS, else one; "
+         "results are the same bits for any count")
       ->check(CLI::Range(1, 4096));
   register_commands(app);
   int code = 0;

@@ -1,6 +1,8 @@
 #include "sphstab/core/threads.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
@@ -9,10 +11,15 @@
 #endif
 
 namespace sphstab {
+namespace {
+// 0: never set, then one thread unless OMP_NUM_THREADS asks for more (threads.hpp: why not every core).
+std::atomic<int> g_threads{0};
+}  // namespace
 
 int max_threads() {
 #ifdef SPHSTAB_WITH_OPENMP
-  return std::max(1, omp_get_max_threads());
+  if (const int t = g_threads.load(); t > 0) return t;
+  return std::getenv("OMP_NUM_THREADS") ? std::max(1, omp_get_max_threads()) : 1;
 #else
   return 1;
 #endif
@@ -22,6 +29,7 @@ void set_threads(int threads) {
   if (threads < 1)
     throw std::invalid_argument("set_threads: thread count must be >= 1, got " + std::to_string(threads));
 #ifdef SPHSTAB_WITH_OPENMP
+  g_threads.store(threads);
   omp_set_num_threads(threads);
 #endif
 }

@@ -228,6 +228,8 @@ void LinearElasticSph<Dim>::reassemble_in_place() const {
     m_rowsum[a].setZero(N);
   }
   // Same entries as assemble_operators (G^a_ij = W'(r) (x_i - x_j)^a / r V_j, minimum image, 0 beyond the support).
+  // Each row writes only its own entries and row sums, in the serial order: threads keep the bits.
+#pragma omp parallel for schedule(static) num_threads(threads_for(N))
   for (int i = 0; i < N; ++i)
     for (long k = m_nl_current.offsets[i]; k < m_nl_current.offsets[i + 1]; ++k) {
       const int j = m_nl_current.indices[k];
@@ -288,6 +290,7 @@ void LinearElasticSph<Dim>::accumulate_from_gradients(const std::array<SparseMat
   }
   gradient_pass(G[0].outerIndexPtr(), G[0].innerIndexPtr(), val, N);
   if (m_opt.gradient == StrainGradient::Minus)
+#pragma omp parallel for schedule(static) num_threads(threads_for(N))
     for (int i = 0; i < N; ++i)
       for (int d = 0; d < Dim; ++d)
         for (int b = 0; b < Dim; ++b)

@@ -140,7 +140,7 @@ TEST(Threads, RateFormErrorNamesTheSameParticle) {
   EXPECT_EQ(messages[0], messages[1]);
 }
 
-/// The total-Lagrangian SpMV passes and the pair loop of LinearElasticSph with 1 and 2 threads.
+/// LinearElasticSph with 1 and 2 threads: TL SpMV passes, UL reassembly (minus gradient) and passes, both pair loops.
 TEST(Threads, LinearElasticAccelerationIsTheSameBitsWithTwoThreads) {
   if (!threads_available()) GTEST_SKIP() << "built without OpenMP";
   const Kernel<2> kernel(KernelType::CubicSpline);

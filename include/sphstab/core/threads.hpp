@@ -5,10 +5,14 @@
 /// Which loops run threaded: the rate-form evaluation (RateFormScheme::rate, every gradient and momentum form) and
 /// the operator passes and pair loops of LinearElasticSph (small-strain TL and UL). Each thread owns whole particle
 /// rows and every row is summed in the same order as in one thread, so results are the same bits for any thread count
-/// (tested with 1 and 2 threads: tests/forms/threads_determinism_test.cpp). Eigen's own parallel products are switched off (EIGEN_DONT_PARALLELIZE):
-/// its dense GEMM chooses its blocking by the thread count, which would change rounding.
+/// (tested with 1 and 2 threads: tests/forms/threads_determinism_test.cpp). Eigen's own parallel products are switched
+/// off (EIGEN_DONT_PARALLELIZE): its dense GEMM chooses its blocking by the thread count, which would change rounding.
 ///
-/// The count is OpenMP's: OMP_NUM_THREADS, or set_threads(). Without OpenMP every function here reports one thread.
+/// The count: set_threads() (`sphstab --threads N`), else OMP_NUM_THREADS, else one thread. Not every core by
+/// default: with another process on one of the cores, a thread that is descheduled stalls every barrier (measured on
+/// the 2-core machine with a compile running: TL SpMV stepping at 1e4 particles 50x slower with 2 threads), and the
+/// rate-form speed-up varied between runs (results/gms-speed/benchmark.md). Without OpenMP every function here
+/// reports one thread.
 namespace sphstab {
 
 /// Threads a parallel loop uses from here on (>= 1).
