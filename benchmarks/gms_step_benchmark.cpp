@@ -13,7 +13,10 @@
 //     kernel sums, velocity gradient, stress rates, artificial stress and viscosity in one fused pass per particle
 //     row, so kernel and stress work are not separable by timing;
 //   - Rebuild: RateFormScheme::rebuilt (cell-list search at radius support + skin and the scheme's set-up on it);
-//   - Triad: a STREAM triad, the memory bandwidth reference (before and after the scenes).
+//   - Triad: a STREAM triad, the memory bandwidth reference (before and after the scenes);
+//   - Step/<scene>/threads:2, Rate/<scene>/threads:2: Step and Rate with two OpenMP threads (core/threads.hpp), the
+//     same bits as one thread (checked here before timing: the state after the scene's steps); every other benchmark
+//     runs on one thread whatever OMP_NUM_THREADS says.
 // Counters per benchmark: particles, pairs (ordered, list of the timed scheme), steps, builds, model_bytes (the least
 // data a step must move: see model_bytes()).
 //
@@ -26,6 +29,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <map>
 #include <memory>
 #include <random>
@@ -33,6 +37,7 @@
 #include <string>
 #include <vector>
 
+#include "sphstab/core/threads.hpp"
 #include "sphstab/forms/rate_form.hpp"
 #include "sphstab/integrate/rate_form_run.hpp"
 #include "sphstab/particles/lattice.hpp"
@@ -104,12 +109,21 @@ Scene& scene(const std::string& key) {
     Scene s =
         key == "RingsSI" ? rings_si() : lattice(static_cast<int>(std::lround(std::sqrt(std::atof(key.c_str() + 7)))));
     // At y0 the rings move rigidly (no pair approaches: the viscosity is off everywhere); a few steps in, it acts.
+    const ThreadCountGuard one(1);
     const RateFormRunResult r =
         run_rate_form(*s.scheme, s.y0,
                       {.dt = s.dt,
                        .t_end = static_cast<double>(s.steps) * s.dt,
                        .observer = [&s](long, double, const Eigen::VectorXd& y) { s.states.push_back(y); }});
     if (!r.completed()) throw std::runtime_error("gms_step_benchmark: " + s.name + " set-up run: " + r.message);
+    if (threads_available()) {  // the two-thread benchmarks time the same computation
+      const ThreadCountGuard two(2);
+      const RateFormRunResult r2 =
+          run_rate_form(*s.scheme, s.y0, {.dt = s.dt, .t_end = static_cast<double>(s.steps) * s.dt});
+      if (!r2.completed() || r2.y.size() != r.y.size() ||
+          std::memcmp(r2.y.data(), r.y.data(), sizeof(double) * r.y.size()) != 0)
+        throw std::runtime_error("gms_step_benchmark: " + s.name + ": two threads end in a different state");
+    }
     it = cache.emplace(key, std::move(s)).first;
   }
   return it->second;
@@ -133,7 +147,8 @@ void set_counters(benchmark::State& st, const Scene& s, long steps, long builds)
   st.counters["model_bytes"] = model_bytes(s.particles(), s.pairs());
 }
 
-void bm_step(benchmark::State& st, const std::string& key, bool rebuild) {
+void bm_step(benchmark::State& st, const std::string& key, bool rebuild, int threads = 1) {
+  const ThreadCountGuard guard(threads);
   Scene& s = scene(key);
   const RateFormRunOptions o{.dt = s.dt,
                              .t_end = static_cast<double>(s.steps) * s.dt,
@@ -152,7 +167,8 @@ void bm_step(benchmark::State& st, const std::string& key, bool rebuild) {
   set_counters(st, s, steps, builds);
 }
 
-void bm_rate(benchmark::State& st, const std::string& key) {
+void bm_rate(benchmark::State& st, const std::string& key, int threads = 1) {
+  const ThreadCountGuard guard(threads);
   Scene& s = scene(key);
   Eigen::VectorXd f(s.scheme->size());
   for (auto _ : st) {
@@ -166,6 +182,7 @@ void bm_rate(benchmark::State& st, const std::string& key) {
 }
 
 void bm_rebuild(benchmark::State& st, const std::string& key) {
+  const ThreadCountGuard guard(1);
   Scene& s = scene(key);
   const double radius = s.scheme->discretisation().kernel.support_radius(s.scheme->discretisation().h) + kSkin * s.dx;
   long pairs = 0;
@@ -206,8 +223,8 @@ int main(int argc, char** argv) {
   for (const auto& [key, count] : keys) {
     if (count > max_particles) continue;
     const int reps = count >= 1000000 ? 1 : 3;
-    auto reg = [&](const char* what, auto fn) {
-      const std::string name = std::string(what) + "/" + key;
+    auto reg = [&](const char* what, auto fn, const char* suffix = "") {
+      const std::string name = std::string(what) + "/" + key + suffix;
       benchmark::RegisterBenchmark(name.c_str(), fn)
           ->Unit(benchmark::kMillisecond)
           ->Iterations(count >= 1000000 ? 1 : 3)
@@ -218,6 +235,12 @@ int main(int argc, char** argv) {
     reg("StepFixedList", [key](benchmark::State& st) { bm_step(st, key, false); });
     reg("Rate", [key](benchmark::State& st) { bm_rate(st, key); });
     reg("Rebuild", [key](benchmark::State& st) { bm_rebuild(st, key); });
+    if (threads_available()) {
+      reg(
+          "Step", [key](benchmark::State& st) { bm_step(st, key, true, 2); }, "/threads:2");
+      reg(
+          "Rate", [key](benchmark::State& st) { bm_rate(st, key, 2); }, "/threads:2");
+    }
   }
   benchmark::RegisterBenchmark("TriadAgain", bench::stream_triad)->Unit(benchmark::kMillisecond)->MinTime(1.0);
   benchmark::RunSpecifiedBenchmarks();

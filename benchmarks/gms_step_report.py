@@ -101,6 +101,18 @@ def main():
         lines.append(f"Target (issue 10): ≤ {TARGET_US} µs per particle-step on one core for the SI rings. Measured "
                      f"{steady:.3g} µs, {steady / TARGET_US:.1f} × the target"
                      + (": **met**." if steady <= TARGET_US else ": **not met**."))
+    threaded = [(scene, what) for scene in ("RingsSI", "Lattice99856", "Lattice1000000") for what in ("Step", "Rate")
+                if best(bms, f"{what}/{scene}/threads:2")[1]]
+    if threaded:
+        lines += ["", "## Two threads (OpenMP, core/threads.hpp)", "",
+                  "The same benchmarks with two threads, in the same run; the state after the scene's steps was "
+                  "checked to be the same bits as with one thread before timing. Speed-up = one-thread time / "
+                  "two-thread time (best of the repetitions each; the ideal on this machine's 2 cores is 2).", "",
+                  "| benchmark | scene | one thread, ms | two threads, ms | speed-up |", "|---|---|---|---|---|"]
+        for scene, what in threaded:
+            t1, _ = best(bms, f"{what}/{scene}")
+            t2, _ = best(bms, f"{what}/{scene}/threads:2")
+            lines.append(f"| {what} | {scene} | {1e3 * t1:.4g} | {1e3 * t2:.4g} | {t1 / t2:.2f} |")
     with open(a.md, "w") as f:
         f.write("\n".join(lines) + "\n")
 

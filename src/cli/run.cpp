@@ -8,6 +8,7 @@
 
 #include "commands.hpp"
 #include "sphstab/core/memory_budget.hpp"
+#include "sphstab/core/threads.hpp"
 
 namespace sphstab::cli {
 
@@ -30,6 +31,12 @@ int run(int argc, const char* const* argv) {
                  "Memory limit for size checks, e.g. 8G or 512M (default: this machine's memory); a case whose "
                  "estimated memory exceeds it is refused before anything is allocated")
       ->each([](const std::string& text) { set_memory_limit_bytes(parse_memory_size(text)); });
+  const int threads_before = max_threads();
+  app.add_option_function<int>(
+         "--threads", [](const int& threads) { set_threads(threads); },
+         "OpenMP threads of the rate-form evaluation and the operator products (default: OMP_NUM_THREADS, else one; "
+         "results are the same bits for any count")
+      ->check(CLI::Range(1, 4096));
   register_commands(app);
   int code = 0;
   try {
@@ -50,7 +57,8 @@ int run(int argc, const char* const* argv) {
     code = 1;
   }
   std::fflush(stdout);
-  set_memory_limit_bytes(0);  // process-wide: leave it as found for the next in-process call
+  set_memory_limit_bytes(0);  // process-wide: leave both as found for the next in-process call
+  set_threads(threads_before);
   return code;
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "sphstab/core/format.hpp"
+#include "sphstab/core/threads.hpp"
 #include "sphstab/numerics/instantiation.hpp"
 
 namespace sphstab {
@@ -131,6 +132,7 @@ void LinearElasticSph<Dim>::gradient_pass(const int* outer, const int* inner, co
                                           int rows) const {
   const double* u = m_uall.data();
   double* g = m_grad.data();
+#pragma omp parallel for schedule(static) num_threads(threads_for(rows))
   for (int i = 0; i < rows; ++i) {
     double acc[Dim][Dim] = {};
     for (int k = outer[i]; k < outer[i + 1]; ++k) {
@@ -149,6 +151,7 @@ template <int Dim>
 void LinearElasticSph<Dim>::stress_from_gradients(int N) const {
   constexpr int S = stress_components(Dim);
   const double lam = m_opt.lame_lambda, mu = m_opt.shear_modulus;
+#pragma omp parallel for schedule(static) num_threads(threads_for(N))
   for (int i = 0; i < N; ++i) {
     const double* g = m_grad.data() + static_cast<long>(i) * Dim * Dim;  // g[a*Dim+b] = ∂_a u_b
     double tr = 0;
@@ -170,6 +173,7 @@ void LinearElasticSph<Dim>::divergence_pass(const int* outer, const int* inner,
   constexpr int S = stress_components(Dim);
   const double* sig = m_sig.data();
   const double inv_rho = 1.0 / m_opt.density;
+#pragma omp parallel for schedule(static) num_threads(threads_for(rows))
   for (int i = 0; i < rows; ++i) {
     double acc[Dim] = {};
     for (int k = outer[i]; k < outer[i + 1]; ++k) {
@@ -224,6 +228,8 @@ void LinearElasticSph<Dim>::reassemble_in_place() const {
     m_rowsum[a].setZero(N);
   }
   // Same entries as assemble_operators (G^a_ij = W'(r) (x_i - x_j)^a / r V_j, minimum image, 0 beyond the support).
+  // Each row writes only its own entries and row sums, in the serial order: threads keep the bits.
+#pragma omp parallel for schedule(static) num_threads(threads_for(N))
   for (int i = 0; i < N; ++i)
     for (long k = m_nl_current.offsets[i]; k < m_nl_current.offsets[i + 1]; ++k) {
       const int j = m_nl_current.indices[k];
@@ -284,6 +290,7 @@ void LinearElasticSph<Dim>::accumulate_from_gradients(const std::array<SparseMat
   }
   gradient_pass(G[0].outerIndexPtr(), G[0].innerIndexPtr(), val, N);
   if (m_opt.gradient == StrainGradient::Minus)
+#pragma omp parallel for schedule(static) num_threads(threads_for(N))
     for (int i = 0; i < N; ++i)
       for (int d = 0; d < Dim; ++d)
         for (int b = 0; b < Dim; ++b)
@@ -331,6 +338,7 @@ void LinearElasticSph<Dim>::acceleration_pair_loop(const Eigen::VectorXd& u, Eig
     return true;
   };
   // Pass 1: displacement gradient at every particle.
+#pragma omp parallel for schedule(static) num_threads(threads_for(N))
   for (int i = 0; i < N; ++i) {
     double acc[Dim][Dim] = {};
     const double* ui = m_uall.data() + static_cast<long>(i) * Dim;
@@ -348,6 +356,7 @@ void LinearElasticSph<Dim>::acceleration_pair_loop(const Eigen::VectorXd& u, Eig
   stress_from_gradients(N);
   // Pass 2: divergence at the free particles.
   const double inv_rho = 1.0 / m_opt.density;
+#pragma omp parallel for schedule(static) num_threads(threads_for(m_nfree))
   for (int i = 0; i < m_nfree; ++i) {
     double acc[Dim] = {};
     const double* si = m_sig.data() + static_cast<long>(i) * S;

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <complex>
 #include <cstdint>
+#include <exception>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -17,6 +19,7 @@
 #endif
 
 #include "sphstab/core/format.hpp"
+#include "sphstab/core/threads.hpp"
 #include "sphstab/models/artificial_stress.hpp"
 #include "sphstab/numerics/real_part.hpp"
 
@@ -434,6 +437,10 @@ void RateFormScheme<Dim>::set_driven(std::vector<int> particles,
 
 template <int Dim>
 void RateFormScheme<Dim>::set_absorbing(AbsorbingParticles<Dim> boundary) {
+  if (m_exchange && !boundary.particles.empty())
+    throw std::invalid_argument(
+        "RateFormScheme::set_absorbing: a partitioned scheme (set_row_partition) cannot have "
+        "absorbing particles");
   const std::size_t count = boundary.particles.size();
   if (boundary.normals.size() != count)
     throw std::invalid_argument("RateFormScheme::set_absorbing: " + std::to_string(count) + " particles but " +
@@ -599,6 +606,9 @@ RateFormScheme<Dim> RateFormScheme<Dim>::rebuilt(const Eigen::VectorXd& y, doubl
   s.m_driven_slot = m_driven_slot;
   s.m_absorbing = m_absorbing;
   s.m_absorbing_slot = m_absorbing_slot;
+  s.m_first = m_first;
+  s.m_last = m_last;
+  s.m_exchange = m_exchange;
   return s;
 }
 
@@ -676,6 +686,38 @@ template <int Dim>
 void RateFormScheme<Dim>::rate(const Eigen::VectorXd& y, Eigen::VectorXd& dydt) const {
   evaluate(y, dydt);
   if (!m_absorbing.empty()) absorb(y, dydt);
+  if (m_exchange) m_exchange(dydt);
+}
+
+template <int Dim>
+std::pair<int, int> RateFormScheme<Dim>::state_range(int first, int last) const {
+  const int n = m_disc->size();
+  if (first < 0 || last > n || first > last)
+    throw std::invalid_argument("RateFormScheme::state_range: particles [" + std::to_string(first) + ", " +
+                                std::to_string(last) + ") outside [0, " + std::to_string(n) + ")");
+  // The first state index at or after particle i (m_size past the last).
+  const auto begin = [&](int i) {
+    for (; i < n; ++i) {
+      if (m_x_off[i] >= 0) return m_x_off[i];
+      if (m_rho_off[i] >= 0) return m_rho_off[i];
+    }
+    return m_size;
+  };
+  return {begin(first), begin(last)};
+}
+
+template <int Dim>
+void RateFormScheme<Dim>::set_row_partition(int first, int last, std::function<void(Eigen::VectorXd&)> exchange) {
+  const int n = m_disc->size();
+  if (first < 0 || last > n || first >= last)
+    throw std::invalid_argument("RateFormScheme::set_row_partition: particles [" + std::to_string(first) + ", " +
+                                std::to_string(last) + ") is empty or outside [0, " + std::to_string(n) + ")");
+  if (!exchange) throw std::invalid_argument("RateFormScheme::set_row_partition: empty exchange function");
+  if (!m_absorbing.empty())
+    throw std::invalid_argument("RateFormScheme::set_row_partition: absorbing particles are not supported");
+  m_first = first;
+  m_last = last;
+  m_exchange = std::move(exchange);
 }
 
 template <int Dim>
@@ -701,6 +743,11 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
   const int n = p.size();
   const double h = d.h, rho0 = m_material.density, K = m_material.bulk_modulus, mu = m_material.shear_modulus;
   const RateFormOptions& o = m_options;
+  // Threads own whole rows and sum them in the serial order: the same bits for any count (core/threads.hpp).
+  const int threads = threads_for(n);
+  // The particles whose rates are computed: a partition's, for real states (set_row_partition).
+  const bool partial = std::is_same_v<Scalar, double> && m_exchange;
+  const int first = partial ? m_first : 0, last = partial ? m_last : n;
 
   // Scratch kept between calls (rate_form.hpp: one scheme object is not evaluated from two threads at once).
   Workspace<Scalar>& ws = [this]() -> Workspace<Scalar>& {
@@ -719,6 +766,7 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
   vhat.resize(n);
   rho.resize(n);
   S.resize(n);
+#pragma omp parallel for schedule(static) num_threads(threads)
   for (int i = 0; i < n; ++i) {
     if (m_x_off[i] >= 0) {
       x[i] = y.template segment<Dim>(m_x_off[i]);
@@ -763,6 +811,7 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
   const PairFactor pair_factor(m_w_dp, o.artificial_stress_exponent);
   std::vector<Scalar>& vol = ws.vol;
   vol.resize(n);
+#pragma omp parallel for schedule(static) num_threads(threads)
   for (int i = 0; i < n; ++i) vol[i] = m_mass[i] / rho[i];
 
   // Stress sigma = S - p I, sigma / rho^2 and the artificial stress R per particle.
@@ -771,6 +820,7 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
     sigma.resize(n);
     sigma_rho2.resize(n);
     R.resize(n);
+#pragma omp parallel for schedule(static) num_threads(threads)
     for (int i = 0; i < n; ++i) {
       const Scalar pressure = K * (rho[i] / rho0 - 1.0);
       Mat s;
@@ -850,7 +900,7 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
       std::vector<long>& ready = ws.ready;  // the row's last neighbour (XSPH) or the row itself
       ready.resize(n);
       std::size_t ring = 2 * longest;
-      if (xsph) {
+      if (xsph && threads == 1) {  // threads: two passes, no ring
         // The size from every 8th row (an estimate suffices: kept() decides per row).
         std::vector<long>& need = ws.ring_start;  // borrowed: the pairs of rows i .. ready[i]
         need.clear();
@@ -879,20 +929,11 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
       if (xsph && ws.ring.size() < ring) ws.ring.resize(ring);
       Kept* const kept_pairs = ws.ring.data();
       constexpr int kRowArrays = 8;
-      if (ws.row_r.size() < longest) ws.row_r.resize(longest);
-      if (ws.row.size() < kRowArrays * longest) ws.row.resize(kRowArrays * longest);
-      if (ws.row_mass.size() < longest) ws.row_mass.resize(longest);
-      double* const mb = ws.row_mass.data();  // m_j
-      Vec* const rb = ws.row_r.data();        // r_ij
-      Scalar* const r2b = ws.row.data();      // |r|^2
-      Scalar* const rrb = r2b + longest;      // |r|
-      Scalar* const wb = rrb + longest;       // W
-      Scalar* const gfb = wb + longest;       // dW/dr / r
-      Scalar* const fb = gfb + longest;       // f_ij^n
-      Scalar* const rhob = fb + longest;      // rho_j
-      Scalar* const vrb = rhob + longest;     // v_ij . r_ij
-      Scalar* const cb = vrb + longest;       // XSPH weight; Pi_ij / rhobar_ij
-      const auto row_sqrt = [r2b, rrb](std::size_t len) SPHSTAB_ALWAYS_INLINE {
+      const std::size_t slots = static_cast<std::size_t>(threads);  // one set of row arrays per thread
+      if (ws.row_r.size() < slots * longest) ws.row_r.resize(slots * longest);
+      if (ws.row.size() < slots * kRowArrays * longest) ws.row.resize(slots * kRowArrays * longest);
+      if (ws.row_mass.size() < slots * longest) ws.row_mass.resize(slots * longest);
+      const auto row_sqrt = [](const Scalar* r2b, Scalar* rrb, std::size_t len) SPHSTAB_ALWAYS_INLINE {
         if constexpr (std::is_same_v<Scalar, double>)
           Eigen::Map<Eigen::ArrayXd>(rrb, len) = Eigen::Map<const Eigen::ArrayXd>(r2b, len).sqrt();
         else
@@ -920,131 +961,193 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
           Scalar *r2, *rr, *w, *gf, *f, *rho_j, *vr, *c;  // |r|^2, |r|, W, dW/dr / r, f^n, rho_j, v_ij . r_ij, weights
           double* m;                                      // m_j
         };
-        const Arrays A{.off = nl.offsets.data(),
-                       .idx = nl.indices.data(),
-                       .v = v.data(),
-                       .vhat = vhat.data(),
-                       .vhat_out = vhat.data(),
-                       .rho = rho.data(),
-                       .vol = vol.data(),
-                       .mass = m_mass.data(),
-                       .sigma_rho2 = sigma_rho2.data(),
-                       .R = R.data(),
-                       .kept = kept_pairs,
-                       .r = rb,
-                       .r2 = r2b,
-                       .rr = rrb,
-                       .w = wb,
-                       .gf = gfb,
-                       .f = fb,
-                       .rho_j = rhob,
-                       .vr = vrb,
-                       .c = cb,
-                       .m = mb};
+        // Thread t's arrays: the shared per-particle arrays and its own row arrays.
+        const auto arrays = [&](int t) {
+          double* const mb = ws.row_mass.data() + t * longest;           // m_j
+          Vec* const rb = ws.row_r.data() + t * longest;                 // r_ij
+          Scalar* const r2b = ws.row.data() + t * kRowArrays * longest;  // |r|^2
+          Scalar* const rrb = r2b + longest;                             // |r|
+          Scalar* const wb = rrb + longest;                              // W
+          Scalar* const gfb = wb + longest;                              // dW/dr / r
+          Scalar* const fb = gfb + longest;                              // f_ij^n
+          Scalar* const rhob = fb + longest;                             // rho_j
+          Scalar* const vrb = rhob + longest;                            // v_ij . r_ij
+          Scalar* const cb = vrb + longest;                              // XSPH weight; Pi_ij / rhobar_ij
+          return Arrays{.off = nl.offsets.data(),
+                        .idx = nl.indices.data(),
+                        .v = v.data(),
+                        .vhat = vhat.data(),
+                        .vhat_out = vhat.data(),
+                        .rho = rho.data(),
+                        .vol = vol.data(),
+                        .mass = m_mass.data(),
+                        .sigma_rho2 = sigma_rho2.data(),
+                        .R = R.data(),
+                        .kept = kept_pairs,
+                        .r = rb,
+                        .r2 = r2b,
+                        .rr = rrb,
+                        .w = wb,
+                        .gf = gfb,
+                        .f = fb,
+                        .rho_j = rhob,
+                        .vr = vrb,
+                        .c = cb,
+                        .m = mb};
+        };
+        const Arrays A = arrays(0);
 
         // Pair functions of row i: the XSPH velocity (with_xsph) and the pair results for the sums (keep), copied to
         // the ring from slot `base` on unless `base` is `now` (summed right away, from the row arrays).
         constexpr std::size_t now = ~std::size_t(0);
-        const auto pair_functions = [&, A](int i, auto xsph_tag, bool keep, std::size_t base) SPHSTAB_ALWAYS_INLINE {
-          constexpr bool with_xsph = decltype(xsph_tag)::value;
-          const bool free = m_x_off[i] >= 0, terms = keep && free;
-          const long k0 = A.off[i];
-          const std::size_t len = A.off[i + 1] - k0;
-          for (std::size_t q = 0; q < len; ++q) {
-            const int j = A.idx[k0 + q];
-            separation(i, j, A.r[q], A.r2[q]);
-            if constexpr (with_xsph) A.m[q] = A.mass[j];
-            if (with_xsph || (kViscous && terms)) A.rho_j[q] = A.rho[j];
-            if (kViscous && terms) {
-              const Vec vij = A.v[i] - A.v[j];
-              A.vr[q] = vij.cwiseProduct(A.r[q]).sum();
-            }
-          }
-          row_sqrt(len);
-          if (!keep)
-            kf.row_values(len, A.rr, A.w);
-          else if (with_xsph || (kStressTerm && free))
-            kf.template row_slopes<true>(len, A.rr, A.w, A.gf);
-          else
-            kf.template row_slopes<false>(len, A.rr, A.w, A.gf);
-          const Scalar rho_i = A.rho[i];
-          if constexpr (with_xsph) {  // XSPH velocity [GMS2001, (3.6)]
-            for (std::size_t q = 0; q < len; ++q) A.c[q] = o.xsph * A.m[q] * A.w[q] / (0.5 * (rho_i + A.rho_j[q]));
-            Vec vh = A.v[i];
+        const auto pair_functions_of = [&](const Arrays A) {
+          return [&, A](int i, auto xsph_tag, bool keep, std::size_t base) SPHSTAB_ALWAYS_INLINE {
+            constexpr bool with_xsph = decltype(xsph_tag)::value;
+            const bool free = m_x_off[i] >= 0, terms = keep && free;
+            const long k0 = A.off[i];
+            const std::size_t len = A.off[i + 1] - k0;
             for (std::size_t q = 0; q < len; ++q) {
               const int j = A.idx[k0 + q];
-              if (j == i) continue;
-              vh += A.c[q] * (A.v[j] - A.v[i]);
-            }
-            A.vhat_out[i] = vh;
-          }
-          if (!keep) return;
-          if (kStressTerm && free) pair_factor.row(len, A.w, A.f);
-          if (kViscous && free)
-            for (std::size_t q = 0; q < len; ++q) {
-              const Scalar mu_ij = h * A.vr[q] / (A.r2[q] + eta2), rho_bar = 0.5 * (rho_i + A.rho_j[q]);
-              Scalar pi = alpha_c0 * mu_ij;
-              if constexpr (kViscosity == ViscositySwitch::Compression) pi += o.viscosity_beta * mu_ij * mu_ij;
-              const Scalar c = pi / rho_bar;
-              // Compression: 0 for a receding pair, selected here rather than branched on in the sums (the sign of
-              // v_ij . r_ij is random); 0 - 0 I leaves the zero pair matrix as it is.
-              if constexpr (kViscosity != ViscositySwitch::Compression) {
-                A.c[q] = c;
-              } else if constexpr (std::is_same_v<Scalar, double>) {  // as below, by a mask (the loop vectorises)
-                const std::uint64_t approaching = -static_cast<std::uint64_t>(A.vr[q] < 0);
-                A.c[q] = std::bit_cast<double>(std::bit_cast<std::uint64_t>(c) & approaching);
-              } else {
-                A.c[q] = detail::re(A.vr[q]) < 0 ? c : Scalar(0);
+              separation(i, j, A.r[q], A.r2[q]);
+              if constexpr (with_xsph) A.m[q] = A.mass[j];
+              if (with_xsph || (kViscous && terms)) A.rho_j[q] = A.rho[j];
+              if (kViscous && terms) {
+                const Vec vij = A.v[i] - A.v[j];
+                A.vr[q] = vij.cwiseProduct(A.r[q]).sum();
               }
             }
-          if (base == now) return;
-          Kept* const out = A.kept + base;
-          for (std::size_t q = 0; q < len; ++q) {
-            out[q].template head<Dim>() = A.gf[q] * A.r[q];  // grad_i W_ij
-            if (kViscous && free) out[q][Dim] = A.c[q];
-            if (kStressTerm && free) out[q][Dim + 1] = A.f[q];
-          }
+            row_sqrt(A.r2, A.rr, len);
+            if (!keep)
+              kf.row_values(len, A.rr, A.w);
+            else if (with_xsph || (kStressTerm && free))
+              kf.template row_slopes<true>(len, A.rr, A.w, A.gf);
+            else
+              kf.template row_slopes<false>(len, A.rr, A.w, A.gf);
+            const Scalar rho_i = A.rho[i];
+            if constexpr (with_xsph) {  // XSPH velocity [GMS2001, (3.6)]
+              for (std::size_t q = 0; q < len; ++q) A.c[q] = o.xsph * A.m[q] * A.w[q] / (0.5 * (rho_i + A.rho_j[q]));
+              Vec vh = A.v[i];
+              for (std::size_t q = 0; q < len; ++q) {
+                const int j = A.idx[k0 + q];
+                if (j == i) continue;
+                vh += A.c[q] * (A.v[j] - A.v[i]);
+              }
+              A.vhat_out[i] = vh;
+            }
+            if (!keep) return;
+            if (kStressTerm && free) pair_factor.row(len, A.w, A.f);
+            if (kViscous && free)
+              for (std::size_t q = 0; q < len; ++q) {
+                const Scalar mu_ij = h * A.vr[q] / (A.r2[q] + eta2), rho_bar = 0.5 * (rho_i + A.rho_j[q]);
+                Scalar pi = alpha_c0 * mu_ij;
+                if constexpr (kViscosity == ViscositySwitch::Compression) pi += o.viscosity_beta * mu_ij * mu_ij;
+                const Scalar c = pi / rho_bar;
+                // Compression: 0 for a receding pair, selected here rather than branched on in the sums (the sign of
+                // v_ij . r_ij is random); 0 - 0 I leaves the zero pair matrix as it is.
+                if constexpr (kViscosity != ViscositySwitch::Compression) {
+                  A.c[q] = c;
+                } else if constexpr (std::is_same_v<Scalar, double>) {  // as below, by a mask (the loop vectorises)
+                  const std::uint64_t approaching = -static_cast<std::uint64_t>(A.vr[q] < 0);
+                  A.c[q] = std::bit_cast<double>(std::bit_cast<std::uint64_t>(c) & approaching);
+                } else {
+                  A.c[q] = detail::re(A.vr[q]) < 0 ? c : Scalar(0);
+                }
+              }
+            if (base == now) return;
+            Kept* const out = A.kept + base;
+            for (std::size_t q = 0; q < len; ++q) {
+              out[q].template head<Dim>() = A.gf[q] * A.r[q];  // grad_i W_ij
+              if (kViscous && free) out[q][Dim] = A.c[q];
+              if (kStressTerm && free) out[q][Dim + 1] = A.f[q];
+            }
+          };
         };
+        const auto pair_functions = pair_functions_of(A);
 
         // Sums of row i from its pair results (the ring from slot `base` on, or the row arrays: `now`) and the XSPH
         // velocities.
-        const auto sums = [&, A](int i, std::size_t base, auto from_ring) SPHSTAB_ALWAYS_INLINE {
-          constexpr bool kRing = decltype(from_ring)::value;
-          const bool free = m_x_off[i] >= 0;
-          const long k0 = A.off[i];
-          const std::size_t len = A.off[i + 1] - k0;
-          Mat L = Mat::Zero();
-          Scalar drho(0);
-          Vec acc = Vec::Zero();
-          const Mat& si = A.sigma_rho2[i];
-          const Kept* const in = kRing ? A.kept + base : nullptr;
-          for (std::size_t q = 0; q < len; ++q) {
-            const int j = A.idx[k0 + q];
-            if (j == i) continue;
-            Vec gk;  // grad_i W_ij
-            if constexpr (kRing)
-              gk = in[q].template head<Dim>();
-            else
-              gk = A.gf[q] * A.r[q];
-            const Vec dv = A.vhat[j] - A.vhat[i];
-            // L^ab = dv^a/dx^b [GMS2001, (3.10)]; continuity [GMS2001, (3.8)] (not dot(): it conjugates complex steps).
-            L += (A.vol[j] * dv) * gk.transpose();
-            if (summation) drho -= A.mass[j] * dv.cwiseProduct(gk).sum();
-            if (!free) continue;
-            if constexpr (!kViscous && !kStressTerm) {
-              // Powell (1.36): m_j grad W_ij = rho_j Ghat_ij. (Adding the zero pair matrix would change no result: acc
-              // starts at +0, so a zero's sign cannot reach it.)
-              acc += A.mass[j] * ((si + A.sigma_rho2[j]) * gk);
-            } else {
-              // Pair terms: viscosity and artificial stress.
-              Mat pair = Mat::Zero();
-              if constexpr (kViscous) pair -= (kRing ? in[q][Dim] : A.c[q]) * Mat::Identity();
-              if constexpr (kStressTerm) pair += (kRing ? in[q][Dim + 1] : A.f[q]) * (A.R[i] + A.R[j]);
-              acc += A.mass[j] * ((si + A.sigma_rho2[j] + pair) * gk);
+        const auto sums_of = [&](const Arrays A) {
+          return [&, A](int i, std::size_t base, auto from_ring) SPHSTAB_ALWAYS_INLINE {
+            constexpr bool kRing = decltype(from_ring)::value;
+            const bool free = m_x_off[i] >= 0;
+            const long k0 = A.off[i];
+            const std::size_t len = A.off[i + 1] - k0;
+            Mat L = Mat::Zero();
+            Scalar drho(0);
+            Vec acc = Vec::Zero();
+            const Mat& si = A.sigma_rho2[i];
+            const Kept* const in = kRing ? A.kept + base : nullptr;
+            for (std::size_t q = 0; q < len; ++q) {
+              const int j = A.idx[k0 + q];
+              if (j == i) continue;
+              Vec gk;  // grad_i W_ij
+              if constexpr (kRing)
+                gk = in[q].template head<Dim>();
+              else
+                gk = A.gf[q] * A.r[q];
+              const Vec dv = A.vhat[j] - A.vhat[i];
+              // L^ab = dv^a/dx^b [GMS2001, (3.10)]; continuity [GMS2001, (3.8)] (not dot(): it conjugates complex
+              // steps).
+              L += (A.vol[j] * dv) * gk.transpose();
+              if (summation) drho -= A.mass[j] * dv.cwiseProduct(gk).sum();
+              if (!free) continue;
+              if constexpr (!kViscous && !kStressTerm) {
+                // Powell (1.36): m_j grad W_ij = rho_j Ghat_ij. (Adding the zero pair matrix would change no result:
+                // acc starts at +0, so a zero's sign cannot reach it.)
+                acc += A.mass[j] * ((si + A.sigma_rho2[j]) * gk);
+              } else {
+                // Pair terms: viscosity and artificial stress.
+                Mat pair = Mat::Zero();
+                if constexpr (kViscous) pair -= (kRing ? in[q][Dim] : A.c[q]) * Mat::Identity();
+                if constexpr (kStressTerm) pair += (kRing ? in[q][Dim + 1] : A.f[q]) * (A.R[i] + A.R[j]);
+                acc += A.mass[j] * ((si + A.sigma_rho2[j] + pair) * gk);
+              }
             }
-          }
-          finish(i, free, L, drho, acc);
+            finish(i, free, L, drho, acc);
+          };
         };
+        const auto sums = sums_of(A);
+
+        if (threads > 1 || partial) {
+          // Two passes over rows split between the threads: the XSPH velocities, then each row's pair functions
+          // and sums (as the rows summed late below: the same operations, so the same bits as one thread). A
+          // failure is kept, not thrown, so that every thread reaches both loops' barriers. A partition sums its
+          // rows and needs the XSPH velocities of their neighbours, rows [lo, hi).
+          int lo = first, hi = last;
+          if (partial)
+            for (long k = nl.offsets[first]; k < nl.offsets[last]; ++k) {
+              lo = std::min(lo, nl.indices[k]);
+              hi = std::max(hi, nl.indices[k] + 1);
+            }
+          std::exception_ptr error;
+#pragma omp parallel num_threads(threads)
+          {
+            const Arrays At = arrays(thread_index());
+            const auto pf = pair_functions_of(At);
+            const auto sm = sums_of(At);
+#pragma omp for schedule(static)
+            for (int t = lo; t < hi; ++t) try {
+                if (xsph && m_x_off[t] >= 0 && !is_driven(t))
+                  pf(t, std::true_type{}, false, 0);
+                else
+                  vhat[t] = v[t];
+              } catch (...) {
+#pragma omp critical(sphstab_rate_form_error)
+                if (!error) error = std::current_exception();
+              }
+#pragma omp for schedule(static)
+            for (int t = first; t < last; ++t) try {
+                if (!summed(t)) continue;
+                pf(t, std::false_type{}, true, now);
+                sm(t, now, std::false_type{});
+              } catch (...) {
+#pragma omp critical(sphstab_rate_form_error)
+                if (!error) error = std::current_exception();
+              }
+          }
+          if (error) std::rethrow_exception(error);
+          return;
+        }
 
         std::vector<int>& late = ws.late;  // rows summed at the end
         late.clear();
@@ -1122,6 +1225,7 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
     if (keep_r) rij.resize(nnz);
     if (keep_r2) r2s.resize(nnz);
     if (keep_w) w.resize(nnz);
+#pragma omp parallel for schedule(static) num_threads(threads)
     for (int i = 0; i < n; ++i)
       for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
         const int j = nl.indices[k];
@@ -1144,9 +1248,14 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
 
     // The gradient Ghat_ij with V_j included (plain or NCSPH).
     gh.resize(nnz);
+#pragma omp parallel for schedule(static) num_threads(threads)
     for (int i = 0; i < n; ++i)
       for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) gh[k] = vol[nl.indices[k]] * grad[k];
-    if (o.gradient == RateFormGradient::Ncsph)
+    if (o.gradient == RateFormGradient::Ncsph) {
+      // A singular moment matrix is reported for its lowest particle (as one thread would), after the loop.
+      int bad = n;
+      std::string bad_reason;
+#pragma omp parallel for schedule(static) num_threads(threads)
       for (int i = 0; i < n; ++i) {
         // Powell (1.19): Shepard gradient (S_i grad W_ij V_j - W_ij V_j g_i) / S_i^2, then times M_i^-1 with
         // M_i^ab = sum_j (x_j^a - x_i^a) gradW~^b_ij, so that sum_j (x_j - x_i) Ghat_ij^T = I.
@@ -1163,19 +1272,33 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
         }
         const Eigen::Matrix<double, Dim, Dim> Mr = M.unaryExpr([](const Scalar& z) { return detail::re(z); });
         // JacobiSVD stops early on a non-finite matrix and leaves its singular values unset: refuse first.
-        if (!Mr.allFinite())
-          throw std::domain_error("RateFormScheme: NCSPH moment matrix of particle " + std::to_string(i) +
-                                  " is not finite (non-finite positions or densities in the state)");
-        const Eigen::JacobiSVD<Eigen::Matrix<double, Dim, Dim>> svd(Mr);
-        const double smax = svd.singularValues()(0), smin = svd.singularValues()(Dim - 1);
-        if (!(smin > 1e-12 * smax))
-          throw std::domain_error("RateFormScheme: NCSPH moment matrix of particle " + std::to_string(i) +
-                                  " is singular (rcond " + format_number(smax > 0 ? smin / smax : 0.0) + ")");
+        std::string reason;
+        if (!Mr.allFinite()) {
+          reason = "is not finite (non-finite positions or densities in the state)";
+        } else {
+          const Eigen::JacobiSVD<Eigen::Matrix<double, Dim, Dim>> svd(Mr);
+          const double smax = svd.singularValues()(0), smin = svd.singularValues()(Dim - 1);
+          if (!(smin > 1e-12 * smax))
+            reason = "is singular (rcond " + format_number(smax > 0 ? smin / smax : 0.0) + ")";
+        }
+        if (!reason.empty()) {
+#pragma omp critical(sphstab_rate_form_error)
+          if (i < bad) {
+            bad = i;
+            bad_reason = reason;
+          }
+          continue;
+        }
         const Mat Minv_t = M.inverse().transpose();
         for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) gh[k] = Minv_t * gh[k];
       }
+      if (bad < n)
+        throw std::domain_error("RateFormScheme: NCSPH moment matrix of particle " + std::to_string(bad) + " " +
+                                bad_reason);
+    }
 
     // XSPH velocity [GMS2001, (3.6)].
+#pragma omp parallel for schedule(static) num_threads(threads)
     for (int i = 0; i < n; ++i) {
       vhat[i] = v[i];
       if (o.xsph > 0 && m_x_off[i] >= 0 && !is_driven(i))  // fixed particles do not move; driven ones move with v
@@ -1200,6 +1323,7 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
       row_mean.assign(n, Vec::Zero());
       col_mean.assign(n, Vec::Zero());
       mean_mean.assign(n, Vec::Zero());
+#pragma omp parallel for schedule(static) num_threads(threads)
       for (int i = 0; i < n; ++i) {
         Vec gs = Vec::Zero();
         for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
@@ -1209,6 +1333,7 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
         row_mean[i] /= m_counts[i];
         col_mean[i] = (-vol[i] / m_counts[i]) * gs;
       }
+#pragma omp parallel for schedule(static) num_threads(threads)
       for (int i = 0; i < n; ++i) {
         for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k)
           if (in_pattern(k)) mean_mean[i] += col_mean[nl.indices[k]];
@@ -1220,6 +1345,7 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
       // counts as zero so that the unstressed lattice sits on the "off" branch of the tension rule.
       const double tol = 1e-14 * (K + 4.0 * mu / 3.0);
       on.assign(n, Eigen::Matrix<bool, Dim, 1>::Constant(false));
+#pragma omp parallel for schedule(static) num_threads(threads)
       for (int i = 0; i < n; ++i) {
         if (m_excluded[i]) continue;
         for (int a = 0; a < Dim; ++a) {
@@ -1246,7 +1372,8 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
     }
 
     dydt.resize(m_size);
-    for (int i = 0; i < n; ++i) {
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (int i = first; i < last; ++i) {
       const bool free = m_x_off[i] >= 0;
       if (!free && m_rho_off[i] < 0) continue;
       Mat L = Mat::Zero();

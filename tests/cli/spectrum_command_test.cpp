@@ -47,7 +47,9 @@ TEST(SpectrumCommand, BadInputIsOneErrorLine) {
                                             {"spectrum", "--artificial-stress", "-0.3"},
                                             {"spectrum", "--continuity", "x"},
                                             {"spectrum", "--n", "100000"},
-                                            {"spectrum", "--dx", "1e-300"}}) {
+                                            {"spectrum", "--dx", "1e-300"},
+                                            {"spectrum", "--threads", "0"},
+                                            {"--threads", "two", "spectrum"}}) {
     const test::CliOutcome r = run(a);
     EXPECT_EQ(r.exit_code, 1) << test::join_args(a) << ": " << r.out;
     EXPECT_EQ(r.err.rfind("sphstab: error: ", 0), 0u) << test::join_args(a);

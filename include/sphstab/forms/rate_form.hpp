@@ -65,9 +65,11 @@
 /// \endcode
 #include <Eigen/Core>
 #include <complex>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sphstab/forms/absorbing_boundary.hpp"
@@ -226,6 +228,18 @@ class RateFormScheme final : public SemiDiscreteSystem {
   /// Throws std::invalid_argument for a state of the wrong size, non-finite positions or a radius below the support.
   RateFormScheme rebuilt(const Eigen::VectorXd& y, double neighbour_radius = 0) const;
 
+  /// Distributed evaluation (distributed/distributed_rate_form.hpp): from here on rate(VectorXd) computes the rates of
+  /// particles [first, last) only, with the same operations per particle as the whole evaluation (so the same bits),
+  /// and then calls exchange(dydt), which must fill the entries of the other particles (every process holds the whole
+  /// state; the rates are divided). The complex rate (Jacobians) stays whole. Copies and rebuilt() keep the partition.
+  /// Throws std::invalid_argument for an empty range or one outside [0, particle count], an empty exchange, or a
+  /// scheme with absorbing particles (their post-pass reads other particles' rates).
+  void set_row_partition(int first, int last, std::function<void(Eigen::VectorXd&)> exchange);
+  bool partitioned() const { return static_cast<bool>(m_exchange); }
+  /// State indices [begin, end) of particles [first, last): the state is ordered by particle. Throws
+  /// std::invalid_argument for a range outside [0, particle count].
+  std::pair<int, int> state_range(int first, int last) const;
+
   /// 1/2 sum over free particles of m_i |v_i|^2.
   double kinetic_energy(const Eigen::VectorXd& y) const;
   /// Sets the velocity of particle i (a free particle) in y.
@@ -295,6 +309,8 @@ class RateFormScheme final : public SemiDiscreteSystem {
   AbsorbingParticles<Dim> m_absorbing;
   std::vector<int> m_absorbing_slot;  // per particle: index into m_absorbing or -1 (empty: none)
   std::vector<bool> m_excluded;       // StabilisedSph: particles that never get the correction
+  int m_first = 0, m_last = -1;       // set_row_partition: the particles this process evaluates (-1: all)
+  std::function<void(Eigen::VectorXd&)> m_exchange;
   int m_size = 0;
   mutable Workspace<double> m_work_real;                   // rate(VectorXd)
   mutable Workspace<std::complex<double>> m_work_complex;  // rate(VectorXcd): complex-step Jacobians

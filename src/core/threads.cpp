@@ -1,0 +1,58 @@
+#include "sphstab/core/threads.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+
+#ifdef SPHSTAB_WITH_OPENMP
+#include <omp.h>
+#endif
+
+namespace sphstab {
+namespace {
+// 0: never set, then one thread unless OMP_NUM_THREADS asks for more (threads.hpp: why not every core).
+std::atomic<int> g_threads{0};
+}  // namespace
+
+int max_threads() {
+#ifdef SPHSTAB_WITH_OPENMP
+  if (const int t = g_threads.load(); t > 0) return t;
+  return std::getenv("OMP_NUM_THREADS") ? std::max(1, omp_get_max_threads()) : 1;
+#else
+  return 1;
+#endif
+}
+
+void set_threads(int threads) {
+  if (threads < 1)
+    throw std::invalid_argument("set_threads: thread count must be >= 1, got " + std::to_string(threads));
+#ifdef SPHSTAB_WITH_OPENMP
+  g_threads.store(threads);
+  omp_set_num_threads(threads);
+#endif
+}
+
+int thread_index() {
+#ifdef SPHSTAB_WITH_OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
+bool threads_available() {
+#ifdef SPHSTAB_WITH_OPENMP
+  return true;
+#else
+  return false;
+#endif
+}
+
+int threads_for(long rows) {
+  const long by_rows = std::max(1L, rows / kMinRowsPerThread);
+  return static_cast<int>(std::min<long>(max_threads(), by_rows));
+}
+
+}  // namespace sphstab
