@@ -9,6 +9,7 @@
 #include "form_detail.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/numerics/real_part.hpp"
+#include "total_lagrangian_detail.hpp"
 
 namespace sphstab {
 
@@ -29,14 +30,7 @@ FiniteStrainTotalLagrangian<Dim>::FiniteStrainTotalLagrangian(std::shared_ptr<co
     throw std::invalid_argument(std::string(kWho) + ": smoothing length h must be finite and > 0 (got " +
                                 format_number(d.h) + ")");
   const int N = d.size();
-  if (density.size() != 1 && density.size() != N)
-    throw std::invalid_argument(std::string(kWho) + ": density has " + std::to_string(density.size()) +
-                                " entries, expected 1 or " + std::to_string(N) + " (one per particle)");
-  m_rho = density.size() == 1 ? Eigen::VectorXd::Constant(N, density[0]) : density;
-  for (int i = 0; i < N; ++i)
-    if (!(m_rho[i] > 0) || !std::isfinite(m_rho[i]))
-      throw std::invalid_argument(std::string(kWho) + ": density of particle " + std::to_string(i) +
-                                  " must be finite and > 0 (got " + format_number(m_rho[i]) + ")");
+  m_rho = detail::particle_density(density, N, kWho);
   if (m_options.divergence == StressDivergence::Adjoint)
     throw std::invalid_argument(std::string(kWho) +
                                 ": the adjoint divergence is not offered; use plain, plus or minus");
@@ -103,22 +97,12 @@ SparsityPattern FiniteStrainTotalLagrangian<Dim>::dof_pattern() const {
 
 template <int Dim>
 Eigen::VectorXd FiniteStrainTotalLagrangian<Dim>::dof_mass() const {
-  Eigen::VectorXd m(dofs());
-  for (int f = 0; f < m_disc->free_count(); ++f) {
-    const int i = m_disc->free[f];
-    for (int a = 0; a < Dim; ++a) m[f * Dim + a] = m_rho[i] * m_disc->particles.volume[i];
-  }
-  return m;
+  return detail::lumped_dof_mass(*m_disc, m_rho);
 }
 
 template <int Dim>
 void FiniteStrainTotalLagrangian<Dim>::set_fixed_displacement(const Eigen::VectorXd& d) {
-  if (d.size() != m_fixed_u.size())
-    throw std::invalid_argument(std::string(kWho) + "::set_fixed_displacement: expected " +
-                                std::to_string(m_fixed_u.size()) + " entries (Dim per fixed particle), got " +
-                                std::to_string(d.size()));
-  if (!d.allFinite())
-    throw std::invalid_argument(std::string(kWho) + "::set_fixed_displacement: entries must be finite");
+  detail::check_fixed_displacement(d, m_fixed_u.size(), kWho);
   m_fixed_u = d;
 }
 
@@ -202,11 +186,7 @@ Eigen::MatrixXd FiniteStrainTotalLagrangian<Dim>::deformation_gradients(const Ei
   Positions<Dim> uall;
   std::vector<Deformation<double, Dim>> F;
   deformation(u, uall, F);
-  Eigen::MatrixXd out(m_disc->size(), Dim * Dim);
-  for (int i = 0; i < m_disc->size(); ++i)
-    for (int a = 0; a < Dim; ++a)
-      for (int b = 0; b < Dim; ++b) out(i, a * Dim + b) = F[i](a, b);
-  return out;
+  return detail::deformation_table<Dim>(F);
 }
 
 template <int Dim>
@@ -214,13 +194,7 @@ Eigen::MatrixXd FiniteStrainTotalLagrangian<Dim>::stresses(const Eigen::VectorXd
   Positions<Dim> uall;
   std::vector<Deformation<double, Dim>> F;
   deformation(u, uall, F);
-  Eigen::MatrixXd out = Eigen::MatrixXd::Constant(m_disc->size(), Dim * Dim, std::numeric_limits<double>::quiet_NaN());
-  for (int i : m_active) {
-    const Deformation<double, Dim> P = m_material->stress(F[i]);
-    for (int a = 0; a < Dim; ++a)
-      for (int b = 0; b < Dim; ++b) out(i, a * Dim + b) = P(a, b);
-  }
-  return out;
+  return detail::stress_table<Dim>(*m_material, F, m_active);
 }
 
 template class FiniteStrainTotalLagrangian<1>;

@@ -8,6 +8,7 @@
 #include "form_detail.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/numerics/real_part.hpp"
+#include "total_lagrangian_detail.hpp"
 
 namespace sphstab {
 
@@ -26,14 +27,7 @@ VariationalTotalLagrangian<Dim>::VariationalTotalLagrangian(std::shared_ptr<cons
   if (!m_material) throw std::invalid_argument(std::string(kWho) + ": material is null");
   const Discretisation<Dim>& d = *m_disc;
   const int N = d.size();
-  if (density.size() != 1 && density.size() != N)
-    throw std::invalid_argument(std::string(kWho) + ": density has " + std::to_string(density.size()) +
-                                " entries, expected 1 or " + std::to_string(N) + " (one per particle)");
-  m_rho = density.size() == 1 ? Eigen::VectorXd::Constant(N, density[0]) : density;
-  for (int i = 0; i < N; ++i)
-    if (!(m_rho[i] > 0) || !std::isfinite(m_rho[i]))
-      throw std::invalid_argument(std::string(kWho) + ": density of particle " + std::to_string(i) +
-                                  " must be finite and > 0 (got " + format_number(m_rho[i]) + ")");
+  m_rho = detail::particle_density(density, N, kWho);
   if (m_gradient && !m_gradient->keeps_pattern())
     throw std::invalid_argument(std::string(kWho) + ": gradient '" + m_gradient->name() +
                                 "' is non-local (dense); use a local correction such as ncsph");
@@ -84,22 +78,12 @@ SparsityPattern VariationalTotalLagrangian<Dim>::dof_pattern() const {
 
 template <int Dim>
 Eigen::VectorXd VariationalTotalLagrangian<Dim>::dof_mass() const {
-  Eigen::VectorXd m(dofs());
-  for (int f = 0; f < m_disc->free_count(); ++f) {
-    const int i = m_disc->free[f];
-    for (int a = 0; a < Dim; ++a) m[f * Dim + a] = m_rho[i] * m_disc->particles.volume[i];
-  }
-  return m;
+  return detail::lumped_dof_mass(*m_disc, m_rho);
 }
 
 template <int Dim>
 void VariationalTotalLagrangian<Dim>::set_fixed_displacement(const Eigen::VectorXd& d) {
-  if (d.size() != m_fixed_u.size())
-    throw std::invalid_argument(std::string(kWho) + "::set_fixed_displacement: expected " +
-                                std::to_string(m_fixed_u.size()) + " entries (Dim per fixed particle), got " +
-                                std::to_string(d.size()));
-  if (!d.allFinite())
-    throw std::invalid_argument(std::string(kWho) + "::set_fixed_displacement: entries must be finite");
+  detail::check_fixed_displacement(d, m_fixed_u.size(), kWho);
   m_fixed_u = d;
 }
 
@@ -183,11 +167,7 @@ Eigen::MatrixXd VariationalTotalLagrangian<Dim>::deformation_gradients(const Eig
   Positions<Dim> uall;
   std::vector<Deformation<double, Dim>> F;
   deformation(u, uall, F);
-  Eigen::MatrixXd out(m_disc->size(), Dim * Dim);
-  for (int i = 0; i < m_disc->size(); ++i)
-    for (int a = 0; a < Dim; ++a)
-      for (int b = 0; b < Dim; ++b) out(i, a * Dim + b) = F[i](a, b);
-  return out;
+  return detail::deformation_table<Dim>(F);
 }
 
 template <int Dim>
@@ -195,13 +175,7 @@ Eigen::MatrixXd VariationalTotalLagrangian<Dim>::stresses(const Eigen::VectorXd&
   Positions<Dim> uall;
   std::vector<Deformation<double, Dim>> F;
   deformation(u, uall, F);
-  Eigen::MatrixXd out = Eigen::MatrixXd::Constant(m_disc->size(), Dim * Dim, std::numeric_limits<double>::quiet_NaN());
-  for (int i : m_active) {
-    const Deformation<double, Dim> P = m_material->stress(F[i]);
-    for (int a = 0; a < Dim; ++a)
-      for (int b = 0; b < Dim; ++b) out(i, a * Dim + b) = P(a, b);
-  }
-  return out;
+  return detail::stress_table<Dim>(*m_material, F, m_active);
 }
 
 template class VariationalTotalLagrangian<1>;

@@ -1,8 +1,8 @@
 // Hourglass control of the finite-strain total-Lagrangian form (FiniteStrainOptions::hourglass, the pair term of
 // [Ganzenmueller2015] in forms/finite_strain_total_lagrangian.hpp, bond-projected and full): zero for affine fields
 // (finite rotation and stretch), linear and (bond-projected) angular momentum to round-off, the complex-step Jacobian
-// against central differences of the force, the exact lift of the 1D sawtooth on a periodic lattice, coefficient 0 =
-// the form without it, bad input.
+// against central differences of the force, the exact lift of the 1D sawtooth on a periodic lattice, the pair force
+// of TrixiParticles.jl's independent statement of the paper, coefficient 0 = the form without it, bad input.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -202,6 +202,56 @@ TEST(FiniteStrainHourglass, LiftsThePeriodicSawtoothByTheClosedForm) {
   EXPECT_LT(max_abs(A * saw - mu * saw), 1e-12 * mu);
   FiniteStrainTotalLagrangian<1> off(d, hooke, kRho);  // without control the sawtooth is a zero-energy mode
   EXPECT_LT(max_abs(Eigen::MatrixXd(jacobian(off, Eigen::VectorXd::Zero(tl.dofs()))) * saw), 1e-12 * mu);
+}
+
+TEST(FiniteStrainHourglass, IsThePenaltyForceOfTrixiParticlesAndTwiceLammpsSmd) {
+  // Independent pair loop in TrixiParticles.jl's convention (PenaltyForceGanzenmueller, its statement of
+  // [Ganzenmueller2015]): X_ab = X_a - X_b, x_ab = x_a - x_b, eps^a = F_a X_ab - x_ab, and
+  //   dv_a = (alpha / 2) V_a V_b W_ab (E eps^a . x_ab + E eps^b . x_ab) / (|X_ab|^2 |x_ab|^2 m_a) x_ab.
+  // With alpha = c_HG it must equal the form's term on a perturbed, unequal-volume block at a large deformation, for
+  // the plain and the NCSPH gradient. (LAMMPS SMD's pair_smd_tlsph elastic branch has one more factor 1/2 in its
+  // delta, besides its 0.1 h / 0.01 h^2 regularisations: its amplitude is 2 c_HG for the same force.)
+  auto base = test::lattice_discretisation<2>({.n = 6, .perturbation = 0.2, .fixed_layers = 0});
+  ParticleSet<2> set = base->particles;
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> U(0.7, 1.3);
+  for (int i = 0; i < set.size(); ++i) set.volume[i] *= U(rng);
+  auto d = make_discretisation(set, base->kernel, base->h);
+  auto nh = std::make_shared<NeoHookean<2>>(kLame);
+  const double alpha = 0.37, E = kLame.young();
+  const Eigen::VectorXd u = random_vector(d->dofs(), 0.12, 8);
+  for (auto grad : {std::shared_ptr<const GradientProvider<2>>(), make_gradient_provider<2>(Correction::Ncsph)}) {
+    FiniteStrainOptions<2> o{.gradient = grad, .divergence = StressDivergence::Plain};
+    FiniteStrainTotalLagrangian<2> off(d, nh, kRho, o);
+    o.hourglass = alpha;
+    FiniteStrainTotalLagrangian<2> on(d, nh, kRho, o);
+    Eigen::VectorXd a0, a1;
+    off.acceleration(u, a0);
+    on.acceleration(u, a1);
+    const Eigen::MatrixXd F = on.deformation_gradients(u);  // row i: F_ab at column 2 a + b
+    auto Fof = [&](int i) {
+      Eigen::Matrix2d m;
+      m << F(i, 0), F(i, 1), F(i, 2), F(i, 3);
+      return m;
+    };
+    Eigen::VectorXd ref = Eigen::VectorXd::Zero(d->dofs());
+    for (int a = 0; a < d->size(); ++a) {
+      const Eigen::Matrix2d Fa = Fof(a);
+      for (int b = 0; b < d->size(); ++b) {
+        const Eigen::Vector2d Xab = (d->particles.x.row(a) - d->particles.x.row(b)).transpose();
+        const double W = d->kernel.value(Xab.norm(), d->h);
+        if (b == a || W == 0) continue;
+        const Eigen::Matrix2d Fb = Fof(b);
+        const Eigen::Vector2d xab = Xab + u.segment<2>(2 * a) - u.segment<2>(2 * b);
+        const double Va = d->particles.volume[a], Vb = d->particles.volume[b];
+        const double delta_sum = E * (Fa * Xab - xab).dot(xab) + E * (Fb * Xab - xab).dot(xab);
+        ref.segment<2>(2 * a) +=
+            (alpha / 2) * Va * Vb * W * delta_sum / (Xab.squaredNorm() * xab.squaredNorm() * kRho * Va) * xab;
+      }
+    }
+    EXPECT_GT(max_abs(ref), 1e-3);
+    EXPECT_LT(max_abs(a1 - a0 - ref), 1e-12 * max_abs(ref));
+  }
 }
 
 TEST(FiniteStrainHourglass, CoefficientZeroIsTheFormWithoutIt) {

@@ -9,6 +9,8 @@
 ///   a_i^HG   = -(c_HG E / (rho0_i V_i)) sum_{j != i} V_i V_j W_ij / |X_ij|^2 delta_ij x^_ij,
 ///
 /// with F_i the form's own deformation gradient (plain or corrected reference gradient) and E Young's modulus.
+/// c_HG is the alpha of TrixiParticles.jl's PenaltyForceGanzenmueller (same force; tested) and half the hourglass
+/// amplitude of LAMMPS SMD's pair_smd_tlsph, whose delta carries one more factor 1/2 (studies/tl-hourglass/README.md).
 /// HourglassProjection::Full (not the paper's) replaces delta_ij x^_ij by the whole mean error vector.
 ///
 /// \note Central and antisymmetric (Bond): with every particle free it conserves linear and angular momentum; zero
