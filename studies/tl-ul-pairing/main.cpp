@@ -9,6 +9,8 @@
 //    stretches up to 6 (positive definite at every one: the largest tension tried is reported).
 // 2. runs: both forms from the same perturbed pre-stretched state at T = factor x T_crit(UL); the pairing measure
 //    min_i (x_{i+1} - x_i) / spacing over time and the middle 7 particles' displacements.
+// 3. the rate-form scheme (GMS/Powell: continuity, equation of state, Jaumann rate, predictor-corrector) on the same
+//    bar: its critical stress from the rate-form engine and the same runs (section_rate_form.hpp).
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <filesystem>
@@ -19,6 +21,7 @@
 
 #include "common/study.hpp"
 #include "section_2d.hpp"
+#include "section_rate_form.hpp"
 #include "sphstab/forms/finite_strain_total_lagrangian.hpp"
 #include "sphstab/forms/wave_1d.hpp"
 #include "sphstab/integrate/leapfrog.hpp"
@@ -270,6 +273,16 @@ int main(int argc, char** argv) {
                    std::isnan(t_pair) ? "never" : study::sig(t_pair, 4), study::sig(stepper.time(), 4), status});
     std::cout << run << ": min gap " << gap_min_all << ", t_pair " << t_pair << ", " << status << "\n";
   }
+  // 3. the rate-form scheme (finite-strain UL as practitioners run it) on the same bar: section_rate_form.hpp
+  pairing_rf::run_section({.disc = disc,
+                           .t_plus = t_ul,
+                           .tension = tension,
+                           .delta = delta,
+                           .centre = centre,
+                           .t_end = t_end,
+                           .t_arrival = x_rel[centre],
+                           .nu = kNu},
+                          out, summary, md_runs);
   summary.set("runs", md_runs);
   if (section == "both") pairing2d::run(o2, out, summary);
   summary.set("wall_seconds", study::seconds_since(t0), 3);

@@ -1,8 +1,11 @@
 #!/usr/bin/env python3
 """Plots of the TL-vs-UL pairing study (Ismail 2009 §4.7): the middle 7 particles' displacements (relative to the
-pre-stretched equilibrium) for TL and UL, and the pairing measure min gap / spacing over time (1D); the 2D block's
-bond-ratio histories and particle snapshots (2D, when pairing_2d.csv exists).
-Usage: plot.py RESULTS_DIR (reads middle7.csv, pairing.csv, pairing_2d.csv, snapshots_2d.csv)."""
+pre-stretched equilibrium) for TL, UL and the rate-form runs, the pairing measure min gap / spacing over time and the
+rate form's linear growth rate over the tension (1D); the 2D block's bond-ratio histories and particle snapshots (2D,
+when pairing_2d.csv exists).
+Usage: plot.py RESULTS_DIR (reads middle7.csv, pairing.csv, critical.csv, middle7_rate_form.csv, pairing_rate_form.csv,
+growth_rate_form.csv, pairing_2d.csv, snapshots_2d.csv)."""
+import json
 import math
 import os
 import sys
@@ -11,30 +14,64 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from plot_common import num, plt, read  # noqa: E402
 
 
+def middle7_panel(ax, rows, run, title):
+    sel = [r for r in rows if r["run"] == run]
+    t = [num(r["t"]) for r in sel]
+    for k in range(-3, 4):
+        ax.plot(t, [num(r[f"d{k}_over_dx"]) for r in sel], label=f"particle {k:+d}")
+    ax.set_xlabel("t (dx / c)")
+    ax.set_ylabel("u - u_eq (spacing)")
+    ax.set_title(title)
+    ax.legend(fontsize=7)
+
+
 def main(out):
-    fig, axes = plt.subplots(1, 3, figsize=(16, 5))
+    rate_form = os.path.exists(os.path.join(out, "pairing_rate_form.csv"))
+    fig, axes = plt.subplots(2, 3, figsize=(17, 9.5)) if rate_form else plt.subplots(1, 3, figsize=(16, 5))
+    axes = list(axes.flat)
     middle = read(os.path.join(out, "middle7.csv"))
     for ax, run in zip(axes[:2], ["TL", "UL"]):
-        rows = [r for r in middle if r["run"] == run]
-        t = [num(r["t"]) for r in rows]
-        for k in range(-3, 4):
-            ax.plot(t, [num(r[f"d{k}_over_dx"]) for r in rows], label=f"particle {k:+d}")
-        ax.set_xlabel("t (dx / c)")
-        ax.set_ylabel("u - u_eq (spacing)")
-        ax.set_title(f"{run}: middle 7 particles")
-        ax.legend(fontsize=7)
-    ax = axes[2]
+        middle7_panel(ax, middle, run, f"{run}: middle 7 particles")
     pairing = read(os.path.join(out, "pairing.csv"))
-    for run in ["TL", "UL"]:
+    runs = ["TL", "UL"]
+    if rate_form:
+        middle_rf = read(os.path.join(out, "middle7_rate_form.csv"))
+        middle7_panel(axes[2], middle_rf, "RF", "rate form (basic SPH): middle 7 particles")
+        middle7_panel(axes[3], middle_rf, "RF-AS", "rate form + artificial stress 0.3: middle 7 particles")
+        pairing += read(os.path.join(out, "pairing_rate_form.csv"))
+        runs += ["RF", "RF-AS"]
+    ax = axes[4] if rate_form else axes[2]
+    styles = {"TL": "-", "UL": "-", "RF": "--", "RF-AS": ":"}
+    for run in runs:
         rows = [r for r in pairing if r["run"] == run]
-        ax.plot([num(r["t"]) for r in rows], [num(r["min_gap_over_spacing"]) for r in rows], label=f"{run} min gap")
+        ax.plot([num(r["t"]) for r in rows], [num(r["min_gap_over_spacing"]) for r in rows], styles[run],
+                label=f"{run} min gap")
     ax.axhline(0.5, color="0.6", lw=0.8, ls=":", label="pairing threshold 0.5")
     ax.set_xlabel("t (dx / c)")
     ax.set_ylabel("min (x_{i+1} - x_i) / spacing")
     ax.set_title("pairing measure")
     ax.legend(fontsize=8)
+    if rate_form:  # linear growth rate of the rate form over the tension (the runs' stretched states)
+        ax = axes[5]
+        growth = read(os.path.join(out, "growth_rate_form.csv"))
+        for run, label in [("RF", "basic SPH"), ("RF-AS", "artificial stress 0.3")]:
+            sel = [r for r in growth if r["run"] == run and r["family"] == "stretched"]
+            ax.semilogx([num(r["sigma0_over_m"]) for r in sel], [num(r["growth_rate"]) for r in sel], styles[run],
+                        marker=".", ms=3, label=label)
+        tcrit = [num(r["t_crit"]) for r in read(os.path.join(out, "critical.csv"))
+                 if r["form"] == "UL plus" and r["route"] == "eigen"]
+        if tcrit:
+            ax.axvline(tcrit[0], color="0.5", lw=0.8, ls="--", label="T_crit (UL plus)")
+        with open(os.path.join(out, "summary.json"), encoding="utf-8") as f:
+            tension = num(json.load(f).get("tension", "nan"))
+        ax.axvline(tension, color="tab:red", lw=0.8, ls=":", label=f"run tension {tension:g}")
+        ax.set_xlabel("sigma0 / M (= T)")
+        ax.set_ylabel("growth rate max Re lambda (c / dx)")
+        ax.set_title("rate form: linear growth rate at rest")
+        ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "tl_ul_pairing.png"), dpi=110)
+    plt.close(fig)
 
 
 RUNS_2D = ["TL", "UL plus", "UL conservative"]
