@@ -31,9 +31,9 @@ double MatrixFreeLinearisation::estimated_bytes(const Discretisation<2>& d) {
   const double n = d.size(), nf = d.free_count(), pairs = d.neighbours.nonzeros();
   const double free_pairs = free_row_pairs(d);
   // CSR (8 per offset, 4 per index), G pairs and row sums, free map and stress rows, H of the free rows with eta,
-  // the stress buffer.
+  // the stress buffer, the free positions.
   return 8 * (n + 1) + 4 * pairs + 16 * pairs + 16 * n + 4 * (2 * n + nf) + 8 * (nf + 1) + 24 * free_pairs + 24 * nf +
-         24 * n;
+         24 * n + 16 * nf;
 }
 
 MatrixFreeLinearisation::MatrixFreeLinearisation(const Discretisation<2>& d, const Operators<2>& ops,
@@ -73,6 +73,7 @@ void MatrixFreeLinearisation::build(const Discretisation<2>& d, const Operators<
   m_a1_factor = cons ? 2.0 * m_inv_rho : (1.0 + momentum_form_alpha(form)) * m_inv_rho;
   m_s0 = PreStrain{kind, 1.0}.stress(material);
   m_free = d.free;
+  m_free_positions = d.free_positions();
   m_free_slot = d.free_slot;
   m_offsets = nl.offsets;
   m_indices = nl.indices;
@@ -135,7 +136,8 @@ void MatrixFreeLinearisation::build(const Discretisation<2>& d, const Operators<
 double MatrixFreeLinearisation::memory_bytes() const {
   auto bytes = [](const auto& v) { return static_cast<double>(v.capacity() * sizeof(v[0])); };
   return bytes(m_free) + bytes(m_free_slot) + bytes(m_offsets) + bytes(m_indices) + bytes(m_g) + bytes(m_gsum) +
-         bytes(m_stress_rows) + bytes(m_h_offsets) + bytes(m_h) + bytes(m_eta) + bytes(m_sigma);
+         bytes(m_stress_rows) + bytes(m_h_offsets) + bytes(m_h) + bytes(m_eta) + bytes(m_sigma) +
+         8.0 * static_cast<double>(m_free_positions.size());
 }
 
 void MatrixFreeLinearisation::check_vectors(const Eigen::Ref<const Eigen::VectorXd>& x,

@@ -4,12 +4,17 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <numbers>
+#include <optional>
 #include <random>
 #include <stdexcept>
 
 #include "sphstab/core/format.hpp"
 #include "sphstab/jacobian/matrix_free_operator.hpp"
+#include "sphstab/stability/lattice_sine_preconditioner.hpp"
+#include "sphstab/stability/lattice_stencil.hpp"
 
 namespace sphstab {
 
@@ -218,10 +223,268 @@ MatrixFreeCriticalLoad lobpcg(const MatrixFreeLinearisation& lin, double sgn, co
   return r;
 }
 
-}  // namespace
+/// Block LOBPCG for the largest eigenvalues of L x = lambda K x in the orthogonal-basis form of
+/// [HetmaniukLehoucq2006] (port of the Python prototype solvers.lobpcg). The basis Q = [X | P | W] is stored in one
+/// dofs x 3b matrix per operator (Q, K Q, L Q), so the Rayleigh-Ritz Gram matrices are one product each and no block
+/// is copied to stack them.
+class BlockLobpcg {
+ public:
+  BlockLobpcg(const MatrixFreeLinearisation& lin, double sgn, const MatrixFreeCriticalLoadOptions& o,
+              const LatticeSinePreconditioner* t, MatrixFreeCriticalLoad& r)
+      : m_lin(lin), m_sgn(sgn), m_o(o), m_t(t), m_r(r), m_b(o.block_size) {
+    const int n = lin.dofs();
+    m_v.resize(n, 3 * m_b);
+    m_k.resize(n, 3 * m_b);
+    m_l.resize(n, 3 * m_b);
+    m_a.resize(n, m_b);
+    m_c.resize(n, m_b);
+  }
 
-MatrixFreeCriticalLoad matrix_free_critical_load(const MatrixFreeLinearisation& lin, LoadDirection direction,
-                                                 const MatrixFreeCriticalLoadOptions& o) {
+  /// Runs from the start block x0 (dofs x b); fills the result.
+  void run(const Eigen::MatrixXd& x0) {
+    const int b = m_b;
+    m_v.leftCols(b) = x0;
+    products(0, b);
+    int nx = korth(0, b);
+    if (nx < 0) return;
+    if (nx == 0) return fail(Status::NumericalIssue, "block LOBPCG: the start block has no K-positive direction");
+    Eigen::VectorXd theta = ritz_on_x(nx);
+    int np = 0;
+    for (long it = 0;; ++it) {
+      // Residuals R = L X - K X diag(theta) (in m_a).
+      auto res = m_a.leftCols(nx);
+      res = m_l.leftCols(nx) - m_k.leftCols(nx) * theta.asDiagonal();
+      m_r.residual = res.col(0).norm() / (std::abs(theta[0]) * m_k.col(0).norm());
+      m_r.lambda_max = theta[0];
+      if (m_r.residual <= m_o.residual_tol) {
+        m_r.iterations = it;
+        m_r.status = Status::Successful;
+        return;
+      }
+      if (it == m_o.max_iterations) {
+        m_r.iterations = it;
+        return fail(Status::NotConverging, "block LOBPCG reached " + std::to_string(m_o.max_iterations) +
+                                               " steps at relative residual " + format_number(m_r.residual, 3));
+      }
+      // W = T R, K-orthogonal to X and P, K-orthonormal.
+      const int wpos = nx + np;
+      if (m_t) {
+        m_t->apply(res, m_v.middleCols(wpos, nx));
+        m_r.preconditioner_applications += nx;
+      } else {
+        m_v.middleCols(wpos, nx) = res;
+      }
+      products(wpos, nx);
+      kproject(wpos, nx, 0, nx);
+      if (np > 0) kproject(wpos, nx, nx, np);
+      const int nw = korth(wpos, nx);
+      if (nw < 0) return;
+      const int m = nx + np + nw;
+      // Rayleigh-Ritz on span{X, P, W}: H c = theta G c, largest first.
+      Eigen::MatrixXd g = m_v.leftCols(m).transpose() * m_k.leftCols(m);
+      Eigen::MatrixXd h = m_v.leftCols(m).transpose() * m_l.leftCols(m);
+      g = 0.5 * (g + g.transpose()).eval();
+      h = 0.5 * (h + h.transpose()).eval();
+      Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> ges(h, g);
+      if (ges.info() != Eigen::Success)
+        return fail(Status::NumericalIssue,
+                    "block LOBPCG: the Rayleigh-Ritz Gram matrix of K is not positive "
+                    "definite at step " +
+                        std::to_string(it));
+      const int bn = std::min(b, m);
+      const Eigen::MatrixXd vx = ges.eigenvectors().rowwise().reverse().leftCols(bn);
+      const Eigen::VectorXd w = ges.eigenvalues().reverse();
+      // X <- Q Vx, P <- Q[P, W] Vx[P, W] (the part of the step without the old X).
+      for (Eigen::MatrixXd* q : {&m_v, &m_k, &m_l}) {
+        m_a.leftCols(bn).noalias() = q->leftCols(m) * vx;
+        if (m > nx) m_c.leftCols(bn).noalias() = q->middleCols(nx, m - nx) * vx.bottomRows(m - nx);
+        q->leftCols(bn) = m_a.leftCols(bn);
+        if (m > nx) q->middleCols(bn, bn) = m_c.leftCols(bn);
+      }
+      const bool have_p = m > nx;
+      nx = bn;
+      theta = w.head(nx);
+      np = 0;
+      if (have_p) {
+        kproject(nx, bn, 0, nx);
+        np = korth(nx, bn);
+        if (np < 0) return;
+      }
+      m_r.iterations = it + 1;
+      if (m_o.refresh_every > 0 && (it + 1) % m_o.refresh_every == 0) {  // against drift of K X, L X
+        products(0, nx);
+        nx = korth(0, nx);
+        if (nx <= 0) {
+          if (nx == 0) fail(Status::NumericalIssue, "block LOBPCG: X lost K-positivity at the refresh");
+          return;
+        }
+        theta = ritz_on_x(nx);
+        np = 0;
+      }
+    }
+  }
+
+  /// The top Ritz vector (K-normalised).
+  Eigen::VectorXd mode() const { return m_v.col(0); }
+
+ private:
+  void fail(Status s, const std::string& why) {
+    m_r.status = s;
+    m_r.reason = why;
+  }
+
+  /// K and L products of columns [c0, c0 + m) of Q.
+  void products(int c0, int m) {
+    for (int j = c0; j < c0 + m; ++j) {
+      m_lin.apply_A0(m_v.col(j), m_k.col(j));
+      m_lin.apply_combination(0.0, -m_sgn, m_v.col(j), m_l.col(j));
+    }
+    m_r.a0_products += m;
+    m_r.a1_products += m;
+  }
+
+  /// Y <- Y - Z (Z^T K Y), twice, for K-orthonormal Z = columns [z0, z0 + mz), Y = [y0, y0 + my).
+  void kproject(int y0, int my, int z0, int mz) {
+    for (int pass = 0; pass < 2; ++pass) {
+      const Eigen::MatrixXd c = m_k.middleCols(z0, mz).transpose() * m_v.middleCols(y0, my);
+      m_v.middleCols(y0, my).noalias() -= m_v.middleCols(z0, mz) * c;
+      m_k.middleCols(y0, my).noalias() -= m_k.middleCols(z0, mz) * c;
+      m_l.middleCols(y0, my).noalias() -= m_l.middleCols(z0, mz) * c;
+    }
+  }
+
+  /// K-orthonormalises columns [c0, c0 + m) in place (the prototype's _korth): eigen-decomposition of the
+  /// diagonally scaled Gram matrix, directions below 1e-12 of the largest dropped. Returns the new width, or -1
+  /// (status set) when the Gram matrix shows K is not positive definite.
+  int korth(int c0, int m) {
+    if (m == 0) return 0;
+    Eigen::MatrixXd g = m_v.middleCols(c0, m).transpose() * m_k.middleCols(c0, m);
+    g = 0.5 * (g + g.transpose()).eval();
+    Eigen::VectorXd d = g.diagonal().cwiseAbs().cwiseSqrt();
+    for (Eigen::Index i = 0; i < d.size(); ++i)
+      if (d[i] == 0) d[i] = 1;
+    const Eigen::MatrixXd gs = d.cwiseInverse().asDiagonal() * g * d.cwiseInverse().asDiagonal();
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(gs);
+    const Eigen::VectorXd& w = es.eigenvalues();
+    const double wmax = w.maxCoeff();
+    if (!(wmax > 0)) return 0;
+    if (w.minCoeff() < -1e-8 * wmax) {
+      fail(Status::NumericalIssue, "A0 is not positive definite (K Gram matrix eigenvalue " +
+                                       format_number(w.minCoeff() / wmax, 3) + " relative to the largest)");
+      return -1;
+    }
+    std::vector<int> keep;
+    for (int i = 0; i < m; ++i)
+      if (w[i] > 1e-12 * wmax) keep.push_back(i);
+    const int mk = static_cast<int>(keep.size());
+    Eigen::MatrixXd c(m, mk);
+    for (int j = 0; j < mk; ++j) c.col(j) = es.eigenvectors().col(keep[j]) / std::sqrt(w[keep[j]]);
+    c = d.cwiseInverse().asDiagonal() * c;
+    for (Eigen::MatrixXd* q : {&m_v, &m_k, &m_l}) {
+      m_a.leftCols(mk).noalias() = q->middleCols(c0, m) * c;
+      q->middleCols(c0, mk) = m_a.leftCols(mk);
+    }
+    return mk;
+  }
+
+  /// Rayleigh-Ritz on the K-orthonormal X = columns [0, nx): X <- X V, returns the Ritz values, largest first.
+  Eigen::VectorXd ritz_on_x(int nx) {
+    Eigen::MatrixXd h = m_v.leftCols(nx).transpose() * m_l.leftCols(nx);
+    h = 0.5 * (h + h.transpose()).eval();
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(h);
+    const Eigen::MatrixXd v = es.eigenvectors().rowwise().reverse();
+    for (Eigen::MatrixXd* q : {&m_v, &m_k, &m_l}) {
+      m_a.leftCols(nx).noalias() = q->leftCols(nx) * v;
+      q->leftCols(nx) = m_a.leftCols(nx);
+    }
+    return es.eigenvalues().reverse();
+  }
+
+  const MatrixFreeLinearisation& m_lin;
+  double m_sgn;
+  const MatrixFreeCriticalLoadOptions& m_o;
+  const LatticeSinePreconditioner* m_t;
+  MatrixFreeCriticalLoad& m_r;
+  int m_b;
+  Eigen::MatrixXd m_v, m_k, m_l;  ///< Q, K Q, L Q: dofs x 3b, columns [X | P | W]
+  Eigen::MatrixXd m_a, m_c;       ///< dofs x b workspaces
+};
+
+/// Start block: the zone-boundary modes (-1)^i (x-polarised, k = (pi, 0)) and (-1)^j (y-polarised) times sine
+/// envelopes sin(pi a (i + 1)/(n + 1)) sin(pi c (j + 1)/(n + 1)) for (a, c) = (1, 1), (1, 2), (2, 1), ... (the
+/// prototype's zone_boundary_start); columns beyond 16 uniform random.
+Eigen::MatrixXd zone_boundary_start(int n, int b, std::uint64_t seed) {
+  const int pairs[8][2] = {{1, 1}, {1, 2}, {2, 1}, {2, 2}, {1, 3}, {3, 1}, {3, 2}, {2, 3}};
+  auto s = [n](int m, int i) { return std::sin(std::numbers::pi * m * (i + 1) / (n + 1)); };
+  Eigen::MatrixXd x = Eigen::MatrixXd::Zero(2L * n * n, b);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  for (int col = 0; col < b; ++col) {
+    if (col >= 16) {
+      for (Eigen::Index q = 0; q < x.rows(); ++q) x(q, col) = uniform(rng);
+      continue;
+    }
+    const int a = pairs[col / 2][0], c = pairs[col / 2][1];
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const long f = i + static_cast<long>(n) * j;
+        if (col % 2 == 0)
+          x(2 * f, col) = s(c, j) * (i % 2 ? -1.0 : 1.0) * s(a, i);
+        else
+          x(2 * f + 1, col) = (j % 2 ? -1.0 : 1.0) * s(a, j) * s(c, i);
+      }
+  }
+  return x;
+}
+
+Eigen::MatrixXd random_start(int dofs, int b, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  Eigen::MatrixXd x(dofs, b);
+  for (Eigen::Index j = 0; j < x.cols(); ++j)
+    for (Eigen::Index q = 0; q < x.rows(); ++q) x(q, j) = uniform(rng);
+  return x;
+}
+
+std::optional<SquareLatticeDofs> lattice_of(const MatrixFreeLinearisation& lin) {
+  try {
+    return square_lattice(lin.free_positions(), "matrix_free_critical_load");
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  }
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+MatrixFreeCriticalLoad block_lobpcg(const MatrixFreeLinearisation& lin, double sgn,
+                                    const MatrixFreeCriticalLoadOptions& o, const LatticeSinePreconditioner* t,
+                                    MatrixFreeCriticalLoad r) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Eigen::MatrixXd x0;
+  if (o.start == MatrixFreeStart::Random) {
+    x0 = random_start(lin.dofs(), o.block_size, o.seed);
+  } else {
+    std::optional<SquareLatticeDofs> g = lattice_of(lin);
+    if (!g && o.start == MatrixFreeStart::ZoneBoundary)
+      square_lattice(lin.free_positions(), "matrix_free_critical_load (start ZoneBoundary)");  // throws the reason
+    x0 = g ? zone_boundary_start(g->n, o.block_size, o.seed) : random_start(lin.dofs(), o.block_size, o.seed);
+  }
+  if (t) r.sigma_p = t->sigma();
+  BlockLobpcg solver(lin, sgn, o, t, r);
+  solver.run(x0);
+  r.solve_seconds = seconds_since(t0);
+  if (r.status != Status::Successful) {
+    r.lambda_max = MatrixFreeCriticalLoad::nan;
+    return r;
+  }
+  r.mode = solver.mode();
+  r.load = r.lambda_max > 0 ? sgn / r.lambda_max : sgn * std::numeric_limits<double>::infinity();
+  return r;
+}
+
+void check_common(const MatrixFreeLinearisation& lin, const MatrixFreeCriticalLoadOptions& o) {
   if (!lin.symmetric())
     throw std::invalid_argument(
         "matrix_free_critical_load: the linearisation is not symmetric (needs equal volumes, complete "
@@ -230,6 +493,33 @@ MatrixFreeCriticalLoad matrix_free_critical_load(const MatrixFreeLinearisation& 
     throw std::invalid_argument("matrix_free_critical_load: the minus form has A1 = 0 (no critical load)");
   if (!(o.residual_tol > 0 && o.residual_tol < 1) || o.max_iterations < 0)
     throw std::invalid_argument("matrix_free_critical_load: options need 0 < residual_tol < 1 and max_iterations >= 0");
+}
+
+void check_block(const MatrixFreeLinearisation& lin, const MatrixFreeCriticalLoadOptions& o) {
+  if (o.block_size < 1 || 3L * o.block_size > lin.dofs() || o.refresh_every < 0)
+    throw std::invalid_argument(
+        "matrix_free_critical_load: options need block_size in [1, dofs / 3 = " + std::to_string(lin.dofs() / 3) +
+        "] and refresh_every >= 0 (got block_size " + std::to_string(o.block_size) + ", refresh_every " +
+        std::to_string(o.refresh_every) + ")");
+}
+
+}  // namespace
+
+MatrixFreeCriticalLoad matrix_free_critical_load(const MatrixFreeLinearisation& lin, LoadDirection direction,
+                                                 const MatrixFreeCriticalLoadOptions& o,
+                                                 const LatticeSinePreconditioner& t) {
+  check_common(lin, o);
+  check_block(lin, o);
+  if (t.dofs() != lin.dofs())
+    throw std::invalid_argument("matrix_free_critical_load: the preconditioner is for " + std::to_string(t.dofs()) +
+                                " DOFs (n = " + std::to_string(t.n()) + "), the linearisation has " +
+                                std::to_string(lin.dofs()));
+  return block_lobpcg(lin, load_sign(direction), o, &t, {});
+}
+
+MatrixFreeCriticalLoad matrix_free_critical_load(const MatrixFreeLinearisation& lin, LoadDirection direction,
+                                                 const MatrixFreeCriticalLoadOptions& o) {
+  check_common(lin, o);
   if (!(o.cg_rtol > 0 && o.cg_rtol < 1) || !(o.tol > 0) || o.cg_maxit < 0 || o.maxit < 1 || o.ncv < 0 || o.ncv == 1 ||
       o.ncv > lin.dofs())
     throw std::invalid_argument(
@@ -237,6 +527,19 @@ MatrixFreeCriticalLoad matrix_free_critical_load(const MatrixFreeLinearisation& 
         "maxit >= 1 and ncv 0 or in [2, dofs = " +
         std::to_string(lin.dofs()) + "]");
   const double sgn = load_sign(direction);
+  if (o.method == MatrixFreeEigenMethod::BlockLobpcg) {
+    check_block(lin, o);
+    if (o.preconditioner == MatrixFreePreconditioner::None) return block_lobpcg(lin, sgn, o, nullptr, {});
+    if (!(o.margin > 0) || !std::isfinite(o.margin))
+      throw std::invalid_argument("matrix_free_critical_load: options need margin > 0 (got " +
+                                  format_number(o.margin, 3) + ")");
+    const auto t0 = std::chrono::steady_clock::now();
+    const LatticeStencil st = probe_lattice_stencil(lin, direction);
+    const LatticeSinePreconditioner t(st, st.n, o.margin, o.fftw_measure);
+    MatrixFreeCriticalLoad r;
+    r.setup_seconds = seconds_since(t0);
+    return block_lobpcg(lin, sgn, o, &t, std::move(r));
+  }
   return o.method == MatrixFreeEigenMethod::Lobpcg ? lobpcg(lin, sgn, o) : lanczos_cg(lin, sgn, o);
 }
 

@@ -60,6 +60,8 @@ class MatrixFreeLinearisation {
   int free_count() const { return static_cast<int>(m_free.size()); }
   /// Particle index of each free particle (ascending): the DOF order.
   const std::vector<int>& free_index() const { return m_free; }
+  /// Reference positions of the free particles, free_count x 2 in DOF order (for geometric preconditioners).
+  const Eigen::MatrixXd& free_positions() const { return m_free_positions; }
   MomentumForm form() const { return m_form; }
   /// As Linearisation::symmetric / complete (same definitions as analytic_jacobian_2d).
   bool symmetric() const { return m_symmetric; }
@@ -96,9 +98,10 @@ class MatrixFreeLinearisation {
   Eigen::Matrix2d m_s0 = Eigen::Matrix2d::Zero();
   bool m_symmetric = false, m_complete = false;
 
-  std::vector<int> m_free;       ///< free particle indices (ascending)
-  std::vector<int> m_free_slot;  ///< N entries: free slot or -1
-  std::vector<long> m_offsets;   ///< neighbour-list CSR of all N rows
+  std::vector<int> m_free;           ///< free particle indices (ascending)
+  Eigen::MatrixXd m_free_positions;  ///< free_count x 2
+  std::vector<int> m_free_slot;      ///< N entries: free slot or -1
+  std::vector<long> m_offsets;       ///< neighbour-list CSR of all N rows
   std::vector<int> m_indices;
   std::vector<double> m_g;              ///< (G^x_ij, G^y_ij) per pair, all rows
   std::vector<double> m_gsum;           ///< (g^x_i, g^y_i) per particle
