@@ -8,6 +8,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "sphstab/core/threads.hpp"
 #include "sphstab/jacobian/analytic_jacobian_2d.hpp"
 #include "sphstab/particles/lattice_presets.hpp"
 #include "sphstab/stability/critical_load.hpp"
@@ -198,6 +199,24 @@ TEST(MatrixFreeCriticalLoad, BlockLobpcgReportsNotConvergingAndRefusesNonLattice
     EXPECT_NE(what.find("square lattice"), std::string::npos) << what;
     EXPECT_EQ(what.find('\n'), std::string::npos) << what;
   }
+}
+
+TEST(MatrixFreeCriticalLoad, BlockLobpcgGivesTheSameBitsForAnyThreadCount) {
+  // Threads: the operator's row loops, the preconditioner's transforms and the dense block algebra over fixed row
+  // chunks; n = 48 has 4608 DOFs (two chunks of the dense algebra, two threads' worth of rows). ~4 s: on a shared
+  // machine each of the ~600 small parallel regions waits for the second thread.
+  if (!threads_available()) GTEST_SKIP() << "built without OpenMP";
+  auto d = square(48);
+  const MatrixFreeLinearisation lin(*d, kMaterial, MomentumForm::Conservative, PreStrainKind::Isotropic);
+  MatrixFreeCriticalLoad r[2];
+  for (int k = 0; k < 2; ++k) {
+    const ThreadCountGuard guard(k + 1);
+    r[k] = matrix_free_critical_load(lin, LoadDirection::Tension, {.method = MatrixFreeEigenMethod::BlockLobpcg});
+    ASSERT_EQ(r[k].info(), Status::Successful) << r[k].reason;
+  }
+  EXPECT_EQ(r[0].load, r[1].load);
+  EXPECT_EQ(r[0].iterations, r[1].iterations);
+  EXPECT_EQ((r[0].mode - r[1].mode).cwiseAbs().maxCoeff(), 0.0);
 }
 
 }  // namespace

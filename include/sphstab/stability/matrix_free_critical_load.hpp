@@ -81,12 +81,14 @@ struct MatrixFreeCriticalLoad {
   long a0_products = 0;                  ///< matrix-free A0 products in all (one per vector)
   long a1_products = 0;                  ///< BlockLobpcg: A1 products (one per vector)
   long preconditioner_applications = 0;  ///< BlockLobpcg: T applications (one per vector)
-  double residual = nan;     ///< BlockLobpcg: ||L x - theta K x|| / (|theta| ||K x||) of the top pair at the end
-  double sigma_p = nan;      ///< BlockLobpcg with LatticeSine: the preconditioner shift
-  double setup_seconds = 0;  ///< BlockLobpcg: stencil probe and preconditioner setup (wall)
-  double solve_seconds = 0;  ///< BlockLobpcg: the iteration (wall)
-  int solves = 0;            ///< LanczosCg: K^{-1} v solves (one per Lanczos step)
-  long cg_iterations = 0;    ///< LanczosCg: total CG steps
+  double residual = nan;       ///< BlockLobpcg: ||L x - theta K x|| / (|theta| ||K x||) of the top pair at the end
+  double sigma_p = nan;        ///< BlockLobpcg with LatticeSine: the preconditioner shift
+  double setup_seconds = 0;    ///< BlockLobpcg: stencil probe and preconditioner setup (wall)
+  double solve_seconds = 0;    ///< BlockLobpcg: the iteration (wall), of which:
+  double product_seconds = 0;  ///<   A0 and A1 products
+  double preconditioner_seconds = 0;  ///<   preconditioner applications (the rest: dense block algebra)
+  int solves = 0;                     ///< LanczosCg: K^{-1} v solves (one per Lanczos step)
+  long cg_iterations = 0;             ///< LanczosCg: total CG steps
   int max_cg_iterations = 0;
   Eigen::VectorXd mode;  ///< the eigenvector of lambda_max (K-normalised)
   Status status = Status::NotComputed;
