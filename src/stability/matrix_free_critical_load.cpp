@@ -526,6 +526,13 @@ MatrixFreeCriticalLoad block_lobpcg(const MatrixFreeLinearisation& lin, double s
     if (!g && o.start == MatrixFreeStart::ZoneBoundary)
       square_lattice(lin.free_positions(), "matrix_free_critical_load (start ZoneBoundary)");  // throws the reason
     x0 = g ? zone_boundary_start(g->n, o.block_size, o.seed) : random_start(lin.dofs(), o.block_size, o.seed);
+    if (g && o.start_noise > 0) {
+      // The zone-boundary modes are symmetric under the lattice reflections, which K, L and the preconditioner
+      // commute with: without noise the iteration stays in their symmetry classes and can miss the top mode.
+      const Eigen::MatrixXd noise = random_start(lin.dofs(), o.block_size, o.seed + 1);
+      for (Eigen::Index j = 0; j < x0.cols(); ++j)
+        x0.col(j) += (o.start_noise * x0.col(j).norm() / noise.col(j).norm()) * noise.col(j);
+    }
   }
   if (t) r.sigma_p = t->sigma();
   BlockLobpcg solver(lin, sgn, o, t, r);
