@@ -228,7 +228,6 @@ MatrixFreeCriticalLoad lobpcg(const MatrixFreeLinearisation& lin, double sgn, co
 // boundaries do not depend on the thread count, and partial Gram matrices are summed in chunk order, so the result is
 // the same bits for any thread count (core/threads.hpp).
 constexpr Eigen::Index kRowChunk = 4096;
-// Temporaries live in a per-thread buffer (no allocation per chunk).
 using ConstCols = Eigen::Ref<const Eigen::MatrixXd>;
 using Cols = Eigen::Ref<Eigen::MatrixXd>;
 
@@ -263,7 +262,8 @@ void subtract_product(Cols y, const ConstCols& z, const Eigen::MatrixXd& c) {
 }
 
 /// Columns [out0, out0 + c.cols()) of q <- columns [c0, c0 + c.rows()) of q times c, chunk by chunk through a
-/// chunk-sized temporary (each chunk reads its rows before writing them, so the ranges may overlap).
+/// chunk-sized per-thread buffer (each chunk reads its rows before writing them, so the ranges may overlap; no
+/// allocation per chunk).
 void transform_columns(Eigen::MatrixXd& q, Eigen::Index c0, const Eigen::MatrixXd& c, Eigen::Index out0) {
   for_row_chunks(q.rows(), [&](long, Eigen::Index r0, Eigen::Index len) {
     thread_local std::vector<double> buffer;
