@@ -559,11 +559,13 @@ void check_common(const MatrixFreeLinearisation& lin, const MatrixFreeCriticalLo
 }
 
 void check_block(const MatrixFreeLinearisation& lin, const MatrixFreeCriticalLoadOptions& o) {
-  if (o.block_size < 1 || 3L * o.block_size > lin.dofs() || o.refresh_every < 0)
+  if (o.block_size < 1 || 3L * o.block_size > lin.dofs() || o.refresh_every < 0 || !(o.start_noise >= 0) ||
+      !std::isfinite(o.start_noise))
     throw std::invalid_argument(
         "matrix_free_critical_load: options need block_size in [1, dofs / 3 = " + std::to_string(lin.dofs() / 3) +
-        "] and refresh_every >= 0 (got block_size " + std::to_string(o.block_size) + ", refresh_every " +
-        std::to_string(o.refresh_every) + ")");
+        "], refresh_every >= 0 and a finite start_noise >= 0 (got block_size " + std::to_string(o.block_size) +
+        ", refresh_every " + std::to_string(o.refresh_every) + ", start_noise " + format_number(o.start_noise, 3) +
+        ")");
 }
 
 }  // namespace

@@ -208,6 +208,9 @@ TEST(MatrixFreeCriticalLoad, BlockLobpcgReportsNotConvergingAndRefusesNonLattice
   EXPECT_THROW(matrix_free_critical_load(lin, LoadDirection::Tension,
                                          {.method = MatrixFreeEigenMethod::BlockLobpcg, .margin = -1}),
                std::invalid_argument);
+  EXPECT_THROW(matrix_free_critical_load(lin, LoadDirection::Tension,
+                                         {.method = MatrixFreeEigenMethod::BlockLobpcg, .start_noise = -1}),
+               std::invalid_argument);
   // Not a square lattice: a one-line error naming the problem.
   const Kernel<2> k(KernelType::CubicSpline);
   auto hex = make_discretisation(strain_lattice_2d(LatticeType::Hexagonal, k, 1.3, 12), k, 1.3);
