@@ -7,6 +7,7 @@
 
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/memory_budget.hpp"
+#include "sphstab/core/threads.hpp"
 #include "sphstab/jacobian/analytic_jacobian_2d.hpp"
 
 namespace sphstab {
@@ -175,8 +176,12 @@ void MatrixFreeLinearisation::apply_combination(double c0, double c1, const Eige
 
   if (with_a0) {
     // Steps 1-2 (derivation item 1): (grad x)_j^{cd} = sum_{k free} Dm^d_jk x_k^c, Dm = G - diag(g); then
-    // sigma_j = C : grad x_j (C drops the antisymmetric part).
-    for (int j : m_stress_rows) {
+    // sigma_j = C : grad x_j (C drops the antisymmetric part). Rows are independent: threads own whole rows (same
+    // bits for any thread count, core/threads.hpp).
+    const long rows = static_cast<long>(m_stress_rows.size());
+#pragma omp parallel for schedule(static) num_threads(threads_for(rows))
+    for (long s = 0; s < rows; ++s) {
+      const int j = m_stress_rows[s];
       double gxx = 0, gxy = 0, gyx = 0, gyy = 0;  // g^{cd}: component c, derivative d
       for (long k = m_offsets[j]; k < m_offsets[j + 1]; ++k) {
         const int kf = m_free_slot[m_indices[k]];
@@ -205,6 +210,7 @@ void MatrixFreeLinearisation::apply_combination(double c0, double c1, const Eige
   const int nf = free_count();
   const Eigen::Matrix2d& s0 = m_s0;
   const bool cons = m_form == MomentumForm::Conservative;
+#pragma omp parallel for schedule(static) num_threads(threads_for(nf))
   for (int f = 0; f < nf; ++f) {
     const int i = m_free[f];
     double yx = 0, yy = 0;

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "sphstab/core/format.hpp"
+#include "sphstab/core/threads.hpp"
 #include "sphstab/jacobian/matrix_free_operator.hpp"
 #include "sphstab/stability/lattice_sine_preconditioner.hpp"
 #include "sphstab/stability/lattice_stencil.hpp"
@@ -223,6 +224,62 @@ MatrixFreeCriticalLoad lobpcg(const MatrixFreeLinearisation& lin, double sgn, co
   return r;
 }
 
+// Dense block algebra of BlockLobpcg on tall blocks (dofs x <= 3b), threaded over fixed row chunks: the chunk
+// boundaries do not depend on the thread count, and partial Gram matrices are summed in chunk order, so the result is
+// the same bits for any thread count (core/threads.hpp).
+constexpr Eigen::Index kRowChunk = 4096;
+using ConstCols = Eigen::Ref<const Eigen::MatrixXd>;
+using Cols = Eigen::Ref<Eigen::MatrixXd>;
+
+template <class F>
+void for_row_chunks(Eigen::Index rows, F&& f) {
+  const long chunks = static_cast<long>((rows + kRowChunk - 1) / kRowChunk);
+  const int threads = static_cast<int>(std::max<long>(1, std::min<long>(max_threads(), chunks)));
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (long c = 0; c < chunks; ++c) {
+    const Eigen::Index r0 = c * kRowChunk;
+    f(c, r0, std::min(kRowChunk, rows - r0));
+  }
+}
+
+/// a^T b.
+Eigen::MatrixXd gram(const ConstCols& a, const ConstCols& b) {
+  const long chunks = static_cast<long>((a.rows() + kRowChunk - 1) / kRowChunk);
+  std::vector<Eigen::MatrixXd> part(chunks);
+  for_row_chunks(a.rows(), [&](long c, Eigen::Index r0, Eigen::Index len) {
+    part[c].noalias() = a.middleRows(r0, len).transpose() * b.middleRows(r0, len);
+  });
+  Eigen::MatrixXd g = Eigen::MatrixXd::Zero(a.cols(), b.cols());
+  for (const Eigen::MatrixXd& p : part) g += p;
+  return g;
+}
+
+/// y -= z c.
+void subtract_product(Cols y, const ConstCols& z, const Eigen::MatrixXd& c) {
+  for_row_chunks(y.rows(), [&](long, Eigen::Index r0, Eigen::Index len) {
+    y.middleRows(r0, len).noalias() -= z.middleRows(r0, len) * c;
+  });
+}
+
+/// Columns [out0, out0 + c.cols()) of q <- columns [c0, c0 + c.rows()) of q times c, chunk by chunk through a
+/// chunk-sized per-thread buffer (each chunk reads its rows before writing them, so the ranges may overlap; no
+/// allocation per chunk).
+void transform_columns(Eigen::MatrixXd& q, Eigen::Index c0, const Eigen::MatrixXd& c, Eigen::Index out0) {
+  for_row_chunks(q.rows(), [&](long, Eigen::Index r0, Eigen::Index len) {
+    thread_local std::vector<double> buffer;
+    if (buffer.size() < static_cast<std::size_t>(len * c.cols())) buffer.resize(len * c.cols());
+    Eigen::Map<Eigen::MatrixXd> t(buffer.data(), len, c.cols());
+    t.noalias() = q.block(r0, c0, len, c.rows()) * c;
+    q.block(r0, out0, len, c.cols()) = t;
+  });
+}
+
+/// dst = src.
+void copy(const ConstCols& src, Cols dst) {
+  for_row_chunks(src.rows(),
+                 [&](long, Eigen::Index r0, Eigen::Index len) { dst.middleRows(r0, len) = src.middleRows(r0, len); });
+}
+
 /// Block LOBPCG for the largest eigenvalues of L x = lambda K x in the orthogonal-basis form of
 /// [HetmaniukLehoucq2006] (port of the Python prototype solvers.lobpcg). The basis Q = [X | P | W] is stored in one
 /// dofs x 3b matrix per operator (Q, K Q, L Q), so the Rayleigh-Ritz Gram matrices are one product each and no block
@@ -237,7 +294,6 @@ class BlockLobpcg {
     m_k.resize(n, 3 * m_b);
     m_l.resize(n, 3 * m_b);
     m_a.resize(n, m_b);
-    m_c.resize(n, m_b);
   }
 
   /// Runs from the start block x0 (dofs x b); fills the result.
@@ -253,7 +309,10 @@ class BlockLobpcg {
     for (long it = 0;; ++it) {
       // Residuals R = L X - K X diag(theta) (in m_a).
       auto res = m_a.leftCols(nx);
-      res = m_l.leftCols(nx) - m_k.leftCols(nx) * theta.asDiagonal();
+      for_row_chunks(res.rows(), [&](long, Eigen::Index r0, Eigen::Index len) {
+        res.middleRows(r0, len) =
+            m_l.leftCols(nx).middleRows(r0, len) - m_k.leftCols(nx).middleRows(r0, len) * theta.asDiagonal();
+      });
       m_r.residual = res.col(0).norm() / (std::abs(theta[0]) * m_k.col(0).norm());
       m_r.lambda_max = theta[0];
       if (m_r.residual <= m_o.residual_tol) {
@@ -269,20 +328,21 @@ class BlockLobpcg {
       // W = T R, K-orthogonal to X and P, K-orthonormal.
       const int wpos = nx + np;
       if (m_t) {
+        const auto t0 = std::chrono::steady_clock::now();
         m_t->apply(res, m_v.middleCols(wpos, nx));
         m_r.preconditioner_applications += nx;
+        m_r.preconditioner_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       } else {
-        m_v.middleCols(wpos, nx) = res;
+        copy(res, m_v.middleCols(wpos, nx));
       }
       products(wpos, nx);
-      kproject(wpos, nx, 0, nx);
-      if (np > 0) kproject(wpos, nx, nx, np);
+      kproject(wpos, nx, 0, nx + np);  // X and P are K-orthonormal together: one projection against both
       const int nw = korth(wpos, nx);
       if (nw < 0) return;
       const int m = nx + np + nw;
       // Rayleigh-Ritz on span{X, P, W}: H c = theta G c, largest first.
-      Eigen::MatrixXd g = m_v.leftCols(m).transpose() * m_k.leftCols(m);
-      Eigen::MatrixXd h = m_v.leftCols(m).transpose() * m_l.leftCols(m);
+      Eigen::MatrixXd g = gram(m_v.leftCols(m), m_k.leftCols(m));
+      Eigen::MatrixXd h = gram(m_v.leftCols(m), m_l.leftCols(m));
       g = 0.5 * (g + g.transpose()).eval();
       h = 0.5 * (h + h.transpose()).eval();
       Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> ges(h, g);
@@ -295,12 +355,14 @@ class BlockLobpcg {
       const Eigen::MatrixXd vx = ges.eigenvectors().rowwise().reverse().leftCols(bn);
       const Eigen::VectorXd w = ges.eigenvalues().reverse();
       // X <- Q Vx, P <- Q[P, W] Vx[P, W] (the part of the step without the old X).
-      for (Eigen::MatrixXd* q : {&m_v, &m_k, &m_l}) {
-        m_a.leftCols(bn).noalias() = q->leftCols(m) * vx;
-        if (m > nx) m_c.leftCols(bn).noalias() = q->middleCols(nx, m - nx) * vx.bottomRows(m - nx);
-        q->leftCols(bn) = m_a.leftCols(bn);
-        if (m > nx) q->middleCols(bn, bn) = m_c.leftCols(bn);
+      // In one pass per operator: [X P] <- Q [Vx | (0; Vx[P, W])].
+      Eigen::MatrixXd cx(m, m > nx ? 2 * bn : bn);
+      cx.leftCols(bn) = vx;
+      if (m > nx) {
+        cx.rightCols(bn).topRows(nx).setZero();
+        cx.rightCols(bn).bottomRows(m - nx) = vx.bottomRows(m - nx);
       }
+      for (Eigen::MatrixXd* q : {&m_v, &m_k, &m_l}) transform_columns(*q, 0, cx, 0);
       const bool have_p = m > nx;
       nx = bn;
       theta = w.head(nx);
@@ -335,21 +397,21 @@ class BlockLobpcg {
 
   /// K and L products of columns [c0, c0 + m) of Q.
   void products(int c0, int m) {
+    const auto t0 = std::chrono::steady_clock::now();
     for (int j = c0; j < c0 + m; ++j) {
       m_lin.apply_A0(m_v.col(j), m_k.col(j));
       m_lin.apply_combination(0.0, -m_sgn, m_v.col(j), m_l.col(j));
     }
     m_r.a0_products += m;
     m_r.a1_products += m;
+    m_r.product_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
 
   /// Y <- Y - Z (Z^T K Y), twice, for K-orthonormal Z = columns [z0, z0 + mz), Y = [y0, y0 + my).
   void kproject(int y0, int my, int z0, int mz) {
     for (int pass = 0; pass < 2; ++pass) {
-      const Eigen::MatrixXd c = m_k.middleCols(z0, mz).transpose() * m_v.middleCols(y0, my);
-      m_v.middleCols(y0, my).noalias() -= m_v.middleCols(z0, mz) * c;
-      m_k.middleCols(y0, my).noalias() -= m_k.middleCols(z0, mz) * c;
-      m_l.middleCols(y0, my).noalias() -= m_l.middleCols(z0, mz) * c;
+      const Eigen::MatrixXd c = gram(m_k.middleCols(z0, mz), m_v.middleCols(y0, my));
+      for (Eigen::MatrixXd* q : {&m_v, &m_k, &m_l}) subtract_product(q->middleCols(y0, my), q->middleCols(z0, mz), c);
     }
   }
 
@@ -358,7 +420,7 @@ class BlockLobpcg {
   /// (status set) when the Gram matrix shows K is not positive definite.
   int korth(int c0, int m) {
     if (m == 0) return 0;
-    Eigen::MatrixXd g = m_v.middleCols(c0, m).transpose() * m_k.middleCols(c0, m);
+    Eigen::MatrixXd g = gram(m_v.middleCols(c0, m), m_k.middleCols(c0, m));
     g = 0.5 * (g + g.transpose()).eval();
     Eigen::VectorXd d = g.diagonal().cwiseAbs().cwiseSqrt();
     for (Eigen::Index i = 0; i < d.size(); ++i)
@@ -380,23 +442,17 @@ class BlockLobpcg {
     Eigen::MatrixXd c(m, mk);
     for (int j = 0; j < mk; ++j) c.col(j) = es.eigenvectors().col(keep[j]) / std::sqrt(w[keep[j]]);
     c = d.cwiseInverse().asDiagonal() * c;
-    for (Eigen::MatrixXd* q : {&m_v, &m_k, &m_l}) {
-      m_a.leftCols(mk).noalias() = q->middleCols(c0, m) * c;
-      q->middleCols(c0, mk) = m_a.leftCols(mk);
-    }
+    for (Eigen::MatrixXd* q : {&m_v, &m_k, &m_l}) transform_columns(*q, c0, c, c0);
     return mk;
   }
 
   /// Rayleigh-Ritz on the K-orthonormal X = columns [0, nx): X <- X V, returns the Ritz values, largest first.
   Eigen::VectorXd ritz_on_x(int nx) {
-    Eigen::MatrixXd h = m_v.leftCols(nx).transpose() * m_l.leftCols(nx);
+    Eigen::MatrixXd h = gram(m_v.leftCols(nx), m_l.leftCols(nx));
     h = 0.5 * (h + h.transpose()).eval();
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(h);
     const Eigen::MatrixXd v = es.eigenvectors().rowwise().reverse();
-    for (Eigen::MatrixXd* q : {&m_v, &m_k, &m_l}) {
-      m_a.leftCols(nx).noalias() = q->leftCols(nx) * v;
-      q->leftCols(nx) = m_a.leftCols(nx);
-    }
+    for (Eigen::MatrixXd* q : {&m_v, &m_k, &m_l}) transform_columns(*q, 0, v, 0);
     return es.eigenvalues().reverse();
   }
 
@@ -407,7 +463,7 @@ class BlockLobpcg {
   MatrixFreeCriticalLoad& m_r;
   int m_b;
   Eigen::MatrixXd m_v, m_k, m_l;  ///< Q, K Q, L Q: dofs x 3b, columns [X | P | W]
-  Eigen::MatrixXd m_a, m_c;       ///< dofs x b workspaces
+  Eigen::MatrixXd m_a;            ///< dofs x b workspace (residuals)
 };
 
 /// Start block: the zone-boundary modes (-1)^i (x-polarised, k = (pi, 0)) and (-1)^j (y-polarised) times sine
@@ -470,6 +526,13 @@ MatrixFreeCriticalLoad block_lobpcg(const MatrixFreeLinearisation& lin, double s
     if (!g && o.start == MatrixFreeStart::ZoneBoundary)
       square_lattice(lin.free_positions(), "matrix_free_critical_load (start ZoneBoundary)");  // throws the reason
     x0 = g ? zone_boundary_start(g->n, o.block_size, o.seed) : random_start(lin.dofs(), o.block_size, o.seed);
+    if (g && o.start_noise > 0) {
+      // The zone-boundary modes are symmetric under the lattice reflections, which K, L and the preconditioner
+      // commute with: without noise the iteration stays in their symmetry classes and can miss the top mode.
+      const Eigen::MatrixXd noise = random_start(lin.dofs(), o.block_size, o.seed + 1);
+      for (Eigen::Index j = 0; j < x0.cols(); ++j)
+        x0.col(j) += (o.start_noise * x0.col(j).norm() / noise.col(j).norm()) * noise.col(j);
+    }
   }
   if (t) r.sigma_p = t->sigma();
   BlockLobpcg solver(lin, sgn, o, t, r);
@@ -496,11 +559,13 @@ void check_common(const MatrixFreeLinearisation& lin, const MatrixFreeCriticalLo
 }
 
 void check_block(const MatrixFreeLinearisation& lin, const MatrixFreeCriticalLoadOptions& o) {
-  if (o.block_size < 1 || 3L * o.block_size > lin.dofs() || o.refresh_every < 0)
+  if (o.block_size < 1 || 3L * o.block_size > lin.dofs() || o.refresh_every < 0 || !(o.start_noise >= 0) ||
+      !std::isfinite(o.start_noise))
     throw std::invalid_argument(
         "matrix_free_critical_load: options need block_size in [1, dofs / 3 = " + std::to_string(lin.dofs() / 3) +
-        "] and refresh_every >= 0 (got block_size " + std::to_string(o.block_size) + ", refresh_every " +
-        std::to_string(o.refresh_every) + ")");
+        "], refresh_every >= 0 and a finite start_noise >= 0 (got block_size " + std::to_string(o.block_size) +
+        ", refresh_every " + std::to_string(o.refresh_every) + ", start_noise " + format_number(o.start_noise, 3) +
+        ")");
 }
 
 }  // namespace

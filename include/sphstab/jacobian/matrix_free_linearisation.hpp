@@ -22,7 +22,8 @@
 /// \note Same coverage as analytic_jacobian_2d: plain kernel gradient, rest state, zero fixed displacements, no
 ///       additional momentum terms. Agreement with the assembled matrices is checked on random vectors in
 ///       tests/jacobian/matrix_free_linearisation_test.cpp.
-/// \note apply_* use an internal stress buffer: one object must not apply from two threads at once.
+/// \note apply_* use an internal stress buffer: one object must not apply from two threads at once. Each apply runs its
+///       two row loops on the threads of core/threads.hpp (whole rows per thread: the same bits for any count).
 ///
 /// \code{.cpp}
 /// auto set = sphstab::strain_lattice_2d(sphstab::LatticeType::Square, kernel, 1.3, 1000);

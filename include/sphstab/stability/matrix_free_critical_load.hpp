@@ -22,20 +22,27 @@
 ///     preconditioner LatticeSine (lattice_sine_preconditioner.hpp, stencil probed from `lin` itself, square
 ///     lattices only): T = (sigma_p K - L)^{-1} approximated by 2D sine transforms; start ZoneBoundary: the
 ///     zone-boundary modes (-1)^i, (-1)^j times the lowest sine envelopes, x- and y-polarised (the shape of the
-///     critical modes). Measured (n = 16 - 1000, block size 4): 30-60 steps independent of n; block sizes 1 and 2
-///     from this start can converge to the second eigenvalue (prototype, rel. error 1e-3): keep 4.
+///     critical modes). Measured (cubic, h = 1.3 dx, conservative, isotropic; block size 4, residual_tol 1e-8,
+///     margin 0.02): 37-40 steps at n = 12 - 128, 36-37 at n = 256 - 1000 (independent of n), n = 1000 (2 x 10^6
+///     DOFs) in ~40 s and 2.6 GB on 2 threads (results/critical-strain-large). In the Python prototype block sizes
+///     1 and 2 from this start converged to the second eigenvalue (relative error 1e-3): keep 4.
+///     Threads (core/threads.hpp): operator rows, the preconditioner's transforms and the dense block algebra over
+///     fixed row chunks: the same bits for any thread count.
 ///   - LanczosCg: Spectra's SymGEigsSolver in regular-inverse mode (Lanczos on K^{-1} L in the K inner product),
 ///     each K^{-1} v by unpreconditioned conjugate gradients to cg_rtol. A0 is nearly singular on the zone-boundary
 ///     modes: ~3 n^2 CG steps per solve (790 at n = 16, 3200 at n = 32) times 60-280 solves: 8x the A0 products of
 ///     LOBPCG at n = 16, 190x at n = 32; kept as an independent check.
 /// All agree with the direct route (critical_load, Criterion::Definiteness) to <= 1e-13 relative: n = 16 in
-/// tests/stability/matrix_free_critical_load_test.cpp, n = 32 and 64 (LOBPCG) and n = 32 (LanczosCg) by hand.
+/// tests/stability/matrix_free_critical_load_test.cpp (BlockLobpcg: n = 16 and 32), n = 32 and 64 (LOBPCG) and
+/// n = 32 (LanczosCg) by hand.
 ///
 /// \code{.cpp}
 /// sphstab::MatrixFreeLinearisation lin(*disc, material, sphstab::MomentumForm::Conservative,
 ///                                      sphstab::PreStrainKind::Isotropic);
-/// auto r = sphstab::matrix_free_critical_load(lin, sphstab::LoadDirection::Tension);
+/// auto r = sphstab::matrix_free_critical_load(lin, sphstab::LoadDirection::Tension,
+///                                             {.method = sphstab::MatrixFreeEigenMethod::BlockLobpcg});
 /// if (r.info() == sphstab::Status::Successful) std::cout << r.load << " after " << r.iterations << " steps";
+/// else std::cout << r.reason;   // e.g. NotConverging: steps and residual
 /// \endcode
 #include <Eigen/Core>
 #include <cstdint>
@@ -69,6 +76,9 @@ struct MatrixFreeCriticalLoadOptions {
   MatrixFreePreconditioner preconditioner = MatrixFreePreconditioner::LatticeSine;
   double margin = 0.02;  ///< LatticeSine: sigma_p = (1 + margin) x the symbol maximum
   MatrixFreeStart start = MatrixFreeStart::Auto;
+  /// ZoneBoundary start plus this much uniform random noise (relative 2-norm per column): breaks the start's
+  /// reflection symmetry, which K, L and the preconditioner preserve (0: none).
+  double start_noise = 0.1;
   int refresh_every = 100;    ///< recompute K X, L X and drop P every this many steps (0: never)
   bool fftw_measure = false;  ///< LatticeSine: plan with FFTW_MEASURE instead of FFTW_ESTIMATE
 };
@@ -81,12 +91,14 @@ struct MatrixFreeCriticalLoad {
   long a0_products = 0;                  ///< matrix-free A0 products in all (one per vector)
   long a1_products = 0;                  ///< BlockLobpcg: A1 products (one per vector)
   long preconditioner_applications = 0;  ///< BlockLobpcg: T applications (one per vector)
-  double residual = nan;     ///< BlockLobpcg: ||L x - theta K x|| / (|theta| ||K x||) of the top pair at the end
-  double sigma_p = nan;      ///< BlockLobpcg with LatticeSine: the preconditioner shift
-  double setup_seconds = 0;  ///< BlockLobpcg: stencil probe and preconditioner setup (wall)
-  double solve_seconds = 0;  ///< BlockLobpcg: the iteration (wall)
-  int solves = 0;            ///< LanczosCg: K^{-1} v solves (one per Lanczos step)
-  long cg_iterations = 0;    ///< LanczosCg: total CG steps
+  double residual = nan;       ///< BlockLobpcg: ||L x - theta K x|| / (|theta| ||K x||) of the top pair at the end
+  double sigma_p = nan;        ///< BlockLobpcg with LatticeSine: the preconditioner shift
+  double setup_seconds = 0;    ///< BlockLobpcg: stencil probe and preconditioner setup (wall)
+  double solve_seconds = 0;    ///< BlockLobpcg: the iteration (wall), of which:
+  double product_seconds = 0;  ///<   A0 and A1 products
+  double preconditioner_seconds = 0;  ///<   preconditioner applications (the rest: dense block algebra)
+  int solves = 0;                     ///< LanczosCg: K^{-1} v solves (one per Lanczos step)
+  long cg_iterations = 0;             ///< LanczosCg: total CG steps
   int max_cg_iterations = 0;
   Eigen::VectorXd mode;  ///< the eigenvector of lambda_max (K-normalised)
   Status status = Status::NotComputed;
