@@ -23,6 +23,7 @@
 #include "sphstab/io/csv.hpp"
 #include "sphstab/io/progress.hpp"
 #include "sphstab/jacobian/analytic_jacobian_2d.hpp"
+#include "sphstab/jacobian/matrix_free_linearisation.hpp"
 #include "sphstab/kernel/kernel.hpp"
 #include "sphstab/particles/lattice.hpp"
 #include "sphstab/particles/lattice_presets.hpp"
@@ -30,6 +31,7 @@
 #include "sphstab/spectral/fourier_symbol_2d.hpp"
 #include "sphstab/spectral/tension_estimates.hpp"
 #include "sphstab/stability/critical_load.hpp"
+#include "sphstab/stability/matrix_free_critical_load.hpp"
 
 namespace sphstab::cli {
 
@@ -126,6 +128,15 @@ void require_tcrit_2d_memory(int n, double support, bool dense) {
   require_memory(bytes, "tcrit: --dim 2 --n " + std::to_string(n) + " with h/dx = " + num(support / 2));
 }
 
+/// --method lobpcg: the matrix-free linearisation (about 1.2 kB per particle, matrix_free_linearisation.hpp) and
+/// BlockLobpcg's blocks (10 b + 8 vectors of 2 doubles per free particle, b = 4): 2.6 GB measured at n = 1000
+/// (results/critical-strain-large).
+void require_tcrit_2d_lobpcg_memory(int n, double support) {
+  const double side = n + 2.0 * std::floor(support + 2), particles = side * side, nf = double(n) * n;
+  const double bytes = 1400 * particles + 16 * 48 * nf;
+  require_memory(bytes, "tcrit: --dim 2 --method lobpcg --n " + std::to_string(n) + " with h/dx = " + num(support / 2));
+}
+
 /// --dim 2: critical pre-strain e_crit of an n x n lattice (fixed layers: analytic Jacobian, bisection + eigen;
 /// periodic: exact Fourier symbols) with the infinite-lattice limit.
 void run_tcrit_2d(const TcritArgs& a) {
@@ -149,8 +160,14 @@ void run_tcrit_2d(const TcritArgs& a) {
   for (const auto& f : split_list(a.form, ',', "tcrit: --form")) forms.push_back(parse_momentum_form(f));
   if (kernels.empty() || forms.empty()) throw std::invalid_argument("tcrit: --kernel and --form must not be empty");
   const std::vector<double> hs = parse_h(a.h);
+  // lobpcg: the matrix-free preconditioned block LOBPCG (matrix_free_critical_load.hpp, BlockLobpcg), O(N) memory
+  const bool lobpcg = a.method == "lobpcg";
+  if (lobpcg && (a.periodic || type != LatticeType::Square))
+    throw std::invalid_argument("tcrit: --method lobpcg needs a square lattice with fixed layers (not --periodic)");
+  if (lobpcg && (a.backend != "auto" || a.criterion != "auto"))
+    throw std::invalid_argument("tcrit: --method lobpcg takes no --backend or --criterion (definiteness, matrix-free)");
   CriticalLoadOptions opt = CriticalLoadOptions::strain_2d();
-  opt.method = parse_critical_load_method(a.method);
+  opt.method = lobpcg ? CriticalLoadMethod::Eigen : parse_critical_load_method(a.method);
   opt.backend = parse_eigen_backend(a.backend);
   opt.criterion = parse_criterion(a.criterion);
   opt.want_mode = true;
@@ -161,7 +178,10 @@ void run_tcrit_2d(const TcritArgs& a) {
       throw std::invalid_argument("tcrit: periodic box of --n " + a.n +
                                   " is shorter than twice the support 2h = " + num(support) + " (increase --n)");
     const bool dense = opt.backend == EigenBackend::Dense || 2.0 * n * n <= opt.spectrum_dense_max;
-    if (!a.periodic) require_tcrit_2d_memory(n, support, dense);
+    if (lobpcg)
+      require_tcrit_2d_lobpcg_memory(n, support);
+    else if (!a.periodic)
+      require_tcrit_2d_memory(n, support, dense);
   }
 
   std::string out =
@@ -192,6 +212,19 @@ void run_tcrit_2d(const TcritArgs& a) {
           method = "symbol";
           backend = "none";
           criterion = "spectrum";
+        } else if (lobpcg) {
+          const MatrixFreeLinearisation lin(*disc, material, form, kind);
+          const MatrixFreeCriticalLoad m =
+              matrix_free_critical_load(lin, sign, {.method = MatrixFreeEigenMethod::BlockLobpcg});
+          r.load = r.load_eigen = m.load;
+          r.mechanism = std::isfinite(m.load) ? InstabilityMechanism::RealCrossing : InstabilityMechanism::None;
+          r.status = m.status;
+          r.reason = m.status == Status::Successful
+                         ? "block LOBPCG, lattice sine preconditioner: " + std::to_string(m.iterations) +
+                               " steps, residual " + num(m.residual)
+                         : m.reason;
+          backend = "matrix-free";
+          criterion = "definiteness";
         } else {
           r = critical_load(analytic_jacobian_2d(*disc, material, form, kind), sign, opt);
           backend = r.eigen_backend.empty() ? "none" : r.eigen_backend;
@@ -398,7 +431,9 @@ void register_tcrit_command(CLI::App& app) {
   cmd->add_option("--kernel", args->kernel, "Kernel name or comma list (see `sphstab kernels`)");
   cmd->add_option("--form", args->form, "uncorrected|plus|minus|conservative, or a comma list");
   cmd->add_option("--h", args->h, "h/dx: value, comma list or a:b:step (support radius 2h)");
-  cmd->add_option("--method", args->method, "eig|bisect|both (default both)");
+  cmd->add_option("--method", args->method,
+                  "eig|bisect|both (default both); --dim 2: also lobpcg, the matrix-free preconditioned block LOBPCG "
+                  "for large square blocks (results/critical-strain-large)");
   cmd->add_option("--backend", args->backend, "Eigen route: auto|dense|spectra (auto: dense up to 200 DOF)");
   cmd->add_option("--correction", args->correction,
                   "1D kernel correction: none|minus|shepard|column-shepard|ncsph|local-polish|mean-polish|"

@@ -214,6 +214,34 @@ TEST(TcritCommand, TwoDimensionalCriticalPreStrain) {
   EXPECT_EQ(fields(lines(m.out)[1])[col("ecrit")], "inf");
 }
 
+TEST(TcritCommand, MatrixFreeLobpcgAgreesWithTheEigenRoute) {
+  // --method lobpcg (matrix-free preconditioned block LOBPCG) against the default assembled eigen route, same block.
+  const std::string common = "tcrit --dim 2 --n 14 --kernel cubic --form conservative --h 1.3 ";
+  CliRun a = run(common + "--method lobpcg");
+  CliRun b = run(common + "--method eig");
+  ASSERT_EQ(a.status, 0) << a.out;
+  ASSERT_EQ(b.status, 0) << b.out;
+  auto header = fields(lines(a.out)[0]);
+  auto col = [&](const char* name) { return std::find(header.begin(), header.end(), name) - header.begin(); };
+  auto ra = fields(lines(a.out)[1]), rb = fields(lines(b.out)[1]);
+  EXPECT_EQ(ra[col("method")], "lobpcg");
+  EXPECT_EQ(ra[col("backend")], "matrix-free");
+  EXPECT_EQ(ra[col("status")], "successful");
+  const double ea = std::stod(ra[col("ecrit")]), eb = std::stod(rb[col("ecrit")]);
+  ASSERT_TRUE(std::isfinite(eb) && eb > 0);
+  EXPECT_NEAR(ea / eb, 1.0, 1e-8);
+  for (const char* args :
+       {"tcrit --dim 2 --n 14 --method lobpcg --periodic", "tcrit --dim 2 --n 14 --method lobpcg --lattice hex",
+        "tcrit --dim 2 --n 14 --method lobpcg --backend dense",
+        "tcrit --dim 2 --n 14 --method lobpcg --form plus --prestrain uniaxial"}) {
+    CliRun r = run(args, true);
+    EXPECT_EQ(r.status, 1) << args;
+    auto ls = lines(r.out);
+    ASSERT_EQ(ls.size(), 1u) << args << ":\n" << r.out;
+    EXPECT_EQ(ls[0].rfind("sphstab: error: ", 0), 0u) << args << ": " << ls[0];
+  }
+}
+
 TEST(TcritCommand, TwoDimensionalBadInput) {
   for (const char* args :
        {"tcrit --dim 2 --lattice line", "tcrit --dim 2 --prestrain shear", "tcrit --dim 2 --mu -1",
