@@ -51,6 +51,15 @@ std::vector<std::string> fields(const std::string& line) {
   return out;
 }
 
+/// `args` fails with exit status 1 and exactly one line "sphstab: error: ...".
+void expect_one_error_line(const std::string& args) {
+  CliRun r = run(args, true);
+  EXPECT_EQ(r.status, 1) << args;
+  auto ls = lines(r.out);
+  ASSERT_EQ(ls.size(), 1u) << args << ":\n" << r.out;
+  EXPECT_EQ(ls[0].rfind("sphstab: error: ", 0), 0u) << args << ": " << ls[0];
+}
+
 TEST(TcritCommand, PrintsCsvAgreeingWithLibrary) {
   CliRun r = run("tcrit --dim 1 --lattice line --n 30 --kernel cubic --form conservative --h 0.8:3.0:0.05");
   ASSERT_EQ(r.status, 0);
@@ -155,11 +164,7 @@ TEST(TcritCommand, BadInputIsOneErrorLineAndExitOne) {
         "tcrit --correction shepard --periodic", "tcrit --corrected-operator strain",
         "tcrit --correction shepard --corrected-operator sideways", "tcrit --bogus 3", "tcrit --n 3 --h 3.0 --periodic",
         "tcrit --prestrain uniaxial"}) {
-    CliRun r = run(args, true);
-    EXPECT_EQ(r.status, 1) << args;
-    auto ls = lines(r.out);
-    ASSERT_EQ(ls.size(), 1u) << args << ":\n" << r.out;
-    EXPECT_EQ(ls[0].rfind("sphstab: error: ", 0), 0u) << args << ": " << ls[0];
+    expect_one_error_line(args);
   }
   CliRun dim3 = run("tcrit --dim 3", true);
   EXPECT_NE(dim3.out.find("not yet supported"), std::string::npos);
@@ -234,11 +239,7 @@ TEST(TcritCommand, MatrixFreeLobpcgAgreesWithTheEigenRoute) {
        {"tcrit --dim 2 --n 14 --method lobpcg --periodic", "tcrit --dim 2 --n 14 --method lobpcg --lattice hex",
         "tcrit --dim 2 --n 14 --method lobpcg --backend dense",
         "tcrit --dim 2 --n 14 --method lobpcg --form plus --prestrain uniaxial"}) {
-    CliRun r = run(args, true);
-    EXPECT_EQ(r.status, 1) << args;
-    auto ls = lines(r.out);
-    ASSERT_EQ(ls.size(), 1u) << args << ":\n" << r.out;
-    EXPECT_EQ(ls[0].rfind("sphstab: error: ", 0), 0u) << args << ": " << ls[0];
+    expect_one_error_line(args);
   }
 }
 
@@ -247,11 +248,7 @@ TEST(TcritCommand, TwoDimensionalBadInput) {
        {"tcrit --dim 2 --lattice line", "tcrit --dim 2 --prestrain shear", "tcrit --dim 2 --mu -1",
         "tcrit --dim 2 --lambda x", "tcrit --prestrain uniaxial", "tcrit --dim 2 --lattice hex --n 5 --periodic",
         "tcrit --dim 2 --n 3 --periodic --h 1.3", "tcrit --dim 2 --criterion nope", "tcrit --dim 2 --lattice cubic"}) {
-    CliRun r = run(args, true);
-    EXPECT_EQ(r.status, 1) << args;
-    auto ls = lines(r.out);
-    ASSERT_EQ(ls.size(), 1u) << args << ":\n" << r.out;
-    EXPECT_EQ(ls[0].rfind("sphstab: error: ", 0), 0u) << args << ": " << ls[0];
+    expect_one_error_line(args);
   }
 }
 
