@@ -281,9 +281,10 @@ void copy(const ConstCols& src, Cols dst) {
 }
 
 /// Block LOBPCG for the largest eigenvalues of L x = lambda K x in the orthogonal-basis form of
-/// [HetmaniukLehoucq2006] (port of the Python prototype solvers.lobpcg). The basis Q = [X | P | W] is stored in one
-/// dofs x 3b matrix per operator (Q, K Q, L Q), so the Rayleigh-Ritz Gram matrices are one product each and no block
-/// is copied to stack them.
+/// [HetmaniukLehoucq2006] (port of solvers.lobpcg of the Python prototype,
+/// benchmarks/prototypes/lattice-preconditioner). The basis Q = [X | P | W] is stored in one dofs x 3b matrix per
+/// operator (Q, K Q, L Q), so the Rayleigh-Ritz Gram matrices are one product each and no block is copied to stack
+/// them.
 class BlockLobpcg {
  public:
   BlockLobpcg(const MatrixFreeLinearisation& lin, double sgn, const MatrixFreeCriticalLoadOptions& o,

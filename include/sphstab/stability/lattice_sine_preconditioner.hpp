@@ -15,8 +15,9 @@
 /// \f$\sigma_p = (1 + \mathrm{margin}) \max_{k, c} \hat L_{cc}(k) / \hat K_{cc}(k)\f$ over that grid makes
 /// \f$\sigma_p \hat K_{cc} - \hat L_{cc}\f$ positive, so T is symmetric positive definite; sigma_p sits just above
 /// the top of the (decoupled) lattice spectrum, so T amplifies the wanted zone-boundary modes (a shift-invert
-/// without a factorisation). Measured with block LOBPCG (Python prototype, n = 32-512): 32-54 iterations
-/// independent of n, margin 0.02-1 all converge.
+/// without a factorisation). Measured with block LOBPCG (Python prototype in
+/// benchmarks/prototypes/lattice-preconditioner, n = 32-512): 32-54 iterations independent of n, margin 0.02-1 all
+/// converge.
 ///
 /// Cost per vector: 2 components x 2 two-dimensional DST-I of n x n (FFTW, O(n^2 log n)); memory: the 2 n^2 inverse
 /// symbol values plus one n x n buffer per thread. Threads (core/threads.hpp): the 2 b transforms of a block of b
