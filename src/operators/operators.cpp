@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "pair_derivatives.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/length_scale.hpp"
 #include "sphstab/core/memory_budget.hpp"
@@ -105,21 +106,7 @@ void assemble_operators_into(Operators<Dim, Scalar>& ops, const ParticleSet<Dim>
         if (w) w[k] = Scalar(w0 * vj);
         continue;  // G_ii = 0 and H_ii = 0 by convention
       }
-      // Minimum-image separation; the image shift is decided on the real part.
-      Eigen::Matrix<Scalar, 1, Dim> d;
-      for (int a = 0; a < Dim; ++a) {
-        if (positions)
-          d[a] = (*positions)(i, a) - (*positions)(j, a);
-        else
-          d[a] = Scalar(p.x(i, a) - p.x(j, a));
-        if (p.periodic[a]) {  // neighbours are closer than L/2, so one shift suffices
-          const double L = box[a], dr = detail::re(d[a]);
-          if (dr > 0.5 * L)
-            d[a] -= L;
-          else if (dr < -0.5 * L)
-            d[a] += L;
-        }
-      }
+      const Eigen::Matrix<Scalar, 1, Dim> d = detail::pair_separation<Dim, Scalar>(p, positions, box, i, j);
       using std::sqrt;
       Scalar r2(0);  // analytic square (not |.|^2) so that complex steps pass through
       for (int a = 0; a < Dim; ++a) r2 += d[a] * d[a];
@@ -132,18 +119,15 @@ void assemble_operators_into(Operators<Dim, Scalar>& ops, const ParticleSet<Dim>
       const Scalar r = sqrt(r2);
       if (w) w[k] = kernel.value(r, h) * vj;
       if (req.gradient || req.hessian) {
-        const Scalar dw = kernel.d1(r, h);
+        std::array<Scalar, Dim> gk;
+        std::array<std::array<Scalar, Dim>, Dim> hk;
+        detail::pair_derivatives<Dim, Scalar>(kernel, h, d, r2, r, vj, req.gradient ? gk.data() : nullptr,
+                                              req.hessian ? &hk : nullptr);
         if (req.gradient)
-          for (int a = 0; a < Dim; ++a) g[a][k] = dw * d[a] / r * vj;
-        if (req.hessian) {
-          const Scalar ddw = kernel.d2(r, h);
-          const Scalar over_r = dw / r;
+          for (int a = 0; a < Dim; ++a) g[a][k] = gk[a];
+        if (req.hessian)
           for (int a = 0; a < Dim; ++a)
-            for (int b = a; b < Dim; ++b) {
-              Scalar eab = d[a] * d[b] / r2;
-              hh[a][b][k] = (ddw * eab + over_r * ((a == b ? 1.0 : 0.0) - eab)) * vj;
-            }
-        }
+            for (int b = a; b < Dim; ++b) hh[a][b][k] = hk[a][b];
       }
     }
   }

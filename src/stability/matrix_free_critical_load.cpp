@@ -23,11 +23,12 @@ namespace {
 
 /// Spectra's B operation of the regular-inverse mode for B = K = A0: perform_op is B v, solve is B^{-1} v by
 /// unpreconditioned conjugate gradients from zero; the statistics and the first failure are kept.
+template <int Dim>
 class StiffnessCgOp {
  public:
   using Scalar = double;
 
-  StiffnessCgOp(const MatrixFreeLinearisation& lin, double rtol, int maxit)
+  StiffnessCgOp(const MatrixFreeLinearisation<Dim>& lin, double rtol, int maxit)
       : m_lin(lin), m_rtol(rtol), m_maxit(maxit), m_r(lin.dofs()), m_p(lin.dofs()), m_q(lin.dofs()) {}
 
   Eigen::Index rows() const { return m_lin.dofs(); }
@@ -83,22 +84,24 @@ class StiffnessCgOp {
     reason = why;
   }
 
-  const MatrixFreeLinearisation& m_lin;
+  const MatrixFreeLinearisation<Dim>& m_lin;
   double m_rtol;
   int m_maxit;
   mutable Eigen::VectorXd m_r, m_p, m_q;
 };
 
 /// Lanczos on K^{-1} L (Spectra regular-inverse mode) with CG solves.
-MatrixFreeCriticalLoad lanczos_cg(const MatrixFreeLinearisation& lin, double sgn,
+template <int Dim>
+MatrixFreeCriticalLoad lanczos_cg(const MatrixFreeLinearisation<Dim>& lin, double sgn,
                                   const MatrixFreeCriticalLoadOptions& o) {
   const int n = lin.dofs();
-  MatrixFreeOperator op(lin, 0.0, -sgn);  // L = -sgn A1
-  StiffnessCgOp bop(lin, o.cg_rtol, o.cg_maxit > 0 ? o.cg_maxit : 10 * n);
+  MatrixFreeOperator<Dim> op(lin, 0.0, -sgn);  // L = -sgn A1
+  StiffnessCgOp<Dim> bop(lin, o.cg_rtol, o.cg_maxit > 0 ? o.cg_maxit : 10 * n);
   const int ncv = o.ncv > 0 ? o.ncv : std::min(30, n);
 
   MatrixFreeCriticalLoad r;
-  Spectra::SymGEigsSolver<MatrixFreeOperator, StiffnessCgOp, Spectra::GEigsMode::RegularInverse> eigs(op, bop, 1, ncv);
+  Spectra::SymGEigsSolver<MatrixFreeOperator<Dim>, StiffnessCgOp<Dim>, Spectra::GEigsMode::RegularInverse> eigs(op, bop,
+                                                                                                                1, ncv);
   eigs.init();
   eigs.compute(Spectra::SortRule::LargestAlge, o.maxit, o.tol);
   r.solves = bop.solves;
@@ -126,7 +129,9 @@ MatrixFreeCriticalLoad lanczos_cg(const MatrixFreeLinearisation& lin, double sgn
 /// Block-size-1 LOBPCG for the largest eigenvalue of L x = lambda K x [Knyazev2001]: Rayleigh-Ritz on span{x, w, p}
 /// with w the residual and p the previous step, all K-normalised, so that the 3 x 3 Gram matrix of K has a unit
 /// diagonal; when it is not positive definite (w or p nearly in the span of the others) p is dropped for one step.
-MatrixFreeCriticalLoad lobpcg(const MatrixFreeLinearisation& lin, double sgn, const MatrixFreeCriticalLoadOptions& o) {
+template <int Dim>
+MatrixFreeCriticalLoad lobpcg(const MatrixFreeLinearisation<Dim>& lin, double sgn,
+                              const MatrixFreeCriticalLoadOptions& o) {
   using Vector = Eigen::VectorXd;
   const int n = lin.dofs();
   MatrixFreeCriticalLoad r;
@@ -285,10 +290,11 @@ void copy(const ConstCols& src, Cols dst) {
 /// benchmarks/prototypes/lattice-preconditioner). The basis Q = [X | P | W] is stored in one dofs x 3b matrix per
 /// operator (Q, K Q, L Q), so the Rayleigh-Ritz Gram matrices are one product each and no block is copied to stack
 /// them.
+template <int Dim>
 class BlockLobpcg {
  public:
-  BlockLobpcg(const MatrixFreeLinearisation& lin, double sgn, const MatrixFreeCriticalLoadOptions& o,
-              const LatticeSinePreconditioner* t, MatrixFreeCriticalLoad& r)
+  BlockLobpcg(const MatrixFreeLinearisation<Dim>& lin, double sgn, const MatrixFreeCriticalLoadOptions& o,
+              const LatticeSinePreconditioner<Dim>* t, MatrixFreeCriticalLoad& r)
       : m_lin(lin), m_sgn(sgn), m_o(o), m_t(t), m_r(r), m_b(o.block_size) {
     const int n = lin.dofs();
     m_v.resize(n, 3 * m_b);
@@ -457,39 +463,44 @@ class BlockLobpcg {
     return es.eigenvalues().reverse();
   }
 
-  const MatrixFreeLinearisation& m_lin;
+  const MatrixFreeLinearisation<Dim>& m_lin;
   double m_sgn;
   const MatrixFreeCriticalLoadOptions& m_o;
-  const LatticeSinePreconditioner* m_t;
+  const LatticeSinePreconditioner<Dim>* m_t;
   MatrixFreeCriticalLoad& m_r;
   int m_b;
   Eigen::MatrixXd m_v, m_k, m_l;  ///< Q, K Q, L Q: dofs x 3b, columns [X | P | W]
   Eigen::MatrixXd m_a;            ///< dofs x b workspace (residuals)
 };
 
-/// Start block: the zone-boundary modes (-1)^i (x-polarised, k = (pi, 0)) and (-1)^j (y-polarised) times sine
-/// envelopes sin(pi a (i + 1)/(n + 1)) sin(pi c (j + 1)/(n + 1)) for (a, c) = (1, 1), (1, 2), (2, 1), ... (the
-/// prototype's zone_boundary_start); columns beyond 16 uniform random.
+/// Start block: zone-boundary modes polarised along each axis in turn, (-1)^i (x-polarised, k = (pi, 0[, 0])),
+/// (-1)^j (y-polarised), [(-1)^k (z-polarised)], times sine envelopes sin(pi m_a (s_a + 1)/(n + 1)) per axis a, with
+/// m = m1 along the polarisation and m2[, m3] along the following axes, (m1, m2[, m3]) = (1, 1[, 1]), (1, 2[, 1]),
+/// (2, 1[, 1]), ... (2D: the prototype's zone_boundary_start); columns beyond the table uniform random.
+template <int Dim>
 Eigen::MatrixXd zone_boundary_start(int n, int b, std::uint64_t seed) {
-  const int pairs[8][2] = {{1, 1}, {1, 2}, {2, 1}, {2, 2}, {1, 3}, {3, 1}, {3, 2}, {2, 3}};
+  const int modes[8][3] = {{1, 1, 1}, {1, 2, 1}, {2, 1, 1}, {2, 2, 1}, {1, 3, 1}, {3, 1, 1}, {3, 2, 1}, {2, 3, 1}};
   auto s = [n](int m, int i) { return std::sin(std::numbers::pi * m * (i + 1) / (n + 1)); };
-  Eigen::MatrixXd x = Eigen::MatrixXd::Zero(2L * n * n, b);
+  LatticeDofs<Dim> g;
+  g.n = n;
+  const long sites = g.count();
+  Eigen::MatrixXd x = Eigen::MatrixXd::Zero(Dim * sites, b);
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
   for (int col = 0; col < b; ++col) {
-    if (col >= 16) {
+    if (col >= 8 * Dim) {
       for (Eigen::Index q = 0; q < x.rows(); ++q) x(q, col) = uniform(rng);
       continue;
     }
-    const int a = pairs[col / 2][0], c = pairs[col / 2][1];
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const long f = i + static_cast<long>(n) * j;
-        if (col % 2 == 0)
-          x(2 * f, col) = s(c, j) * (i % 2 ? -1.0 : 1.0) * s(a, i);
-        else
-          x(2 * f + 1, col) = (j % 2 ? -1.0 : 1.0) * s(a, j) * s(c, i);
-      }
+    const int pol = col % Dim;
+    const int* m = modes[col / Dim];
+    for (long f = 0; f < sites; ++f) {
+      const std::array<int, Dim> site = g.site(f);
+      // Polarisation axis first: sign (-1)^s_pol times its envelope, then the envelopes of the following axes.
+      double v = (site[pol] % 2 ? -1.0 : 1.0) * s(m[0], site[pol]);
+      for (int t = 1; t < Dim; ++t) v *= s(m[t], site[(pol + t) % Dim]);
+      x(Dim * f + pol, col) = v;
+    }
   }
   return x;
 }
@@ -503,9 +514,10 @@ Eigen::MatrixXd random_start(int dofs, int b, std::uint64_t seed) {
   return x;
 }
 
-std::optional<SquareLatticeDofs> lattice_of(const MatrixFreeLinearisation& lin) {
+template <int Dim>
+std::optional<LatticeDofs<Dim>> lattice_of(const MatrixFreeLinearisation<Dim>& lin) {
   try {
-    return square_lattice(lin.free_positions(), "matrix_free_critical_load");
+    return lattice_dofs<Dim>(lin.free_positions(), "matrix_free_critical_load");
   } catch (const std::invalid_argument&) {
     return std::nullopt;
   }
@@ -515,18 +527,19 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-MatrixFreeCriticalLoad block_lobpcg(const MatrixFreeLinearisation& lin, double sgn,
-                                    const MatrixFreeCriticalLoadOptions& o, const LatticeSinePreconditioner* t,
+template <int Dim>
+MatrixFreeCriticalLoad block_lobpcg(const MatrixFreeLinearisation<Dim>& lin, double sgn,
+                                    const MatrixFreeCriticalLoadOptions& o, const LatticeSinePreconditioner<Dim>* t,
                                     MatrixFreeCriticalLoad r) {
   const auto t0 = std::chrono::steady_clock::now();
   Eigen::MatrixXd x0;
   if (o.start == MatrixFreeStart::Random) {
     x0 = random_start(lin.dofs(), o.block_size, o.seed);
   } else {
-    std::optional<SquareLatticeDofs> g = lattice_of(lin);
+    std::optional<LatticeDofs<Dim>> g = lattice_of(lin);
     if (!g && o.start == MatrixFreeStart::ZoneBoundary)
-      square_lattice(lin.free_positions(), "matrix_free_critical_load (start ZoneBoundary)");  // throws the reason
-    x0 = g ? zone_boundary_start(g->n, o.block_size, o.seed) : random_start(lin.dofs(), o.block_size, o.seed);
+      lattice_dofs<Dim>(lin.free_positions(), "matrix_free_critical_load (start ZoneBoundary)");  // throws the reason
+    x0 = g ? zone_boundary_start<Dim>(g->n, o.block_size, o.seed) : random_start(lin.dofs(), o.block_size, o.seed);
     if (g && o.start_noise > 0) {
       // The zone-boundary modes are symmetric under the lattice reflections, which K, L and the preconditioner
       // commute with: without noise the iteration stays in their symmetry classes and can miss the top mode.
@@ -536,7 +549,7 @@ MatrixFreeCriticalLoad block_lobpcg(const MatrixFreeLinearisation& lin, double s
     }
   }
   if (t) r.sigma_p = t->sigma();
-  BlockLobpcg solver(lin, sgn, o, t, r);
+  BlockLobpcg<Dim> solver(lin, sgn, o, t, r);
   solver.run(x0);
   r.solve_seconds = seconds_since(t0);
   if (r.status != Status::Successful) {
@@ -548,7 +561,8 @@ MatrixFreeCriticalLoad block_lobpcg(const MatrixFreeLinearisation& lin, double s
   return r;
 }
 
-void check_common(const MatrixFreeLinearisation& lin, const MatrixFreeCriticalLoadOptions& o) {
+template <int Dim>
+void check_common(const MatrixFreeLinearisation<Dim>& lin, const MatrixFreeCriticalLoadOptions& o) {
   if (!lin.symmetric())
     throw std::invalid_argument(
         "matrix_free_critical_load: the linearisation is not symmetric (needs equal volumes, complete "
@@ -559,7 +573,8 @@ void check_common(const MatrixFreeLinearisation& lin, const MatrixFreeCriticalLo
     throw std::invalid_argument("matrix_free_critical_load: options need 0 < residual_tol < 1 and max_iterations >= 0");
 }
 
-void check_block(const MatrixFreeLinearisation& lin, const MatrixFreeCriticalLoadOptions& o) {
+template <int Dim>
+void check_block(const MatrixFreeLinearisation<Dim>& lin, const MatrixFreeCriticalLoadOptions& o) {
   if (o.block_size < 1 || 3L * o.block_size > lin.dofs() || o.refresh_every < 0 || !(o.start_noise >= 0) ||
       !std::isfinite(o.start_noise))
     throw std::invalid_argument(
@@ -571,9 +586,10 @@ void check_block(const MatrixFreeLinearisation& lin, const MatrixFreeCriticalLoa
 
 }  // namespace
 
-MatrixFreeCriticalLoad matrix_free_critical_load(const MatrixFreeLinearisation& lin, LoadDirection direction,
+template <int Dim>
+MatrixFreeCriticalLoad matrix_free_critical_load(const MatrixFreeLinearisation<Dim>& lin, LoadDirection direction,
                                                  const MatrixFreeCriticalLoadOptions& o,
-                                                 const LatticeSinePreconditioner& t) {
+                                                 const LatticeSinePreconditioner<Dim>& t) {
   check_common(lin, o);
   check_block(lin, o);
   if (t.dofs() != lin.dofs())
@@ -583,7 +599,8 @@ MatrixFreeCriticalLoad matrix_free_critical_load(const MatrixFreeLinearisation& 
   return block_lobpcg(lin, load_sign(direction), o, &t, {});
 }
 
-MatrixFreeCriticalLoad matrix_free_critical_load(const MatrixFreeLinearisation& lin, LoadDirection direction,
+template <int Dim>
+MatrixFreeCriticalLoad matrix_free_critical_load(const MatrixFreeLinearisation<Dim>& lin, LoadDirection direction,
                                                  const MatrixFreeCriticalLoadOptions& o) {
   check_common(lin, o);
   if (!(o.cg_rtol > 0 && o.cg_rtol < 1) || !(o.tol > 0) || o.cg_maxit < 0 || o.maxit < 1 || o.ncv < 0 || o.ncv == 1 ||
@@ -595,18 +612,28 @@ MatrixFreeCriticalLoad matrix_free_critical_load(const MatrixFreeLinearisation& 
   const double sgn = load_sign(direction);
   if (o.method == MatrixFreeEigenMethod::BlockLobpcg) {
     check_block(lin, o);
-    if (o.preconditioner == MatrixFreePreconditioner::None) return block_lobpcg(lin, sgn, o, nullptr, {});
+    if (o.preconditioner == MatrixFreePreconditioner::None) return block_lobpcg<Dim>(lin, sgn, o, nullptr, {});
     if (!(o.margin > 0) || !std::isfinite(o.margin))
       throw std::invalid_argument("matrix_free_critical_load: options need margin > 0 (got " +
                                   format_number(o.margin, 3) + ")");
     const auto t0 = std::chrono::steady_clock::now();
-    const LatticeStencil st = probe_lattice_stencil(lin, direction);
-    const LatticeSinePreconditioner t(st, st.n, o.margin, o.fftw_measure);
+    const LatticeStencil<Dim> st = probe_lattice_stencil(lin, direction);
+    const LatticeSinePreconditioner<Dim> t(st, st.n, o.margin, o.fftw_measure);
     MatrixFreeCriticalLoad r;
     r.setup_seconds = seconds_since(t0);
     return block_lobpcg(lin, sgn, o, &t, std::move(r));
   }
   return o.method == MatrixFreeEigenMethod::Lobpcg ? lobpcg(lin, sgn, o) : lanczos_cg(lin, sgn, o);
 }
+
+#define SPHSTAB_INSTANTIATE(D)                                                                                   \
+  template MatrixFreeCriticalLoad matrix_free_critical_load<D>(const MatrixFreeLinearisation<D>&, LoadDirection, \
+                                                               const MatrixFreeCriticalLoadOptions&);            \
+  template MatrixFreeCriticalLoad matrix_free_critical_load<D>(const MatrixFreeLinearisation<D>&, LoadDirection, \
+                                                               const MatrixFreeCriticalLoadOptions&,             \
+                                                               const LatticeSinePreconditioner<D>&);
+SPHSTAB_INSTANTIATE(2)
+SPHSTAB_INSTANTIATE(3)
+#undef SPHSTAB_INSTANTIATE
 
 }  // namespace sphstab

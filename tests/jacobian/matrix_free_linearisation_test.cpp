@@ -139,8 +139,8 @@ TEST(MatrixFreeLinearisation, HoldsLessThanTheAssembledJacobian) {
   const Linearisation as = analytic_jacobian_2d(*d, kMaterial, MomentumForm::Conservative, PreStrainKind::Isotropic);
   const double assembled = 12.0 * (as.A0.nonZeros() + as.A1.nonZeros());
   EXPECT_GT(mf.memory_bytes(), 0.0);
-  EXPECT_LE(mf.memory_bytes(), 1.05 * MatrixFreeLinearisation::estimated_bytes(*d));
-  EXPECT_GE(mf.memory_bytes(), MatrixFreeLinearisation::estimated_bytes(*d));
+  EXPECT_LE(mf.memory_bytes(), 1.05 * MatrixFreeLinearisation<2>::estimated_bytes(*d));
+  EXPECT_GE(mf.memory_bytes(), MatrixFreeLinearisation<2>::estimated_bytes(*d));
   // Per free particle ~4 x (61 + 21) nonzeros of 12 bytes assembled against ~21 pairs of G (all rows) and H (free
   // rows) stored: 3.2x here, where the fixed layers are a quarter of the particles (4x for large n).
   EXPECT_LT(3 * mf.memory_bytes(), assembled) << mf.memory_bytes() << " vs " << assembled;
@@ -199,7 +199,7 @@ TEST(MatrixFreeLinearisation, ChecksMemoryBeforeBuilding) {
     ~LimitGuard() { set_memory_limit_bytes(0); }
   } guard;
   auto d = lattice(LatticeType::Square, 8, KernelType::CubicSpline, 1.3);
-  set_memory_limit_bytes(0.5 * MatrixFreeLinearisation::estimated_bytes(*d));
+  set_memory_limit_bytes(0.5 * MatrixFreeLinearisation<2>::estimated_bytes(*d));
   EXPECT_THROW(MatrixFreeLinearisation(*d, kMaterial, MomentumForm::Plus, PreStrainKind::Isotropic), MemoryLimitError);
 }
 

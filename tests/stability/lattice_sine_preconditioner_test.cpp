@@ -23,7 +23,7 @@ std::shared_ptr<const Discretisation<2>> lattice(LatticeType type, int n, double
   return make_discretisation(strain_lattice_2d(type, k, h, n), k, h);
 }
 
-MatrixFreeLinearisation linearisation(const Discretisation<2>& d) {
+MatrixFreeLinearisation<2> linearisation(const Discretisation<2>& d) {
   return MatrixFreeLinearisation(d, kMaterial, MomentumForm::Conservative, PreStrainKind::Isotropic);
 }
 

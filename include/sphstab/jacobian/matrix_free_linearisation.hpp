@@ -1,9 +1,9 @@
 #pragma once
 /// \file matrix_free_linearisation.hpp
-/// The 2D linearisation A(e) = A0 + e A1 of analytic_jacobian_2d.hpp applied to vectors without assembling it, in
-/// O(N) memory. The assembled A0 couples neighbours of neighbours (~130 nonzeros per row at h = 1.3 dx, 8 GB at
-/// 10^6 particles); its factors G, H couple neighbours only (~21 per row). Applying the factors in sequence costs
-/// about as much as one SpMV with A0 and stores only G on the rows within one hop of a free particle, H on the
+/// The linearisation A(e) = A0 + e A1 of analytic_jacobian_2d.hpp, in 2D and 3D (Dim), applied to vectors without
+/// assembling it, in O(N) memory. The assembled A0 couples neighbours of neighbours (~130 nonzeros per row at h = 1.3
+/// dx, 8 GB at 10^6 particles); its factors G, H couple neighbours only (~21 per row). Applying the factors in sequence
+/// costs about as much as one SpMV with A0 and stores only G on the rows within one hop of a free particle, H on the
 /// free rows, and their row sums.
 ///
 /// With the notation of analytic_jacobian_2d.hpp (Dm^d = G^d - diag(g^d), P^b = G^b + alpha diag(g^b), alpha = 1
@@ -17,7 +17,14 @@
 /// y = A1 x is one hop: -((1 + alpha)/rho) s0 (L x)_i for uncorrected / plus / minus, and -(2/rho) (s0 (L x)_i +
 /// (L s0 x)_i) for the conservative form, where (L v)_i = eta_i v_i - sum_{k free} H_ik v_k.
 ///
-/// DOF ordering as Linearisation: dof = 2 f + a over the free particles in ascending index.
+/// DOF ordering as Linearisation: dof = Dim f + a over the free particles in ascending index.
+///
+/// 3D: the derivation of analytic_jacobian_2d.hpp never uses the dimension (sums over a, b, c, d in {x, y, z}); C is
+/// the isotropic 3D stiffness and s0 the 3D pre-stress per unit pre-strain (prestress()): isotropic (3 lambda +
+/// 2 mu) I, uniaxial-x diag(lambda + 2 mu, lambda, lambda). Checked against the TL acceleration of LinearElasticSph<3>
+/// (A0) and a finite difference of the kernel-gradient sum (A1) in
+/// tests/jacobian/matrix_free_linearisation_3d_test.cpp. At 100^3 free particles (h = 1.3 dx, cubic spline, 81
+/// neighbours) the stored values take about 7 GB.
 ///
 /// \note Same coverage as analytic_jacobian_2d: plain kernel gradient, rest state, zero fixed displacements, no
 ///       additional momentum terms. Agreement with the assembled matrices is checked on random vectors in
@@ -43,25 +50,38 @@
 
 namespace sphstab {
 
+/// Pre-stress sigma0 per unit pre-strain: 2D plane strain (PreStrain::stress), 3D isotropic (3 lambda + 2 mu) I or
+/// uniaxial-x diag(lambda + 2 mu, lambda, lambda).
+template <int Dim>
+Eigen::Matrix<double, Dim, Dim> prestress(PreStrainKind kind, const ElasticMaterial& material);
+
+template <int Dim>
 class MatrixFreeLinearisation {
+  static_assert(Dim == 2 || Dim == 3, "MatrixFreeLinearisation: 2D or 3D");
+
  public:
+  using Stress = Eigen::Matrix<double, Dim, Dim>;
+  /// Stored components of a symmetric Dim x Dim tensor (3 in 2D, 6 in 3D).
+  static constexpr int kSymmetric = Dim * (Dim + 1) / 2;
+
   /// From operators G, H assembled at the rest positions with the neighbour-list pattern of `discretisation` (as
   /// analytic_jacobian_2d). Throws std::invalid_argument for an invalid material or missing / mis-sized operators,
   /// MemoryLimitError when the stored values do not fit the memory limit (checked before anything is copied).
-  MatrixFreeLinearisation(const Discretisation<2>& discretisation, const Operators<2>& operators,
+  MatrixFreeLinearisation(const Discretisation<Dim>& discretisation, const Operators<Dim>& operators,
                           const ElasticMaterial& material, MomentumForm form, PreStrainKind kind);
-  /// As above, assembling G and H first (they are dropped after the needed values are copied).
-  MatrixFreeLinearisation(const Discretisation<2>& discretisation, const ElasticMaterial& material, MomentumForm form,
+  /// As above, computing the values of G and H pair by pair (the same bits as assemble_operators) without
+  /// assembling the matrices: memory is only what is stored.
+  MatrixFreeLinearisation(const Discretisation<Dim>& discretisation, const ElasticMaterial& material, MomentumForm form,
                           PreStrainKind kind);
-  /// The linearisation of a force function's form, material and pre-strain kind. Throws std::invalid_argument for a
-  /// non-plain gradient provider, non-zero fixed displacements or additional momentum terms (not covered).
-  explicit MatrixFreeLinearisation(const ElasticForm2D& force);
+  /// The linearisation of a 2D force function's form, material and pre-strain kind. Throws std::invalid_argument for
+  /// a non-plain gradient provider, non-zero fixed displacements or additional momentum terms (not covered).
+  explicit MatrixFreeLinearisation(const ElasticForm2D& force) requires(Dim == 2);
 
-  int dofs() const { return 2 * free_count(); }
+  int dofs() const { return Dim * free_count(); }
   int free_count() const { return static_cast<int>(m_free.size()); }
   /// Particle index of each free particle (ascending): the DOF order.
   const std::vector<int>& free_index() const { return m_free; }
-  /// Reference positions of the free particles, free_count x 2 in DOF order (for geometric preconditioners).
+  /// Reference positions of the free particles, free_count x Dim in DOF order (for geometric preconditioners).
   const Eigen::MatrixXd& free_positions() const { return m_free_positions; }
   MomentumForm form() const { return m_form; }
   /// As Linearisation::symmetric / complete (same definitions as analytic_jacobian_2d).
@@ -84,11 +104,11 @@ class MatrixFreeLinearisation {
 
   /// Estimated bytes of a MatrixFreeLinearisation of `discretisation` (exact up to vector capacity slack), the
   /// figure require_memory() is asked for before construction.
-  static double estimated_bytes(const Discretisation<2>& discretisation);
+  static double estimated_bytes(const Discretisation<Dim>& discretisation);
 
  private:
-  void build(const Discretisation<2>& d, const Operators<2>& ops, const ElasticMaterial& material, MomentumForm form,
-             PreStrainKind kind);
+  void build(const Discretisation<Dim>& d, const Operators<Dim>* ops, const ElasticMaterial& material,
+             MomentumForm form, PreStrainKind kind);
   void check_vectors(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<Eigen::VectorXd>& y,
                      const char* who) const;
 
@@ -96,21 +116,23 @@ class MatrixFreeLinearisation {
   double m_inv_rho = 1, m_lambda = 1, m_mu = 1;
   double m_alpha = 1;      ///< P = G + alpha diag(g) (conservative: 1)
   double m_a1_factor = 0;  ///< (1 + alpha)/rho (plain forms), 2/rho (conservative)
-  Eigen::Matrix2d m_s0 = Eigen::Matrix2d::Zero();
+  Stress m_s0 = Stress::Zero();
   bool m_symmetric = false, m_complete = false;
 
   std::vector<int> m_free;           ///< free particle indices (ascending)
-  Eigen::MatrixXd m_free_positions;  ///< free_count x 2
+  Eigen::MatrixXd m_free_positions;  ///< free_count x Dim
   std::vector<int> m_free_slot;      ///< N entries: free slot or -1
   std::vector<long> m_offsets;       ///< neighbour-list CSR of all N rows
   std::vector<int> m_indices;
-  std::vector<double> m_g;              ///< (G^x_ij, G^y_ij) per pair, all rows
-  std::vector<double> m_gsum;           ///< (g^x_i, g^y_i) per particle
+  std::vector<double> m_g;              ///< G^a_ij (Dim values) per pair, all rows
+  std::vector<double> m_gsum;           ///< g^a_i (Dim values) per particle
   std::vector<int> m_stress_rows;       ///< particles j with a free neighbour (where sigma_j is needed), ascending
   std::vector<long> m_h_offsets;        ///< free_count + 1: start of free row f in m_h
-  std::vector<double> m_h;              ///< (H^xx, H^xy, H^yy)_ij per pair of the free rows, in neighbour order
-  std::vector<double> m_eta;            ///< (eta^xx, eta^xy, eta^yy) per free particle
-  mutable std::vector<double> m_sigma;  ///< 3 per particle (xx, yy, xy): buffer of step 2
+  std::vector<double> m_h;              ///< H^{ab}_ij, a <= b row by row (2D: xx, xy, yy), per pair of the free rows
+  std::vector<double> m_eta;            ///< eta^{ab} (same order) per free particle
+  mutable std::vector<double> m_sigma;  ///< kSymmetric per particle (diagonal, then xy[, xz, yz]): buffer of step 2
 };
+
+MatrixFreeLinearisation(const ElasticForm2D&)->MatrixFreeLinearisation<2>;
 
 }  // namespace sphstab

@@ -9,7 +9,7 @@
 /// sphstab::MatrixFreeLinearisation lin(*disc, material, sphstab::MomentumForm::Conservative,
 ///                                      sphstab::PreStrainKind::Isotropic);
 /// sphstab::MatrixFreeOperator op(lin, 1.0, 1e-3);   // A(e = 1e-3); must not outlive lin
-/// Spectra::SymEigsSolver<sphstab::MatrixFreeOperator> eigs(op, 4, 30);
+/// Spectra::SymEigsSolver<sphstab::MatrixFreeOperator<2>> eigs(op, 4, 30);
 /// eigs.init();
 /// eigs.compute(Spectra::SortRule::LargestAlge);
 /// \endcode
@@ -19,12 +19,13 @@
 
 namespace sphstab {
 
+template <int Dim>
 class MatrixFreeOperator {
  public:
   using Scalar = double;
 
   /// y = (c0 A0 + c1 A1) x; keeps a reference to `lin`.
-  explicit MatrixFreeOperator(const MatrixFreeLinearisation& lin, double c0 = 1.0, double c1 = 0.0)
+  explicit MatrixFreeOperator(const MatrixFreeLinearisation<Dim>& lin, double c0 = 1.0, double c1 = 0.0)
       : m_lin(&lin), m_c0(c0), m_c1(c1) {}
 
   Eigen::Index rows() const { return m_lin->dofs(); }
@@ -41,7 +42,7 @@ class MatrixFreeOperator {
   }
 
  private:
-  const MatrixFreeLinearisation* m_lin;
+  const MatrixFreeLinearisation<Dim>* m_lin;
   double m_c0, m_c1;
 };
 

@@ -1,7 +1,8 @@
 #pragma once
 /// \file lattice_sine_preconditioner.hpp
 /// A sine-transform preconditioner T ~ (sigma_p K - L)^{-1} for the pencil L x = lambda K x of the 2D critical
-/// strain on an n x n square lattice (K = A0, L = -sgn A1; matrix_free_critical_load.hpp, method BlockLobpcg).
+/// strain on an n x n square or n x n x n cubic lattice (K = A0, L = -sgn A1; matrix_free_critical_load.hpp, method
+/// BlockLobpcg). Written below for 2D; 3D is the same with a third direction (3D DST-I, 3 x 3 symbols, 3 components).
 ///
 /// With the interior stencils S_K(d), S_L(d) of lattice_stencil.hpp, the 2 x 2 Fourier symbols are
 /// \f$\hat K(k) = \sum_d S_K(d) \cos(k \cdot d)\f$ (real part of \f$\sum_d S(d) e^{i k \cdot d}\f$), likewise
@@ -28,7 +29,7 @@
 ///
 /// \code{.cpp}
 /// auto st = sphstab::probe_lattice_stencil(lin, sphstab::LoadDirection::Tension);
-/// sphstab::LatticeSinePreconditioner t(st, st.n);   // margin 0.02
+/// sphstab::LatticeSinePreconditioner t(st, st.n);   // margin 0.02; LatticeSinePreconditioner<2> deduced
 /// Eigen::MatrixXd r = Eigen::MatrixXd::Random(lin.dofs(), 4), w(lin.dofs(), 4);
 /// t.apply(r, w);                                     // w = T r
 /// \endcode
@@ -36,6 +37,7 @@
 /// References: [BiniCapovani1983] D. Bini, M. Capovani, Spectral and computational properties of band symmetric
 /// Toeplitz matrices, Linear Algebra Appl. 52/53 (1983) 99-126; FFTW: [FrigoJohnson2005] (docs/references.md).
 #include <Eigen/Core>
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -43,14 +45,17 @@
 
 namespace sphstab {
 
+template <int Dim>
 class LatticeSinePreconditioner {
+  static_assert(Dim == 2 || Dim == 3, "LatticeSinePreconditioner: 2D or 3D");
+
  public:
-  /// Sets up T for an n x n lattice (dofs 2 n^2, DOF order of lattice_stencil.hpp) from `stencil` (probed on any
+  /// Sets up T for an n^Dim lattice (dofs Dim n^Dim, DOF order of lattice_stencil.hpp) from `stencil` (probed on any
   /// lattice). Plans the FFTW transforms once (`measure`: FFTW_MEASURE, slower setup, possibly faster transforms;
   /// otherwise FFTW_ESTIMATE). Throws std::invalid_argument for n < 1, margin <= 0 or not finite, a symbol
   /// \f$\hat K_{cc}\f$ that is not positive on the grid, or a grid maximum of \f$\hat L_{cc}/\hat K_{cc}\f$ that is
   /// not positive (no sigma_p > 0 exists: the lattice interior has no instability in this direction).
-  LatticeSinePreconditioner(const LatticeStencil& stencil, int n, double margin = 0.02, bool measure = false);
+  LatticeSinePreconditioner(const LatticeStencil<Dim>& stencil, int n, double margin = 0.02, bool measure = false);
   ~LatticeSinePreconditioner();
   LatticeSinePreconditioner(LatticeSinePreconditioner&&) noexcept;
   LatticeSinePreconditioner& operator=(LatticeSinePreconditioner&&) noexcept;
@@ -58,14 +63,19 @@ class LatticeSinePreconditioner {
   LatticeSinePreconditioner& operator=(const LatticeSinePreconditioner&) = delete;
 
   int n() const { return m_n; }
-  int dofs() const { return 2 * m_n * m_n; }
+  long sites() const;  ///< n^Dim
+  long dofs() const { return Dim * sites(); }
   /// The shift sigma_p = (1 + margin) symbol_max().
   double sigma() const { return m_sigma; }
   /// \f$\max_{k, c} \hat L_{cc}(k) / \hat K_{cc}(k)\f$ over the DST-I grid: the decoupled lattice estimate of lambda.
   double symbol_max() const { return m_symbol_max; }
-  /// \f$1 / (\sigma_p \hat K_{cc}(k) - \hat L_{cc}(k))\f$ at grid point (i, j) (k = pi (i + 1, j + 1) / (n + 1)),
-  /// component c: the eigenvalues of T.
-  double eigenvalue(int c, int i, int j) const;
+  /// \f$1 / (\sigma_p \hat K_{cc}(k) - \hat L_{cc}(k))\f$ at grid point (i, j[, k]) (wavevector pi (i + 1, j + 1[,
+  /// k + 1]) / (n + 1)), component c: the eigenvalues of T.
+  template <class... I>
+  double eigenvalue(int c, I... site) const requires(sizeof...(I) == Dim) {
+    return eigenvalue_at(c, {static_cast<int>(site)...});
+  }
+  double eigenvalue_at(int c, const std::array<int, Dim>& site) const;
 
   /// y = T x for a block: x and y dofs() x b (b >= 1); y may be x (in place). Throws std::invalid_argument on sizes.
   void apply(const Eigen::Ref<const Eigen::MatrixXd>& x, Eigen::Ref<Eigen::MatrixXd> y) const;
@@ -74,7 +84,8 @@ class LatticeSinePreconditioner {
   struct Plan;
   int m_n = 0;
   double m_sigma = 0, m_symbol_max = 0;
-  std::vector<double> m_scaled;  ///< 2 n^2: eigenvalue / (2 (n + 1))^2 (FFTW's unnormalised RODFT00, twice)
+  double m_transform_scale = 0;  ///< (2 (n + 1))^Dim: FFTW's unnormalised RODFT00, applied twice
+  std::vector<double> m_scaled;  ///< Dim n^Dim: eigenvalue / m_transform_scale
   std::unique_ptr<Plan> m_plan;
 };
 

@@ -111,14 +111,17 @@ struct MatrixFreeCriticalLoad {
 /// that are not an n x n square lattice in DOF order, or a lattice too small to probe the stencil (n < 11 at
 /// h = 1.3 dx: use the overload with a preconditioner set up from a larger lattice). NumericalIssue when K meets a
 /// non-positive curvature (not positive definite), NotConverging when LOBPCG, CG or Spectra stop at their limits.
-MatrixFreeCriticalLoad matrix_free_critical_load(const MatrixFreeLinearisation& lin, LoadDirection direction,
+template <int Dim>
+MatrixFreeCriticalLoad matrix_free_critical_load(const MatrixFreeLinearisation<Dim>& lin, LoadDirection direction,
                                                  const MatrixFreeCriticalLoadOptions& options = {});
 
+template <int Dim>
 class LatticeSinePreconditioner;
 /// BlockLobpcg with a given lattice preconditioner (options.method and options.preconditioner are ignored); its n must
 /// match the lattice of `lin`.
-MatrixFreeCriticalLoad matrix_free_critical_load(const MatrixFreeLinearisation& lin, LoadDirection direction,
+template <int Dim>
+MatrixFreeCriticalLoad matrix_free_critical_load(const MatrixFreeLinearisation<Dim>& lin, LoadDirection direction,
                                                  const MatrixFreeCriticalLoadOptions& options,
-                                                 const LatticeSinePreconditioner& preconditioner);
+                                                 const LatticeSinePreconditioner<Dim>& preconditioner);
 
 }  // namespace sphstab
