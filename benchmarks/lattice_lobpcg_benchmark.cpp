@@ -8,8 +8,12 @@
 // The probe check (12 products: the free-free operator against the restricted stencil at an interior, an edge and a
 // corner particle) and the per-product profile (A0, A1, T on one vector, median of 5) are timed apart and not part of
 // the total. benchmarks/lattice_lobpcg_report.py runs the cases and writes results/critical-strain-large/.
+// --dim 3: the n x n x n cubic lattice (same kernel, h, material, form; 3D isotropic pre-strain); --direct-reference
+// adds the direct route in the same process (the linearisation assembled by products with unit vectors, then
+// critical_load's eigen route: CHOLMOD and shifted Spectra; small n only) as the reference of rel_diff_reference.
 #include <sys/resource.h>
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -20,6 +24,8 @@
 #include <vector>
 
 #include "sphstab/core/threads.hpp"
+#include "sphstab/particles/lattice.hpp"
+#include "sphstab/stability/critical_load.hpp"
 #include "sphstab/stability/lattice_sine_preconditioner.hpp"
 #include "sphstab/stability/lattice_stencil.hpp"
 #include "sphstab/stability/matrix_free_critical_load.hpp"
@@ -53,12 +59,41 @@ double median_seconds(F&& f, int reps = 5) {
   return t[t.size() / 2];
 }
 
+/// The direct route in the same process: the linearisation assembled by products with unit vectors and handed to
+/// the engine's eigen route (critical_load: CHOLMOD + shifted Spectra); small lattices only.
+template <int Dim>
+double direct_critical_strain(const sphstab::MatrixFreeLinearisation<Dim>& lin) {
+  using namespace sphstab;
+  CriticalLoadOptions o = CriticalLoadOptions::strain_2d();
+  o.method = CriticalLoadMethod::Eigen;
+  const CriticalLoad r = critical_load(assemble_by_products(lin), LoadDirection::Tension, o);
+  return r.info() == Status::Successful ? r.load : NAN;
+}
+
+template <int Dim>
+std::shared_ptr<const sphstab::Discretisation<Dim>> lattice(int n) {
+  using namespace sphstab;
+  const Kernel<Dim> k(KernelType::CubicSpline);
+  if constexpr (Dim == 2) {
+    return make_discretisation(strain_lattice_2d(LatticeType::Square, k, bench::kH, n), k, bench::kH);
+  } else {
+    return make_discretisation(
+        make_lattice<3>(LatticeType::Cubic, n, {.spacing = 1.0, .support_radius = k.support_radius(bench::kH)}), k,
+        bench::kH);
+  }
+}
+
 }  // namespace
+
+template <int Dim>
+int run(int n, sphstab::MatrixFreeCriticalLoadOptions o, bool direct_reference);
 
 int main(int argc, char** argv) {
   using namespace sphstab;
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s n [--block b] [--tol t] [--margin m] [--measure] [--threads k] [--header]\n",
+    std::fprintf(stderr,
+                 "usage: %s n [--dim 2|3] [--block b] [--tol t] [--margin m] [--measure] [--threads k] "
+                 "[--direct-reference] [--header]\n",
                  argv[0]);
     return 2;
   }
@@ -67,10 +102,11 @@ int main(int argc, char** argv) {
       "a1_products,preconditioner_applications,residual,sigma_p_over_lambda,lattice_s,linearisation_s,probe_s,"
       "prec_setup_s,solve_s,solve_products_s,solve_preconditioner_s,solve_dense_s,total_s,cpu_s,probe_check_s,probe_"
       "deviation,a0_product_s,a1_product_s,preconditioner_s,"
-      "linearisation_MB,peak_rss_MB,reason";
-  int n = 0;
+      "linearisation_MB,peak_rss_MB,reason,dim,direct_reference_e_crit,direct_reference_s";
   MatrixFreeCriticalLoadOptions o;
   o.method = MatrixFreeEigenMethod::BlockLobpcg;
+  int n = 0, dim = 2;
+  bool direct_reference = false;
   for (int a = 1; a < argc; ++a) {
     const std::string s = argv[a];
     if (s == "--header") {
@@ -90,33 +126,49 @@ int main(int argc, char** argv) {
       o.fftw_measure = true;
     } else if (s == "--threads" && a + 1 < argc) {
       set_threads(std::atoi(argv[++a]));
+    } else if (s == "--dim" && a + 1 < argc) {
+      dim = std::atoi(argv[++a]);
+    } else if (s == "--direct-reference") {
+      direct_reference = true;
     } else {
       n = std::atoi(argv[a]);
     }
   }
-  if (n < 11) {
-    std::fprintf(stderr, "n must be >= 11 (stencil probe)\n");
+  if (n < 4) {
+    std::fprintf(stderr, "n must be >= 4 (below 11 the stencil is probed on an 11-lattice)\n");
+    return 2;
+  }
+  if (dim != 2 && dim != 3) {
+    std::fprintf(stderr, "--dim must be 2 or 3\n");
     return 2;
   }
   o.max_iterations = 2000;
+  return dim == 2 ? run<2>(n, o, direct_reference) : run<3>(n, o, direct_reference);
+}
+
+template <int Dim>
+int run(int n, sphstab::MatrixFreeCriticalLoadOptions o, bool direct_reference) {
+  using namespace sphstab;
 
   const auto t_total = Clock::now();
   auto t = Clock::now();
-  std::shared_ptr<const Discretisation<2>> d;
-  {
-    const Kernel<2> k(KernelType::CubicSpline);
-    d = make_discretisation(strain_lattice_2d(LatticeType::Square, k, bench::kH, n), k, bench::kH);
-  }
+  std::shared_ptr<const Discretisation<Dim>> d = lattice<Dim>(n);
   const double lattice_s = since(t);
   t = Clock::now();
-  const MatrixFreeLinearisation lin(*d, bench::kMaterial, MomentumForm::Conservative, PreStrainKind::Isotropic);
+  const MatrixFreeLinearisation<Dim> lin(*d, bench::kMaterial, MomentumForm::Conservative, PreStrainKind::Isotropic);
   const double linearisation_s = since(t);
   d.reset();  // the linearisation keeps what it needs
   t = Clock::now();
-  const LatticeStencil st = probe_lattice_stencil(lin, LoadDirection::Tension);
+  // The probe needs n >= 11: a smaller lattice takes the stencil of an 11-lattice (same kernel, h, material, form).
+  const LatticeStencil<Dim> st =
+      n >= 11
+          ? probe_lattice_stencil(lin, LoadDirection::Tension)
+          : probe_lattice_stencil(MatrixFreeLinearisation<Dim>(*lattice<Dim>(11), bench::kMaterial,
+                                                               MomentumForm::Conservative, PreStrainKind::Isotropic),
+                                  LoadDirection::Tension);
   const double probe_s = since(t);
   t = Clock::now();
-  const LatticeSinePreconditioner prec(st, n, o.margin, o.fftw_measure);
+  const LatticeSinePreconditioner<Dim> prec(st, n, o.margin, o.fftw_measure);
   const double prec_setup_s = since(t);
   t = Clock::now();
   const MatrixFreeCriticalLoad r = matrix_free_critical_load(lin, LoadDirection::Tension, o, prec);
@@ -128,8 +180,11 @@ int main(int argc, char** argv) {
   // Not part of the total: probe check and per-product profile.
   t = Clock::now();
   const int c = n / 2;
-  const double dev = lattice_stencil_deviation(lin, LoadDirection::Tension, st,
-                                               {c + 1 + n * (c - 2), n / 2, 0});  // interior, edge, corner
+  const int plane = Dim == 3 ? n * n * c : 0;  // 3D: the middle z plane for the interior and edge particles
+  const double dev =
+      n < 11 ? NAN
+             : lattice_stencil_deviation(lin, LoadDirection::Tension, st,
+                                         {plane + c + 1 + n * (c - 2), plane + n / 2, 0});  // interior, edge, corner
   const double probe_check_s = since(t);
   Eigen::VectorXd x = Eigen::VectorXd::Random(lin.dofs()), y(lin.dofs());
   const double a0_s = median_seconds([&] { lin.apply_A0(x, y); });
@@ -137,16 +192,24 @@ int main(int argc, char** argv) {
   Eigen::MatrixXd xb = Eigen::MatrixXd::Random(lin.dofs(), 1), yb(lin.dofs(), 1);
   const double t_s = median_seconds([&] { prec.apply(xb, yb); });
 
-  const auto ref = kReference.find(n);
-  const double rel = ref == kReference.end() ? NAN : std::abs(r.load - ref->second) / ref->second;
+  double direct = NAN, direct_s = NAN, reference = NAN;
+  if (direct_reference) {
+    t = Clock::now();
+    direct = direct_critical_strain(lin);
+    direct_s = since(t);
+    reference = direct;
+  } else if (const auto ref = kReference.find(n); Dim == 2 && ref != kReference.end()) {
+    reference = ref->second;
+  }
+  const double rel = std::abs(r.load - reference) / reference;
   std::printf(
       "%d,%d,%d,%d,%g,%g,%d,%s,%.15g,%.3g,%ld,%ld,%ld,%ld,%.3g,%.6f,"
-      "%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3g,%.5f,%.5f,%.5f,%.1f,%.1f,\"%s\"\n",
+      "%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3g,%.5f,%.5f,%.5f,%.1f,%.1f,\"%s\",%d,%.15g,%.3f\n",
       n, lin.dofs(), max_threads(), o.block_size, o.residual_tol, o.margin, o.fftw_measure ? 1 : 0,
       status_name(r.info()).c_str(), r.load, rel, r.iterations, r.a0_products, r.a1_products,
       r.preconditioner_applications, r.residual, r.sigma_p * r.load, lattice_s, linearisation_s, probe_s, prec_setup_s,
       solve_s, r.product_seconds, r.preconditioner_seconds,
       r.solve_seconds - r.product_seconds - r.preconditioner_seconds, total_s, cpu_s, probe_check_s, dev, a0_s, a1_s,
-      t_s, lin.memory_bytes() / 1e6, peak_solve_mb, r.reason.c_str());
+      t_s, lin.memory_bytes() / 1e6, peak_solve_mb, r.reason.c_str(), Dim, direct, direct_s);
   return r.info() == Status::Successful ? 0 : 1;
 }

@@ -27,8 +27,8 @@ def loadavg():
         return float(f.read().split()[0])
 
 
-def run(binary, n, threads, extra):
-    args = ["nice", "timeout", "900", binary, str(n), "--threads", str(threads)]
+def run(binary, n, threads, extra, timeout=900):
+    args = ["nice", "timeout", str(timeout), binary, str(n), "--threads", str(threads)]
     args += [a for a in extra if a != "--no-measure"]
     if "--no-measure" not in extra:
         args.append("--measure")

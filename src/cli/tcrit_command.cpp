@@ -31,6 +31,8 @@
 #include "sphstab/spectral/fourier_symbol_2d.hpp"
 #include "sphstab/spectral/tension_estimates.hpp"
 #include "sphstab/stability/critical_load.hpp"
+#include "sphstab/stability/lattice_sine_preconditioner.hpp"
+#include "sphstab/stability/lattice_stencil.hpp"
 #include "sphstab/stability/matrix_free_critical_load.hpp"
 
 namespace sphstab::cli {
@@ -44,7 +46,8 @@ struct TcritArgs {
   // Plane strain, nu = 0.3 with E = 2.1 (Powell's Swegle test): the critical strain depends on nu only.
   std::string lambda = "1.2115384615384615", mu = "0.80769230769230769";
   bool periodic = false, compression = false;
-  bool lattice_given = false, prestrain_given = false, lame_given = false, criterion_given = false;
+  bool lattice_given = false, prestrain_given = false, lame_given = false, criterion_given = false,
+       method_given = false;
 };
 
 /// Fixed layers of the lattice used with a kernel correction, in kernel supports (2h): every particle that the free
@@ -137,6 +140,139 @@ void require_tcrit_2d_lobpcg_memory(int n, double support) {
   require_memory(bytes, "tcrit: --dim 2 --method lobpcg --n " + std::to_string(n) + " with h/dx = " + num(support / 2));
 }
 
+/// --dim 3: the matrix-free linearisation (stored G and H values, about 28 + 48 bytes per pair within the support,
+/// q pairs per particle) and BlockLobpcg's 10 b + 8 vectors of 3 doubles per free particle (b = 4): 7.9 GB measured
+/// at n = 100 (results/critical-strain-3d).
+void require_tcrit_3d_lobpcg_memory(int n, double support) {
+  const double side = n + 2.0 * std::floor(support + 2), particles = side * side * side, nf = double(n) * n * n;
+  const double q = std::min(particles, 1 + 4.0 / 3.0 * M_PI * support * support * support);
+  const double bytes = particles * (100 + 28 * q) + nf * (48 * q + 24 * 48);
+  require_memory(bytes, "tcrit: --dim 3 --n " + std::to_string(n) + " with h/dx = " + num(support / 2));
+}
+
+/// Shared row of the --dim 2 and --dim 3 tables (the infinite-lattice columns NaN where not computed).
+std::vector<std::string> critical_prestrain_row(KernelType kt, MomentumForm form, LatticeType type, int n,
+                                                bool periodic, const std::string& prestrain, LoadDirection sign,
+                                                double h, const std::string& method, const std::string& backend,
+                                                const std::string& criterion, const CriticalLoad& r, double e_inf,
+                                                double e_symbol, double inf_kx, double inf_ky) {
+  return {kernel_name(kt),
+          momentum_form_name(form),
+          lattice_name(type),
+          std::to_string(n),
+          periodic ? "1" : "0",
+          prestrain,
+          load_direction_name(sign),
+          num(h),
+          "critical-prestrain",
+          method,
+          backend,
+          criterion,
+          num(r.load),
+          num(r.load_eigen),
+          num(r.load_bisection),
+          num(r.relative_difference),
+          mechanism_name(r.mechanism),
+          num(e_inf),
+          num(e_symbol),
+          num(r.mode_wavevector.kx_over_pi),
+          num(r.mode_wavevector.ky_over_pi),
+          num(r.mode_wavevector.peak_fraction),
+          num(inf_kx),
+          num(inf_ky),
+          status_name(r.status),
+          r.reason};
+}
+
+const char* kCriticalPrestrainHeader =
+    "kernel,form,lattice,N,periodic,prestrain,direction,h_over_dx,quantity,method,backend,criterion,ecrit,ecrit_eig,"
+    "ecrit_bisect,rel_diff,mechanism,ecrit_infinite,ecrit_symbol,mode_kx_over_pi,mode_ky_over_pi,"
+    "mode_peak_fraction,infinite_kx_over_pi,infinite_ky_over_pi,status,reason\n";
+
+/// Free particles per side of the smallest lattice whose stencil can be probed (lattice_stencil.hpp): the central
+/// particle's A0 column reaches two hops of the support, 2 ceil(2 s) lattice spacings, and must stay off the edge.
+int probe_lattice_size(double support_over_dx) { return 2 * static_cast<int>(std::ceil(2 * support_over_dx)) + 3; }
+
+/// The block LOBPCG result as a CriticalLoad row (definiteness criterion, matrix-free). A lattice smaller than
+/// probe_n takes the stencil of a probe_n lattice built by `linearisation_of_size` (same kernel, h, material, form).
+template <int Dim, class MakeLinearisation>
+CriticalLoad lobpcg_critical_load(const MatrixFreeLinearisation<Dim>& lin, LoadDirection sign, int n, int probe_n,
+                                  MakeLinearisation&& linearisation_of_size) {
+  MatrixFreeCriticalLoadOptions o{.method = MatrixFreeEigenMethod::BlockLobpcg};
+  MatrixFreeCriticalLoad m;
+  if (n >= probe_n) {
+    m = matrix_free_critical_load(lin, sign, o);
+  } else {
+    const LatticeStencil<Dim> st = probe_lattice_stencil(linearisation_of_size(probe_n), sign);
+    if (lattice_symbol_ratio_max(st, n) > 0) {
+      m = matrix_free_critical_load(lin, sign, o, LatticeSinePreconditioner<Dim>(st, n, o.margin));
+    } else {
+      o.preconditioner = MatrixFreePreconditioner::None;  // no shift exists (as the library's own fallback)
+      m = matrix_free_critical_load(lin, sign, o);
+      m.preconditioner += " (symbol ratio L/K <= 0 on the lattice grid: no interior instability)";
+    }
+  }
+  CriticalLoad r;
+  r.load = r.load_eigen = m.load;
+  r.mechanism = std::isfinite(m.load) ? InstabilityMechanism::RealCrossing : InstabilityMechanism::None;
+  r.status = m.status;
+  r.reason = m.status == Status::Successful ? "block LOBPCG, preconditioner " + m.preconditioner + ": " +
+                                                  std::to_string(m.iterations) + " steps, residual " + num(m.residual)
+                                            : m.reason;
+  return r;
+}
+
+/// --dim 3: critical pre-strain of an n x n x n cubic lattice with fixed layers by the matrix-free block LOBPCG.
+void run_tcrit_3d(const TcritArgs& a) {
+  if (a.method_given && a.method != "lobpcg")
+    throw std::invalid_argument("tcrit: --dim 3 has one route, --method lobpcg (got '" + a.method + "')");
+  if (a.lattice_given && parse_lattice_type(a.lattice) != LatticeType::Cubic)
+    throw std::invalid_argument("tcrit: --lattice '" + a.lattice + "' is not available in 3D (use cubic)");
+  if (a.periodic || a.correction != "none" || a.backend != "auto" || a.criterion != "auto")
+    throw std::invalid_argument(
+        "tcrit: --dim 3 takes no --periodic, --correction, --backend or --criterion (fixed layers, matrix-free "
+        "definiteness)");
+  const int n = parse_positive_int(a.n, "--n");
+  if (n < 2) throw std::invalid_argument("tcrit: --dim 3 needs --n >= 2 (got " + a.n + ")");
+  const PreStrainKind kind = parse_prestrain_kind(a.prestrain);
+  const ElasticMaterial material{
+      .lambda = parse_double(a.lambda, "tcrit: --lambda"), .mu = parse_double(a.mu, "tcrit: --mu"), .rho = 1.0};
+  material.validate("tcrit");
+  std::vector<KernelType> kernels;
+  for (const auto& k : split_list(a.kernel, ',', "tcrit: --kernel")) kernels.push_back(parse_kernel_type(k));
+  std::vector<MomentumForm> forms;
+  for (const auto& f : split_list(a.form, ',', "tcrit: --form")) forms.push_back(parse_momentum_form(f));
+  if (kernels.empty() || forms.empty()) throw std::invalid_argument("tcrit: --kernel and --form must not be empty");
+  const std::vector<double> hs = parse_h(a.h);
+  for (KernelType kt : kernels)
+    for (double h : hs) require_tcrit_3d_lobpcg_memory(n, Kernel<3>(kt).support_radius(h));
+  const LoadDirection sign = a.compression ? LoadDirection::Compression : LoadDirection::Tension;
+  const double nan = CriticalLoad::nan;
+  std::string out = kCriticalPrestrainHeader;
+  SweepProgress progress(static_cast<long>(kernels.size() * hs.size() * forms.size()));
+  for (KernelType kt : kernels) {
+    const Kernel<3> kernel(kt);
+    for (double h : hs) {
+      auto cubic = [&](int m) {
+        return make_discretisation(
+            make_lattice<3>(LatticeType::Cubic, m, {.spacing = 1.0, .support_radius = kernel.support_radius(h)}),
+            kernel, h);
+      };
+      const auto disc = cubic(n);
+      for (MomentumForm form : forms) {
+        const CriticalLoad r =
+            lobpcg_critical_load(MatrixFreeLinearisation<3>(*disc, material, form, kind), sign, n,
+                                 probe_lattice_size(kernel.support_radius(h)),
+                                 [&](int m) { return MatrixFreeLinearisation<3>(*cubic(m), material, form, kind); });
+        out += csv_line(critical_prestrain_row(kt, form, LatticeType::Cubic, n, false, prestrain_kind_name(kind), sign,
+                                               h, "lobpcg", "matrix-free", "definiteness", r, nan, nan, nan, nan));
+        progress.case_done();
+      }
+    }
+  }
+  std::fputs(out.c_str(), stdout);
+}
+
 /// --dim 2: critical pre-strain e_crit of an n x n lattice (fixed layers: analytic Jacobian, bisection + eigen;
 /// periodic: exact Fourier symbols) with the infinite-lattice limit.
 void run_tcrit_2d(const TcritArgs& a) {
@@ -184,10 +320,7 @@ void run_tcrit_2d(const TcritArgs& a) {
       require_tcrit_2d_memory(n, support, dense);
   }
 
-  std::string out =
-      "kernel,form,lattice,N,periodic,prestrain,direction,h_over_dx,quantity,method,backend,criterion,ecrit,ecrit_eig,"
-      "ecrit_bisect,rel_diff,mechanism,ecrit_infinite,ecrit_symbol,mode_kx_over_pi,mode_ky_over_pi,"
-      "mode_peak_fraction,infinite_kx_over_pi,infinite_ky_over_pi,status,reason\n";
+  std::string out = kCriticalPrestrainHeader;
   const std::string prestrain_name = prestrain_kind_name(kind);
   SweepProgress progress(static_cast<long>(kernels.size() * hs.size() * forms.size()));
   for (KernelType kt : kernels) {
@@ -213,16 +346,12 @@ void run_tcrit_2d(const TcritArgs& a) {
           backend = "none";
           criterion = "spectrum";
         } else if (lobpcg) {
-          const MatrixFreeLinearisation lin(*disc, material, form, kind);
-          const MatrixFreeCriticalLoad m =
-              matrix_free_critical_load(lin, sign, {.method = MatrixFreeEigenMethod::BlockLobpcg});
-          r.load = r.load_eigen = m.load;
-          r.mechanism = std::isfinite(m.load) ? InstabilityMechanism::RealCrossing : InstabilityMechanism::None;
-          r.status = m.status;
-          r.reason = m.status == Status::Successful
-                         ? "block LOBPCG, lattice sine preconditioner: " + std::to_string(m.iterations) +
-                               " steps, residual " + num(m.residual)
-                         : m.reason;
+          r = lobpcg_critical_load(MatrixFreeLinearisation<2>(*disc, material, form, kind), sign, n,
+                                   probe_lattice_size(kernel.support_radius(h)), [&](int m) {
+                                     return MatrixFreeLinearisation<2>(
+                                         *make_discretisation(strain_lattice_2d(type, kernel, h, m), kernel, h),
+                                         material, form, kind);
+                                   });
           backend = "matrix-free";
           criterion = "definiteness";
         } else {
@@ -230,32 +359,9 @@ void run_tcrit_2d(const TcritArgs& a) {
           backend = r.eigen_backend.empty() ? "none" : r.eigen_backend;
           criterion = criterion_name(r.criterion);
         }
-        const std::vector<std::string> row{kernel_name(kt),
-                                           momentum_form_name(form),
-                                           lattice_name(type),
-                                           std::to_string(n),
-                                           a.periodic ? "1" : "0",
-                                           prestrain_name,
-                                           load_direction_name(sign),
-                                           num(h),
-                                           "critical-prestrain",
-                                           method,
-                                           backend,
-                                           criterion,
-                                           num(r.load),
-                                           num(r.load_eigen),
-                                           num(r.load_bisection),
-                                           num(r.relative_difference),
-                                           mechanism_name(r.mechanism),
-                                           num(inf.e),
-                                           num(tsym),
-                                           num(r.mode_wavevector.kx_over_pi),
-                                           num(r.mode_wavevector.ky_over_pi),
-                                           num(r.mode_wavevector.peak_fraction),
-                                           num(inf.kx_over_pi),
-                                           num(inf.ky_over_pi),
-                                           status_name(r.status),
-                                           r.reason};
+        const std::vector<std::string> row =
+            critical_prestrain_row(kt, form, type, n, a.periodic, prestrain_name, sign, h, method, backend, criterion,
+                                   r, inf.e, tsym, inf.kx_over_pi, inf.ky_over_pi);
         out += csv_line(row);
         progress.case_done();
       }
@@ -267,11 +373,10 @@ void run_tcrit_2d(const TcritArgs& a) {
 void run_tcrit(const TcritArgs& a) {
   // Validate everything before printing anything.
   const int dim = static_cast<int>(parse_integer(a.dim, 1, 3, "tcrit: --dim"));
-  if (dim == 3) throw std::invalid_argument("tcrit: --dim 3 is not yet supported (only --dim 1 or 2)");
+  if (dim == 3) return run_tcrit_3d(a);
   if (dim == 2) return run_tcrit_2d(a);
-  if (dim != 1) throw std::invalid_argument("tcrit: --dim must be 1 or 2 (got '" + a.dim + "')");
   if (a.prestrain_given || a.lame_given || a.criterion_given)
-    throw std::invalid_argument("tcrit: --prestrain, --lambda, --mu and --criterion need --dim 2");
+    throw std::invalid_argument("tcrit: --prestrain, --lambda, --mu and --criterion need --dim 2 or 3");
   if (parse_lattice_type(a.lattice) != LatticeType::Line)
     throw std::invalid_argument("tcrit: --lattice '" + a.lattice + "' does not exist in 1D (use line)");
   const Correction correction = parse_correction(a.correction);
@@ -422,8 +527,10 @@ void register_tcrit_command(CLI::App& app) {
       "positive definite, Powell 3.40) with the estimates 3.42/3.49/3.43/3.51/Swegle; with "
       "--correction, of the corrected forms (criterion pd, or real-positive-spectrum and "
       "symmetric-part-pd when A is not symmetric); with --dim 2 the critical PRE-STRAIN e_crit of a 2D lattice (column "
-      "ecrit; signed: < 0 with --compression) from the analytic Jacobian A(e) = A0 + e A1; CSV");
-  cmd->add_option("--dim", args->dim, "Dimension (1 or 2)");
+      "ecrit; signed: < 0 with --compression) from the analytic Jacobian A(e) = A0 + e A1; with --dim 3 that of a "
+      "cubic "
+      "lattice, matrix-free; CSV");
+  cmd->add_option("--dim", args->dim, "Dimension (1, 2, or 3: cubic lattice, --method lobpcg only)");
   cmd->add_option("--lattice", args->lattice, "Lattice: line (1D); square, hex, face-centred (2D; default square)")
       ->each([args](const std::string&) { args->lattice_given = true; });
   cmd->add_option("--n", args->n,
@@ -433,7 +540,8 @@ void register_tcrit_command(CLI::App& app) {
   cmd->add_option("--h", args->h, "h/dx: value, comma list or a:b:step (support radius 2h)");
   cmd->add_option("--method", args->method,
                   "eig|bisect|both (default both); --dim 2: also lobpcg, the matrix-free preconditioned block LOBPCG "
-                  "for large square blocks (results/critical-strain-large)");
+                  "for large square blocks (results/critical-strain-large); --dim 3: lobpcg only (the default)")
+      ->each([args](const std::string&) { args->method_given = true; });
   cmd->add_option("--backend", args->backend, "Eigen route: auto|dense|spectra (auto: dense up to 200 DOF)");
   cmd->add_option("--correction", args->correction,
                   "1D kernel correction: none|minus|shepard|column-shepard|ncsph|local-polish|mean-polish|"

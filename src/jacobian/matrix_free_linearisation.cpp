@@ -208,6 +208,8 @@ void MatrixFreeLinearisation<Dim>::build(const Discretisation<Dim>& d, const Ope
         equal_volumes = false;
   }
   m_complete = complete;
+  m_periodic = true;
+  for (int a = 0; a < Dim; ++a) m_periodic = m_periodic && d.particles.periodic[a];
   m_symmetric = complete && equal_volumes && (cons || form == MomentumForm::Minus || kind == PreStrainKind::Isotropic);
 }
 
@@ -363,7 +365,40 @@ void MatrixFreeLinearisation<Dim>::apply_combination(double c0, double c1, const
   }
 }
 
+template <int Dim>
+Linearisation assemble_by_products(const MatrixFreeLinearisation<Dim>& lin) {
+  const long n = lin.dofs();
+  require_memory(static_cast<double>(n) * n / 8.0,
+                 "assemble_by_products: " + std::to_string(n) + " DOFs (one product per column)");
+  std::vector<Eigen::Triplet<double>> t0, t1;
+  Eigen::VectorXd e = Eigen::VectorXd::Zero(n), y(n);
+  for (long c = 0; c < n; ++c) {
+    e[c] = 1;
+    lin.apply_A0(e, y);
+    for (long r = 0; r < n; ++r)
+      if (y[r] != 0.0) t0.emplace_back(r, c, y[r]);
+    lin.apply_A1(e, y);
+    for (long r = 0; r < n; ++r)
+      if (y[r] != 0.0) t1.emplace_back(r, c, y[r]);
+    e[c] = 0;
+  }
+  Linearisation out;
+  out.A0.resize(n, n);
+  out.A0.setFromTriplets(t0.begin(), t0.end());
+  out.A1.resize(n, n);
+  out.A1.setFromTriplets(t1.begin(), t1.end());
+  out.dofs_per_particle = Dim;
+  out.free_index = lin.free_index();
+  out.x = lin.free_positions();
+  out.symmetric = lin.symmetric();
+  out.complete = lin.complete();
+  out.periodic = lin.periodic();
+  return out;
+}
+
 template class MatrixFreeLinearisation<2>;
 template class MatrixFreeLinearisation<3>;
+template Linearisation assemble_by_products<2>(const MatrixFreeLinearisation<2>&);
+template Linearisation assemble_by_products<3>(const MatrixFreeLinearisation<3>&);
 
 }  // namespace sphstab

@@ -101,6 +101,26 @@ void diagonal_symbol(const LatticeStencil<Dim>& st, bool of_k, int n, std::vecto
   }
 }
 
+/// max over the grid and components of lh / kh; throws when kh is not positive somewhere.
+template <int Dim>
+double symbol_ratio_max(const std::vector<double> kh[Dim], const std::vector<double> lh[Dim], int n,
+                        const std::string& who) {
+  double top = -std::numeric_limits<double>::infinity();
+  for (int c = 0; c < Dim; ++c)
+    for (std::size_t q = 0; q < kh[c].size(); ++q) {
+      if (!(kh[c][q] > 0)) {
+        std::string at = std::to_string(q % n);
+        for (std::size_t rest = q / n, a = 1; a < Dim; ++a, rest /= n) at += ", " + std::to_string(rest % n);
+        throw std::invalid_argument(who + ": the symbol of K (component " + std::to_string(c) + ") is " +
+                                    format_number(kh[c][q], 3) + " <= 0 at grid point " +
+                                    (Dim == 2 ? "(i, j) = (" : "(i, j, k) = (") + at +
+                                    "): K = A0 is not positive definite on the lattice interior");
+      }
+      top = std::max(top, lh[c][q] / kh[c][q]);
+    }
+  return top;
+}
+
 }  // namespace
 
 template <int Dim>
@@ -124,19 +144,7 @@ LatticeSinePreconditioner<Dim>::LatticeSinePreconditioner(const LatticeStencil<D
   diagonal_symbol<Dim>(st, true, n, kh);
   diagonal_symbol<Dim>(st, false, n, lh);
   const std::size_t nn = sites();
-  double top = -std::numeric_limits<double>::infinity();
-  for (int c = 0; c < Dim; ++c)
-    for (std::size_t q = 0; q < nn; ++q) {
-      if (!(kh[c][q] > 0)) {
-        std::string at = std::to_string(q % n);
-        for (std::size_t rest = q / n, a = 1; a < Dim; ++a, rest /= n) at += ", " + std::to_string(rest % n);
-        throw std::invalid_argument(who + ": the symbol of K (component " + std::to_string(c) + ") is " +
-                                    format_number(kh[c][q], 3) + " <= 0 at grid point " +
-                                    (Dim == 2 ? "(i, j) = (" : "(i, j, k) = (") + at +
-                                    "): K = A0 is not positive definite on the lattice interior");
-      }
-      top = std::max(top, lh[c][q] / kh[c][q]);
-    }
+  const double top = symbol_ratio_max<Dim>(kh, lh, n, who);
   if (!(top > 0))
     throw std::invalid_argument(who + ": the symbol ratio L/K is <= 0 on the whole grid (max " + format_number(top, 3) +
                                 "): no instability of the lattice interior in this direction, use no preconditioner");
@@ -217,7 +225,21 @@ void LatticeSinePreconditioner<Dim>::apply(const Eigen::Ref<const Eigen::MatrixX
   }
 }
 
+template <int Dim>
+double lattice_symbol_ratio_max(const LatticeStencil<Dim>& st, int n) {
+  const std::string who = "lattice_symbol_ratio_max";
+  if (n < 1) throw std::invalid_argument(who + ": need n >= 1 particles per side (got " + std::to_string(n) + ")");
+  if (st.radius < 0 || static_cast<long>(st.k.size()) != st.blocks() || st.l.size() != st.k.size())
+    throw std::invalid_argument(who + ": stencil blocks do not match its radius (use probe_lattice_stencil)");
+  std::vector<double> kh[Dim], lh[Dim];
+  diagonal_symbol<Dim>(st, true, n, kh);
+  diagonal_symbol<Dim>(st, false, n, lh);
+  return symbol_ratio_max<Dim>(kh, lh, n, who);
+}
+
 template class LatticeSinePreconditioner<2>;
 template class LatticeSinePreconditioner<3>;
+template double lattice_symbol_ratio_max<2>(const LatticeStencil<2>&, int);
+template double lattice_symbol_ratio_max<3>(const LatticeStencil<3>&, int);
 
 }  // namespace sphstab

@@ -596,7 +596,9 @@ MatrixFreeCriticalLoad matrix_free_critical_load(const MatrixFreeLinearisation<D
     throw std::invalid_argument("matrix_free_critical_load: the preconditioner is for " + std::to_string(t.dofs()) +
                                 " DOFs (n = " + std::to_string(t.n()) + "), the linearisation has " +
                                 std::to_string(lin.dofs()));
-  return block_lobpcg(lin, load_sign(direction), o, &t, {});
+  MatrixFreeCriticalLoad r;
+  r.preconditioner = "lattice-sine (given)";
+  return block_lobpcg(lin, load_sign(direction), o, &t, std::move(r));
 }
 
 template <int Dim>
@@ -612,14 +614,26 @@ MatrixFreeCriticalLoad matrix_free_critical_load(const MatrixFreeLinearisation<D
   const double sgn = load_sign(direction);
   if (o.method == MatrixFreeEigenMethod::BlockLobpcg) {
     check_block(lin, o);
-    if (o.preconditioner == MatrixFreePreconditioner::None) return block_lobpcg<Dim>(lin, sgn, o, nullptr, {});
+    if (o.preconditioner == MatrixFreePreconditioner::None) {
+      MatrixFreeCriticalLoad r;
+      r.preconditioner = "none";
+      return block_lobpcg<Dim>(lin, sgn, o, nullptr, std::move(r));
+    }
     if (!(o.margin > 0) || !std::isfinite(o.margin))
       throw std::invalid_argument("matrix_free_critical_load: options need margin > 0 (got " +
                                   format_number(o.margin, 3) + ")");
     const auto t0 = std::chrono::steady_clock::now();
     const LatticeStencil<Dim> st = probe_lattice_stencil(lin, direction);
-    const LatticeSinePreconditioner<Dim> t(st, st.n, o.margin, o.fftw_measure);
     MatrixFreeCriticalLoad r;
+    if (!(lattice_symbol_ratio_max(st, st.n) > 0)) {
+      // No interior instability in this direction (e.g. compression): no shift sigma_p > 0 exists. The block may
+      // still have a positive lambda_max from edge modes, so the iteration runs without a preconditioner.
+      r.preconditioner = "none (symbol ratio L/K <= 0 on the lattice grid: no interior instability)";
+      r.setup_seconds = seconds_since(t0);
+      return block_lobpcg<Dim>(lin, sgn, o, nullptr, std::move(r));
+    }
+    const LatticeSinePreconditioner<Dim> t(st, st.n, o.margin, o.fftw_measure);
+    r.preconditioner = "lattice-sine";
     r.setup_seconds = seconds_since(t0);
     return block_lobpcg(lin, sgn, o, &t, std::move(r));
   }

@@ -9,8 +9,11 @@
 
 #include "sphstab/distributed/petsc_critical_load.hpp"
 #include "sphstab/jacobian/analytic_jacobian_2d.hpp"
+#include "sphstab/jacobian/matrix_free_linearisation.hpp"
+#include "sphstab/particles/lattice.hpp"
 #include "sphstab/particles/lattice_presets.hpp"
 #include "sphstab/stability/critical_load.hpp"
+#include "sphstab/stability/matrix_free_critical_load.hpp"
 
 namespace sphstab {
 namespace {
@@ -82,6 +85,34 @@ TEST(PetscCriticalLoad, AgreesWithTheDirectRoute) {
                 << r.residual << "\n";
   }
   if (g_session->rank() == 0) std::cout << "largest relative difference PETSc vs direct: " << worst << "\n";
+}
+
+TEST(PetscCriticalLoad, CubicLatticeAgreesWithTheDirectRouteAndTheMatrixFreeIteration) {
+  // 3D: 7^3 free particles of a cubic lattice (1029 DOFs), assembled by products of the matrix-free linearisation;
+  // the lattice "rows" of the partition are the z planes.
+  const Kernel<3> k(KernelType::CubicSpline);
+  const auto d =
+      make_discretisation(make_lattice<3>(LatticeType::Cubic, 7, {.support_radius = k.support_radius(1.3)}), k, 1.3);
+  const MatrixFreeLinearisation<3> mf(*d, kMaterial, MomentumForm::Conservative, PreStrainKind::Isotropic);
+  const Linearisation lin = assemble_by_products(mf);
+  const CriticalLoad ref = direct(lin, LoadDirection::Tension);
+  const PetscCriticalLoad r = petsc_critical_load(lin, LoadDirection::Tension);
+  const MatrixFreeCriticalLoad it = matrix_free_critical_load(mf, LoadDirection::Tension,
+                                                              {.method = MatrixFreeEigenMethod::BlockLobpcg,
+                                                               .residual_tol = 1e-9,
+                                                               .max_iterations = 20000,
+                                                               .preconditioner = MatrixFreePreconditioner::None});
+  ASSERT_EQ(ref.info(), Status::Successful) << ref.reason;
+  ASSERT_EQ(r.info(), Status::Successful) << r.reason;
+  ASSERT_EQ(it.info(), Status::Successful) << it.reason;
+  EXPECT_EQ(r.global_dofs, 3 * 343);
+  EXPECT_EQ(r.lattice_rows, 7);
+  EXPECT_TRUE(same_on_all_ranks(r.load));
+  EXPECT_LE(std::abs(r.load - ref.load) / ref.load, 1e-8) << r.load << " vs direct " << ref.load;
+  EXPECT_LE(std::abs(it.load - ref.load) / ref.load, 1e-8) << it.load << " vs direct " << ref.load;
+  if (g_session->rank() == 0)
+    std::cout << "3D n=7 on " << r.ranks << " ranks: e_crit " << r.load << " (direct " << ref.load << ", matrix-free "
+              << it.load << ")\n";
 }
 
 TEST(PetscCriticalLoad, CompressionHasTheSignOfTheDirectRoute) {

@@ -3,7 +3,8 @@
 // and divergence matrices), A1 of the conservative form with isotropic pre-stress against a central finite difference
 // of the kernel-gradient sum F_i = sum_j grad W(x_i - x_j) V_j (A1 v = -(4 s / rho) dF/dt along v, s the pre-stress
 // per unit strain); the 3D critical strain by block LOBPCG, with and without the sine preconditioner, against a dense
-// LAPACK-free reference (Eigen's generalised self-adjoint solver on the probed matrices).
+// reference (Eigen's generalised self-adjoint solver on the matrices assembled by products) and the engine's direct
+// route (critical_load) on the same assembled linearisation.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -12,6 +13,7 @@
 #include "sphstab/forms/linear_elastic.hpp"
 #include "sphstab/jacobian/matrix_free_linearisation.hpp"
 #include "sphstab/particles/lattice.hpp"
+#include "sphstab/stability/critical_load.hpp"
 #include "sphstab/stability/lattice_sine_preconditioner.hpp"
 #include "sphstab/stability/lattice_stencil.hpp"
 #include "sphstab/stability/matrix_free_critical_load.hpp"
@@ -107,29 +109,14 @@ TEST(MatrixFreeLinearisation3D, A1IsTheDerivativeOfTheKernelGradientSum) {
   EXPECT_LT(relative_difference(2 * yp, y), 1e-14);
 }
 
-/// Dense K = A0 and L = -A1 (tension) by products with unit vectors.
-void probe_dense(const MatrixFreeLinearisation<3>& lin, Eigen::MatrixXd& k, Eigen::MatrixXd& l) {
-  const int n = lin.dofs();
-  k.resize(n, n);
-  l.resize(n, n);
-  Eigen::VectorXd e = Eigen::VectorXd::Zero(n), y(n);
-  for (int c = 0; c < n; ++c) {
-    e[c] = 1;
-    lin.apply_A0(e, y);
-    k.col(c) = y;
-    lin.apply_A1(e, y);
-    l.col(c) = -y;
-    e[c] = 0;
-  }
-}
-
 TEST(MatrixFreeLinearisation3D, CriticalStrainAgreesWithTheDenseReference) {
   const int n = 6;
   const auto disc = discretise(cubic(n));
   const MatrixFreeLinearisation<3> lin(*disc, kMaterial, MomentumForm::Conservative, PreStrainKind::Isotropic);
   ASSERT_TRUE(lin.symmetric());
-  Eigen::MatrixXd k, l;
-  probe_dense(lin, k, l);
+  const Linearisation assembled = assemble_by_products(lin);
+  ASSERT_EQ(assembled.dofs_per_particle, 3);
+  const Eigen::MatrixXd k = Eigen::MatrixXd(assembled.A0), l = -Eigen::MatrixXd(assembled.A1);
   EXPECT_LT((k - k.transpose()).cwiseAbs().maxCoeff(), 1e-13 * k.cwiseAbs().maxCoeff());
   EXPECT_LT((l - l.transpose()).cwiseAbs().maxCoeff(), 1e-13 * l.cwiseAbs().maxCoeff());
   const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> ges(0.5 * (l + l.transpose()),
@@ -157,6 +144,13 @@ TEST(MatrixFreeLinearisation3D, CriticalStrainAgreesWithTheDenseReference) {
   ASSERT_EQ(pre.status, Status::Successful) << pre.reason;
   EXPECT_NEAR(pre.load, 1 / lambda_max, 1e-10 / lambda_max);
   EXPECT_LT(pre.iterations, plain.iterations);
+
+  // The engine's direct route (critical_load: definiteness, eigen route) on the assembled 3D linearisation.
+  CriticalLoadOptions direct = CriticalLoadOptions::strain_2d();
+  direct.method = CriticalLoadMethod::Eigen;
+  const CriticalLoad d = critical_load(assembled, LoadDirection::Tension, direct);
+  ASSERT_EQ(d.status, Status::Successful) << d.reason;
+  EXPECT_NEAR(d.load, 1 / lambda_max, 1e-10 / lambda_max);
 }
 
 }  // namespace

@@ -46,6 +46,7 @@
 #include "sphstab/forms/discretisation.hpp"
 #include "sphstab/forms/elasticity_2d.hpp"
 #include "sphstab/forms/momentum_form.hpp"
+#include "sphstab/jacobian/linearisation.hpp"
 #include "sphstab/operators/operators.hpp"
 
 namespace sphstab {
@@ -87,6 +88,7 @@ class MatrixFreeLinearisation {
   /// As Linearisation::symmetric / complete (same definitions as analytic_jacobian_2d).
   bool symmetric() const { return m_symmetric; }
   bool complete() const { return m_complete; }
+  bool periodic() const { return m_periodic; }  ///< every axis of the particle set is periodic
   /// Bytes held by this object (stored operator values, indices, row sums, buffers).
   double memory_bytes() const;
 
@@ -117,7 +119,7 @@ class MatrixFreeLinearisation {
   double m_alpha = 1;      ///< P = G + alpha diag(g) (conservative: 1)
   double m_a1_factor = 0;  ///< (1 + alpha)/rho (plain forms), 2/rho (conservative)
   Stress m_s0 = Stress::Zero();
-  bool m_symmetric = false, m_complete = false;
+  bool m_symmetric = false, m_complete = false, m_periodic = false;
 
   std::vector<int> m_free;           ///< free particle indices (ascending)
   Eigen::MatrixXd m_free_positions;  ///< free_count x Dim
@@ -134,5 +136,13 @@ class MatrixFreeLinearisation {
 };
 
 MatrixFreeLinearisation(const ElasticForm2D&)->MatrixFreeLinearisation<2>;
+
+/// The assembled Linearisation (jacobian/linearisation.hpp: A0, A1, dofs_per_particle = Dim, free_index, x, flags)
+/// of `lin`, column by column from products with unit vectors (exact zeros dropped): dofs() products of O(N) each,
+/// so for small problems and cross-checks only, e.g. in 3D, where no analytic assembly exists, to hand a 3D problem
+/// to critical_load or the distributed route. Throws MemoryLimitError when dofs^2 / 8 bytes (a generous bound of
+/// the stored nonzeros) does not fit.
+template <int Dim>
+Linearisation assemble_by_products(const MatrixFreeLinearisation<Dim>& lin);
 
 }  // namespace sphstab

@@ -89,4 +89,11 @@ class LatticeSinePreconditioner {
   std::unique_ptr<Plan> m_plan;
 };
 
+/// \f$\max_{k, c} \hat L_{cc}(k) / \hat K_{cc}(k)\f$ over the DST-I grid of an n^Dim lattice (the preconditioner's
+/// symbol_max()), without planning transforms: <= 0 means no instability of the lattice interior in this load
+/// direction (e.g. compression on the square lattice), where no LatticeSinePreconditioner exists. Throws
+/// std::invalid_argument for n < 1, a malformed stencil or a symbol of K that is not positive.
+template <int Dim>
+double lattice_symbol_ratio_max(const LatticeStencil<Dim>& stencil, int n);
+
 }  // namespace sphstab

@@ -19,13 +19,17 @@
 ///     are recomputed (and P dropped) every refresh_every steps against drift. Stops when the top Ritz pair has
 ///     ||L x - theta K x|| <= residual_tol |theta| ||K x||. Per step: b products with A0, b with A1 and b
 ///     preconditioner applications (b = block_size); memory: about 10 b + 8 vectors of dofs (O(N)).
-///     preconditioner LatticeSine (lattice_sine_preconditioner.hpp, stencil probed from `lin` itself, square
-///     lattices only): T = (sigma_p K - L)^{-1} approximated by 2D sine transforms; start ZoneBoundary: the
-///     zone-boundary modes (-1)^i, (-1)^j times the lowest sine envelopes, x- and y-polarised (the shape of the
-///     critical modes). Measured (cubic, h = 1.3 dx, conservative, isotropic; block size 4, residual_tol 1e-8,
-///     margin 0.02): 37-40 steps at n = 12 - 128, 36-37 at n = 256 - 1000 (independent of n), n = 1000 (2 x 10^6
-///     DOFs) in ~40 s and 2.6 GB on 2 threads (results/critical-strain-large). In the Python prototype block sizes
-///     1 and 2 from this start converged to the second eigenvalue (relative error 1e-3): keep 4.
+///     preconditioner LatticeSine (lattice_sine_preconditioner.hpp, stencil probed from `lin` itself, square or
+///     cubic lattices only): T = (sigma_p K - L)^{-1} approximated by 2D (3D) sine transforms; start ZoneBoundary:
+///     the zone-boundary modes (-1)^i, (-1)^j[, (-1)^k] times the lowest sine envelopes, polarised along each axis
+///     (the shape of the critical modes). When the lattice symbol has no positive L/K ratio (no interior instability
+///     in this direction, e.g. compression) no shift exists: the iteration runs without a preconditioner and says so
+///     in MatrixFreeCriticalLoad::preconditioner. Measured (cubic, h = 1.3 dx, conservative, isotropic; block size 4,
+///     residual_tol 1e-8, margin 0.02): 37-40 steps at n = 12 - 128, 36-37 at n = 256 - 1000 (independent of n), n =
+///     1000 (2 x 10^6 DOFs) in ~40 s and 2.6 GB on 2 threads (results/critical-strain-large). In the Python prototype
+///     block sizes 1 and 2 from this start converged to the second eigenvalue (relative error 1e-3): keep 4. 3D (cubic
+///     lattice, same case): 39-44 steps at n = 8 - 100; 100^3 free particles (3 x 10^6 DOFs) on 2 threads in
+///     results/critical-strain-3d; agreement with a dense reference 1e-13 at n = 8 and 11.
 ///     Threads (core/threads.hpp): operator rows, the preconditioner's transforms and the dense block algebra over
 ///     fixed row chunks: the same bits for any thread count.
 ///   - LanczosCg: Spectra's SymGEigsSolver in regular-inverse mode (Lanczos on K^{-1} L in the K inner product),
@@ -56,9 +60,9 @@
 namespace sphstab {
 
 enum class MatrixFreeEigenMethod { Lobpcg, LanczosCg, BlockLobpcg };
-/// BlockLobpcg's preconditioner: none (T = I) or the lattice sine transform (square lattices).
+/// BlockLobpcg's preconditioner: none (T = I) or the lattice sine transform (square and cubic lattices).
 enum class MatrixFreePreconditioner { None, LatticeSine };
-/// BlockLobpcg's start block: Auto = ZoneBoundary on a square lattice in DOF order, Random otherwise.
+/// BlockLobpcg's start block: Auto = ZoneBoundary on a square (cubic) lattice in DOF order, Random otherwise.
 enum class MatrixFreeStart { Auto, ZoneBoundary, Random };
 
 struct MatrixFreeCriticalLoadOptions {
@@ -91,11 +95,15 @@ struct MatrixFreeCriticalLoad {
   long a0_products = 0;                  ///< matrix-free A0 products in all (one per vector)
   long a1_products = 0;                  ///< BlockLobpcg: A1 products (one per vector)
   long preconditioner_applications = 0;  ///< BlockLobpcg: T applications (one per vector)
-  double residual = nan;       ///< BlockLobpcg: ||L x - theta K x|| / (|theta| ||K x||) of the top pair at the end
-  double sigma_p = nan;        ///< BlockLobpcg with LatticeSine: the preconditioner shift
-  double setup_seconds = 0;    ///< BlockLobpcg: stencil probe and preconditioner setup (wall)
-  double solve_seconds = 0;    ///< BlockLobpcg: the iteration (wall), of which:
-  double product_seconds = 0;  ///<   A0 and A1 products
+  double residual = nan;  ///< BlockLobpcg: ||L x - theta K x|| / (|theta| ||K x||) of the top pair at the end
+  double sigma_p = nan;   ///< BlockLobpcg with LatticeSine: the preconditioner shift
+  /// BlockLobpcg: "lattice-sine", "none", or "none (...)" when LatticeSine was asked for but the lattice symbol has no
+  /// positive L/K ratio in this direction (compression on the square lattice): then no shift exists and the block
+  /// LOBPCG runs unpreconditioned (more steps; the result is still checked by the same residual).
+  std::string preconditioner;
+  double setup_seconds = 0;           ///< BlockLobpcg: stencil probe and preconditioner setup (wall)
+  double solve_seconds = 0;           ///< BlockLobpcg: the iteration (wall), of which:
+  double product_seconds = 0;         ///<   A0 and A1 products
   double preconditioner_seconds = 0;  ///<   preconditioner applications (the rest: dense block algebra)
   int solves = 0;                     ///< LanczosCg: K^{-1} v solves (one per Lanczos step)
   long cg_iterations = 0;             ///< LanczosCg: total CG steps
@@ -108,9 +116,10 @@ struct MatrixFreeCriticalLoad {
 
 /// Throws std::invalid_argument for a non-symmetric linearisation (lin.symmetric() false), a form without load
 /// dependence (minus: A1 = 0) or invalid options; BlockLobpcg with LatticeSine or ZoneBoundary also for free particles
-/// that are not an n x n square lattice in DOF order, or a lattice too small to probe the stencil (n < 11 at
-/// h = 1.3 dx: use the overload with a preconditioner set up from a larger lattice). NumericalIssue when K meets a
-/// non-positive curvature (not positive definite), NotConverging when LOBPCG, CG or Spectra stop at their limits.
+/// that are not an n x n square (n x n x n cubic) lattice in DOF order, or a lattice too small to probe the stencil (n
+/// < 11 at h = 1.3 dx: use the overload with a preconditioner set up from a larger lattice). NumericalIssue when K
+/// meets a non-positive curvature (not positive definite), NotConverging when LOBPCG, CG or Spectra stop at their
+/// limits.
 template <int Dim>
 MatrixFreeCriticalLoad matrix_free_critical_load(const MatrixFreeLinearisation<Dim>& lin, LoadDirection direction,
                                                  const MatrixFreeCriticalLoadOptions& options = {});

@@ -1,0 +1,86 @@
+// The matrix-free rate-form Jacobian product (complex_step_product.hpp) against the assembled coloured complex-step
+// J (complex_step_jacobian.hpp) and a central finite difference of the rate; and the leading eigenvalue of J by
+// Spectra on the product against the dense spectrum of the assembled J.
+#include "sphstab/jacobian/complex_step_product.hpp"
+
+#include <Spectra/GenEigsSolver.h>
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+
+#include "../forms/forms_fixture.hpp"
+#include "sphstab/forms/rate_form.hpp"
+#include "sphstab/jacobian/complex_step_jacobian.hpp"
+
+namespace sphstab {
+namespace {
+
+const RateFormMaterial kGms{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};
+
+TEST(ComplexStepProduct, IsTheAssembledJacobianTimesTheVector) {
+  // Stretched (xi = 1.02) block with a deviator, viscosity, XSPH and the artificial stress: every term of F.
+  const auto disc = test::lattice_discretisation<2>({.n = 6, .h = 1.3, .periodic = false});
+  Eigen::VectorXd dev(3);
+  dev << 0.004, -0.002, 0.001;
+  const RateFormScheme<2> scheme(
+      disc, kGms, {.xsph = 0.5, .viscosity = ViscositySwitch::Always, .artificial_stress = 0.3}, 1.0 / 1.02, dev);
+  Eigen::VectorXd y0 = scheme.uniform_state();
+  y0 += 1e-3 * random_vector(static_cast<int>(y0.size()), 1.0, 3).cwiseProduct(y0.cwiseAbs());  // off the uniform state
+  const SparseMatrix<> J = jacobian(scheme, y0);
+  const ComplexStepProduct jv(scheme, y0);
+  for (unsigned seed : {1u, 2u}) {
+    const Eigen::VectorXd x = random_vector(static_cast<int>(y0.size()), 1.0, seed);
+    Eigen::VectorXd y(y0.size());
+    jv.apply(x, y);
+    const Eigen::VectorXd ref = J * x;
+    EXPECT_LT((y - ref).cwiseAbs().maxCoeff(), 1e-13 * ref.cwiseAbs().maxCoeff()) << "seed " << seed;
+    // Independent of complex arithmetic: central difference, error O(eps^2) + round-off / eps.
+    const double eps = 1e-6;
+    Eigen::VectorXd fp, fm;
+    scheme.rate(Eigen::VectorXd(y0 + eps * x), fp);
+    scheme.rate(Eigen::VectorXd(y0 - eps * x), fm);
+    const Eigen::VectorXd fd = (fp - fm) / (2 * eps);
+    EXPECT_LT((y - fd).cwiseAbs().maxCoeff(), 1e-6 * ref.cwiseAbs().maxCoeff()) << "seed " << seed;
+  }
+  EXPECT_EQ(jv.products(), 2);
+  Eigen::VectorXd zero = Eigen::VectorXd::Zero(y0.size()), y(y0.size());
+  jv.apply(zero, y);
+  EXPECT_EQ(y.cwiseAbs().maxCoeff(), 0.0);
+}
+
+TEST(ComplexStepProduct, SpectraFindsTheLeadingEigenvalueMatrixFree) {
+  // Tension without artificial stress: J has growing modes; the largest real part from Spectra on the product must
+  // be that of the dense spectrum of the assembled J.
+  const auto disc = test::lattice_discretisation<2>({.n = 6, .h = 1.3, .periodic = false});
+  const RateFormScheme<2> scheme(disc, kGms, {}, 1.0 / 1.05);
+  const Eigen::VectorXd y0 = scheme.uniform_state();
+  const Eigen::MatrixXd J = Eigen::MatrixXd(jacobian(scheme, y0));
+  const Eigen::EigenSolver<Eigen::MatrixXd> dense(J, false);
+  ASSERT_EQ(dense.info(), Eigen::Success);
+  const double top = dense.eigenvalues().real().maxCoeff();
+  ASSERT_GT(top, 0);  // the stretched block is unstable
+  ComplexStepProduct jv(scheme, y0);
+  Spectra::GenEigsSolver<ComplexStepProduct> eigs(jv, 2, 40);
+  eigs.init();
+  eigs.compute(Spectra::SortRule::LargestReal, 5000, 1e-12);
+  ASSERT_EQ(eigs.info(), Spectra::CompInfo::Successful);
+  EXPECT_NEAR(eigs.eigenvalues()[0].real(), top, 1e-9 * top);
+  EXPECT_GT(jv.products(), 0);
+}
+
+TEST(ComplexStepProduct, RejectsBadInput) {
+  const auto disc = test::lattice_discretisation<2>({.n = 4, .h = 1.3, .periodic = false});
+  const RateFormScheme<2> scheme(disc, kGms);
+  const Eigen::VectorXd y0 = scheme.uniform_state();
+  EXPECT_THROW(ComplexStepProduct(scheme, Eigen::VectorXd::Zero(3)), std::invalid_argument);
+  Eigen::VectorXd bad = y0;
+  bad[0] = NAN;
+  EXPECT_THROW(ComplexStepProduct(scheme, bad), std::invalid_argument);
+  EXPECT_THROW(ComplexStepProduct(scheme, y0, 0.0), std::invalid_argument);
+  const ComplexStepProduct jv(scheme, y0);
+  Eigen::VectorXd x(3), y(3);
+  EXPECT_THROW(jv.apply(x, y), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace sphstab
