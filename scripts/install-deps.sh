@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages sphstab needs (run as root); does nothing for packages already present.
 set -euo pipefail
 packages=(cmake g++ make libeigen3-dev libspectra-dev libsuitesparse-dev liblapack-dev liblapacke-dev
-          libfftw3-dev libgtest-dev libbenchmark-dev libcli11-dev python3-matplotlib python3-numpy
+          libfftw3-dev libgtest-dev libbenchmark-dev libcli11-dev python3-matplotlib python3-numpy python3-scipy
           pkg-config petsc-dev libslepc-real-dev openmpi-bin libopenmpi-dev)
 missing=()
 for p in "${packages[@]}"; do
