@@ -3,7 +3,7 @@
 // conservative form, isotropic tension, plane strain (benchmarks/strain_lattice.hpp). One case per process, so that
 // the peak RSS is the case's; prints one CSV row (header with --header).
 //   build/bin/lattice_lobpcg_benchmark 1000 [--block 4] [--tol 1e-8] [--margin 0.02] [--measure] [--threads 1]
-// Wall-time split: lattice (particles + neighbour list), linearisation (MatrixFreeLinearisation: G, H assembled,
+// Wall-time split: lattice (particles + neighbour list), linearisation (MatrixFreeLinearisation: G, H values per pair,
 // needed values kept), probe (stencil from 4 operator products), preconditioner setup (symbols, FFTW plan), solve.
 // The probe check (12 products: the free-free operator against the restricted stencil at an interior, an edge and a
 // corner particle) and the per-product profile (A0, A1, T on one vector, median of 5) are timed apart and not part of

@@ -218,7 +218,7 @@ def main(binary, outdir, summary_only=False):
              f"Commit {commit}.")
     L.append("")
     L.append("Columns: wall seconds of lattice (particles + neighbour list), linearisation (MatrixFreeLinearisation: G "
-             "and H assembled, needed values kept), stencil probe, preconditioner setup (symbols + FFTW plan), solve "
+             "and H values computed pair by pair, no operator matrix assembled), stencil probe, preconditioner setup (symbols + FFTW plan), solve "
              "(of which A0/A1 products, preconditioner, and the dense block algebra = the rest), total = all of these; "
              "CPU = user + system seconds of the process; peak RSS of the process (getrusage). rel. diff. = relative "
              "difference from the direct values (PETSc shift-invert, residual 3e-12; n = 32-256).")
@@ -296,8 +296,8 @@ def main(binary, outdir, summary_only=False):
                  f"{float(prof['solve_preconditioner_s']):.1f} s ({float(prof['preconditioner_s']) * 1e3:.0f} ms per "
                  f"vector: 4 two-dimensional DST-I of 1000 x 1000), dense block algebra (Gram matrices, projections, "
                  f"Ritz updates on 2e6 x 12 blocks, memory-bound) {float(prof['solve_dense_s']):.1f} s; outside the "
-                 f"solve the linearisation build {float(prof['linearisation_s']):.1f} s (G and H assembled once, "
-                 f"single-threaded).")
+                 f"solve the linearisation build {float(prof['linearisation_s']):.1f} s (G and H values computed once "
+                 f"pair by pair, threaded).")
     r128 = main_rows.get((128, 1))
     if r128:
         t = float(r128["total_s"])
