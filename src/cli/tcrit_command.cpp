@@ -140,6 +140,30 @@ void require_tcrit_2d_lobpcg_memory(int n, double support) {
   require_memory(bytes, "tcrit: --dim 2 --method lobpcg --n " + std::to_string(n) + " with h/dx = " + num(support / 2));
 }
 
+/// The sweep of a --dim 2 or --dim 3 run: pre-strain kind, material (rho = 1: it cancels in e_crit), kernels, forms
+/// and h values, validated in this order.
+struct ElasticSweep {
+  PreStrainKind kind;
+  ElasticMaterial material;
+  std::vector<KernelType> kernels;
+  std::vector<MomentumForm> forms;
+  std::vector<double> hs;
+};
+
+ElasticSweep parse_elastic_sweep(const TcritArgs& a) {
+  ElasticSweep sw;
+  sw.kind = parse_prestrain_kind(a.prestrain);
+  sw.material = {
+      .lambda = parse_double(a.lambda, "tcrit: --lambda"), .mu = parse_double(a.mu, "tcrit: --mu"), .rho = 1.0};
+  sw.material.validate("tcrit");
+  for (const auto& k : split_list(a.kernel, ',', "tcrit: --kernel")) sw.kernels.push_back(parse_kernel_type(k));
+  for (const auto& f : split_list(a.form, ',', "tcrit: --form")) sw.forms.push_back(parse_momentum_form(f));
+  if (sw.kernels.empty() || sw.forms.empty())
+    throw std::invalid_argument("tcrit: --kernel and --form must not be empty");
+  sw.hs = parse_h(a.h);
+  return sw;
+}
+
 /// --dim 3: the matrix-free linearisation (stored G and H values, about 28 + 48 bytes per pair within the support,
 /// q pairs per particle) and BlockLobpcg's 10 b + 8 vectors of 3 doubles per free particle (b = 4): 7.9 GB measured
 /// at n = 100 (results/critical-strain-3d).
@@ -234,16 +258,12 @@ void run_tcrit_3d(const TcritArgs& a) {
         "definiteness)");
   const int n = parse_positive_int(a.n, "--n");
   if (n < 2) throw std::invalid_argument("tcrit: --dim 3 needs --n >= 2 (got " + a.n + ")");
-  const PreStrainKind kind = parse_prestrain_kind(a.prestrain);
-  const ElasticMaterial material{
-      .lambda = parse_double(a.lambda, "tcrit: --lambda"), .mu = parse_double(a.mu, "tcrit: --mu"), .rho = 1.0};
-  material.validate("tcrit");
-  std::vector<KernelType> kernels;
-  for (const auto& k : split_list(a.kernel, ',', "tcrit: --kernel")) kernels.push_back(parse_kernel_type(k));
-  std::vector<MomentumForm> forms;
-  for (const auto& f : split_list(a.form, ',', "tcrit: --form")) forms.push_back(parse_momentum_form(f));
-  if (kernels.empty() || forms.empty()) throw std::invalid_argument("tcrit: --kernel and --form must not be empty");
-  const std::vector<double> hs = parse_h(a.h);
+  const ElasticSweep sw = parse_elastic_sweep(a);
+  const PreStrainKind kind = sw.kind;
+  const ElasticMaterial& material = sw.material;
+  const std::vector<KernelType>& kernels = sw.kernels;
+  const std::vector<MomentumForm>& forms = sw.forms;
+  const std::vector<double>& hs = sw.hs;
   for (KernelType kt : kernels)
     for (double h : hs) require_tcrit_3d_lobpcg_memory(n, Kernel<3>(kt).support_radius(h));
   const LoadDirection sign = a.compression ? LoadDirection::Compression : LoadDirection::Tension;
@@ -286,16 +306,12 @@ void run_tcrit_2d(const TcritArgs& a) {
   if (a.periodic && n < 2) throw std::invalid_argument("tcrit: --periodic needs --n >= 2");
   if (a.periodic && type != LatticeType::Square && n % 2 != 0)
     throw std::invalid_argument("tcrit: periodic hex/face-centred lattices need an even --n (got " + a.n + ")");
-  const PreStrainKind kind = parse_prestrain_kind(a.prestrain);
-  const ElasticMaterial material{
-      .lambda = parse_double(a.lambda, "tcrit: --lambda"), .mu = parse_double(a.mu, "tcrit: --mu"), .rho = 1.0};
-  material.validate("tcrit");
-  std::vector<KernelType> kernels;
-  for (const auto& k : split_list(a.kernel, ',', "tcrit: --kernel")) kernels.push_back(parse_kernel_type(k));
-  std::vector<MomentumForm> forms;
-  for (const auto& f : split_list(a.form, ',', "tcrit: --form")) forms.push_back(parse_momentum_form(f));
-  if (kernels.empty() || forms.empty()) throw std::invalid_argument("tcrit: --kernel and --form must not be empty");
-  const std::vector<double> hs = parse_h(a.h);
+  const ElasticSweep sw = parse_elastic_sweep(a);
+  const PreStrainKind kind = sw.kind;
+  const ElasticMaterial& material = sw.material;
+  const std::vector<KernelType>& kernels = sw.kernels;
+  const std::vector<MomentumForm>& forms = sw.forms;
+  const std::vector<double>& hs = sw.hs;
   // lobpcg: the matrix-free preconditioned block LOBPCG (matrix_free_critical_load.hpp, BlockLobpcg), O(N) memory
   const bool lobpcg = a.method == "lobpcg";
   if (lobpcg && (a.periodic || type != LatticeType::Square))
