@@ -258,12 +258,7 @@ void run_tcrit_3d(const TcritArgs& a) {
         "definiteness)");
   const int n = parse_positive_int(a.n, "--n");
   if (n < 2) throw std::invalid_argument("tcrit: --dim 3 needs --n >= 2 (got " + a.n + ")");
-  const ElasticSweep sw = parse_elastic_sweep(a);
-  const PreStrainKind kind = sw.kind;
-  const ElasticMaterial& material = sw.material;
-  const std::vector<KernelType>& kernels = sw.kernels;
-  const std::vector<MomentumForm>& forms = sw.forms;
-  const std::vector<double>& hs = sw.hs;
+  const auto [kind, material, kernels, forms, hs] = parse_elastic_sweep(a);
   for (KernelType kt : kernels)
     for (double h : hs) require_tcrit_3d_lobpcg_memory(n, Kernel<3>(kt).support_radius(h));
   const LoadDirection sign = a.compression ? LoadDirection::Compression : LoadDirection::Tension;
@@ -306,12 +301,7 @@ void run_tcrit_2d(const TcritArgs& a) {
   if (a.periodic && n < 2) throw std::invalid_argument("tcrit: --periodic needs --n >= 2");
   if (a.periodic && type != LatticeType::Square && n % 2 != 0)
     throw std::invalid_argument("tcrit: periodic hex/face-centred lattices need an even --n (got " + a.n + ")");
-  const ElasticSweep sw = parse_elastic_sweep(a);
-  const PreStrainKind kind = sw.kind;
-  const ElasticMaterial& material = sw.material;
-  const std::vector<KernelType>& kernels = sw.kernels;
-  const std::vector<MomentumForm>& forms = sw.forms;
-  const std::vector<double>& hs = sw.hs;
+  const auto [kind, material, kernels, forms, hs] = parse_elastic_sweep(a);
   // lobpcg: the matrix-free preconditioned block LOBPCG (matrix_free_critical_load.hpp, BlockLobpcg), O(N) memory
   const bool lobpcg = a.method == "lobpcg";
   if (lobpcg && (a.periodic || type != LatticeType::Square))
