@@ -50,13 +50,14 @@ using namespace sphstab;
 
 constexpr double kSkin = 0.5;  // Verlet skin in dx, as in the gms-* studies
 
-RateFormOptions gms() {
+RateFormOptions gms(PairLoop loop) {
   return {.continuity = ContinuityForm::Divergence,
           .xsph = 0.5,
           .viscosity = ViscositySwitch::Compression,
           .viscosity_alpha = 1,
           .viscosity_beta = 2,
-          .artificial_stress = 0.3};
+          .artificial_stress = 0.3,
+          .pair_loop = loop};
 }
 
 struct Scene {
@@ -70,27 +71,27 @@ struct Scene {
   int particles() const { return scheme->discretisation().size(); }
 };
 
-Scene rings_si() {
+Scene rings_si(PairLoop loop) {
   const RateFormMaterial m = RateFormMaterial::from_youngs(1e7, 0.3975, 1.0);
   const double dx = 5e-4;
   const CollidingRings r = make_colliding_rings(
       {.inner_radius = 0.03, .outer_radius = 0.04, .spacing = dx, .gap = 2e-3, .speed = 0.059 * m.sound_speed()});
   Scene s{.name = "RingsSI", .dx = dx, .steps = 40};
   s.scheme = std::make_unique<RateFormScheme<2>>(
-      make_discretisation(r.particles, Kernel<2>(KernelType::CubicSpline), 1.5 * dx), m, gms());
+      make_discretisation(r.particles, Kernel<2>(KernelType::CubicSpline), 1.5 * dx), m, gms(loop));
   s.y0 = s.scheme->uniform_state();
   for (int i = 0; i < r.size(); ++i) s.scheme->set_velocity(s.y0, i, r.velocity.col(i));
   s.dt = 0.5 * 1.5 * dx / m.p_wave_speed();
   return s;
 }
 
-Scene lattice(int side) {
+Scene lattice(int side, PairLoop loop) {
   const RateFormMaterial m{.density = 1, .bulk_modulus = 1, .shear_modulus = 0.22};
   Scene s{.name = "Lattice", .dx = 1.0, .steps = side >= 1000 ? 2 : 6};
   s.scheme = std::make_unique<RateFormScheme<2>>(
       make_discretisation(make_lattice<2>(LatticeType::Square, side, {.spacing = 1.0, .periodic = true}),
                           Kernel<2>(KernelType::CubicSpline), 1.5),
-      m, gms());
+      m, gms(loop));
   s.y0 = s.scheme->uniform_state();
   std::mt19937_64 rng(side);
   std::uniform_real_distribution<double> u(-1, 1);
@@ -106,8 +107,12 @@ Scene& scene(const std::string& key) {
   static std::map<std::string, Scene> cache;
   auto it = cache.find(key);
   if (it == cache.end()) {
-    Scene s =
-        key == "RingsSI" ? rings_si() : lattice(static_cast<int>(std::lround(std::sqrt(std::atof(key.c_str() + 7)))));
+    // "<scene>" (the row loop) or "<scene>/pairs" (the pair loop).
+    const std::size_t slash = key.find('/');
+    const std::string base = key.substr(0, slash);
+    const PairLoop loop = slash == std::string::npos ? PairLoop::Rows : parse_pair_loop(key.substr(slash + 1));
+    Scene s = base == "RingsSI" ? rings_si(loop)
+                                : lattice(static_cast<int>(std::lround(std::sqrt(std::atof(base.c_str() + 7)))), loop);
     // At y0 the rings move rigidly (no pair approaches: the viscosity is off everywhere); a few steps in, it acts.
     const ThreadCountGuard one(1);
     const RateFormRunResult r =
@@ -218,8 +223,9 @@ int main(int argc, char** argv) {
   benchmark::Initialize(&n, args.data());
   if (benchmark::ReportUnrecognizedArguments(n, args.data())) return 2;
   benchmark::RegisterBenchmark("Triad", bench::stream_triad)->Unit(benchmark::kMillisecond)->MinTime(1.0);
-  std::vector<std::pair<std::string, long>> keys = {
-      {"RingsSI", 17608}, {"Lattice99856", 99856}, {"Lattice1000000", 1000000}};
+  std::vector<std::pair<std::string, long>> keys = {{"RingsSI", 17608},          {"RingsSI/pairs", 17608},
+                                                    {"Lattice99856", 99856},     {"Lattice99856/pairs", 99856},
+                                                    {"Lattice1000000", 1000000}, {"Lattice1000000/pairs", 1000000}};
   for (const auto& [key, count] : keys) {
     if (count > max_particles) continue;
     const int reps = count >= 1000000 ? 1 : 3;

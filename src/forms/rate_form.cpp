@@ -14,10 +14,9 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
+#include "kernel_rows.hpp"
+#include "rate_form_pair_loop.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/threads.hpp"
 #include "sphstab/models/artificial_stress.hpp"
@@ -77,15 +76,18 @@ RateFormMomentum parse_rate_form_momentum(const std::string& name) {
   throw std::invalid_argument("unknown rate-form momentum '" + name + "' (valid: symmetric, antisymmetric, cij, ssph)");
 }
 
+PairLoop parse_pair_loop(const std::string& name) {
+  if (name == "rows") return PairLoop::Rows;
+  if (name == "pairs") return PairLoop::Pairs;
+  throw std::invalid_argument("unknown pair loop '" + name + "' (valid: rows, pairs)");
+}
+
+using rate_form_detail::PairFactor;
+using rate_form_detail::with_kernel_functions;
+
 namespace {
 
 bool uses_local_means(RateFormMomentum m) { return m == RateFormMomentum::Cij || m == RateFormMomentum::StabilisedSph; }
-
-#if defined(__GNUC__)
-#define SPHSTAB_ALWAYS_INLINE __attribute__((always_inline))
-#else
-#define SPHSTAB_ALWAYS_INLINE
-#endif
 
 // The helpers below repeat operations of other files exactly (the same expressions on the same types, in the same
 // order), so that evaluate() gives bitwise the results it gave when it called those functions; they only drop work
@@ -138,179 +140,6 @@ SymmetricTensor2<Scalar> particle_artificial_stress(const SymmetricTensor2<Scala
   if (minor_tensile) return {k * sigma.xx, k * sigma.yy, k * sigma.xy};
   if (!major_tensile) return {};
   return rotate_from_frame(f, Scalar(k * f.major), Scalar(0));
-}
-
-/// artificial_stress_pair_factor(w, w_dp, n) (models/artificial_stress.hpp/.cpp: f^n by repeated multiplication for
-/// integer n <= 1024, exp(n log f) otherwise, 0 for f <= 0) with the exponent's test done once; n >= 0 finite is
-/// checked by the constructor.
-class PairFactor {
- public:
-  PairFactor(double w_dp, double n)
-      : m_w_dp(w_dp), m_n(n), m_integer(n == std::floor(n) && n <= 1024), m_int(m_integer ? static_cast<int>(n) : 0) {}
-  /// f[q] = (w[q] / W(dp))^n for q < len.
-  template <class Scalar>
-  void row(std::size_t len, const Scalar* __restrict w, Scalar* __restrict f) const {
-    if (m_int == 4) {
-      for (std::size_t q = 0; q < len; ++q) {
-        const Scalar x = Scalar(w[q] / m_w_dp);
-        if constexpr (std::is_same_v<Scalar, double>)
-          f[q] = (x * x) * (x * x);  // ipow(x, 4) = 1 * ((x * x) * (x * x)), and 1 * y = y for a real y
-        else
-          f[q] = detail::ipow(x, 4);
-      }
-    } else {
-      for (std::size_t q = 0; q < len; ++q) f[q] = (*this)(w[q]);
-    }
-  }
-  template <class Scalar>
-  Scalar operator()(const Scalar& w) const {
-    const Scalar x = Scalar(w / m_w_dp);
-    if (m_int == 4) return detail::ipow(x, 4);  // GMS's n = 4, unrolled
-    if (m_integer) return detail::ipow(x, m_int);
-    if (detail::re(x) <= 0) return Scalar(0);
-    using std::exp;
-    using std::log;
-    return exp(m_n * log(x));
-  }
-
- private:
-  double m_w_dp, m_n;
-  bool m_integer;
-  int m_int;
-};
-
-/// W(r) and dW/dr(r) / r of a row of radii through the kernel's own functions.
-template <int Dim>
-struct KernelFunctions {
-  const Kernel<Dim>& kernel;
-  double h;
-  /// w[q] = W(r[q]) for q < len.
-  template <class Scalar>
-  void row_values(std::size_t len, const Scalar* r, Scalar* w) const {
-    for (std::size_t q = 0; q < len; ++q) w[q] = kernel.value(r[q], h);
-  }
-  /// gf[q] = (dW/dr)(r[q]) / r[q], and w[q] = W(r[q]) when Value.
-  template <bool Value, class Scalar>
-  void row_slopes(std::size_t len, const Scalar* r, Scalar* w, Scalar* gf) const {
-    for (std::size_t q = 0; q < len; ++q) {
-      if constexpr (Value) w[q] = kernel.value(r[q], h);
-      gf[q] = kernel.d1(r[q], h) / r[q];
-    }
-  }
-};
-
-/// The cubic spline's Kernel::value and Kernel::d1 written out (kernel.hpp, kernel_shapes.hpp: the CubicSpline branch
-/// of Kernel::shape, kappa = 1 and native support 2 in both scalings), the same operations, without the family switch
-/// and with W and dW/dr from one s = r / h.
-template <int Dim>
-class CubicFunctions {
- public:
-  CubicFunctions(const Kernel<Dim>& kernel, double h)
-      : m_h(h),
-        m_cw(kernel.normalisation() / (Dim == 1 ? h : (Dim == 2 ? h * h : h * h * h))),
-        m_cd(m_cw * (1.0 / h)) {}
-  /// w[q] = W(r[q]) for q < len.
-  template <class Scalar>
-  void row_values(std::size_t len, const Scalar* r, Scalar* w) const {
-    if constexpr (std::is_same_v<Scalar, double>) {
-      row_real<true, false>(len, r, w, nullptr);
-    } else {
-      Scalar dw;
-      for (std::size_t q = 0; q < len; ++q) eval<true, false>(r[q], w[q], dw);
-    }
-  }
-  /// gf[q] = (dW/dr)(r[q]) / r[q], and w[q] = W(r[q]) when Value.
-  template <bool Value, class Scalar>
-  SPHSTAB_ALWAYS_INLINE void row_slopes(std::size_t len, const Scalar* r, Scalar* w, Scalar* gf) const {
-    if constexpr (std::is_same_v<Scalar, double>) {
-      row_real<Value, true>(len, r, w, gf);
-    } else {
-      for (std::size_t q = 0; q < len; ++q) {
-        Scalar wq, dw;
-        eval<Value, true>(r[q], wq, dw);
-        if constexpr (Value) w[q] = wq;
-        gf[q] = dw / r[q];
-      }
-    }
-  }
-
- private:
-  /// eval() on real r[q] >= +0 (square roots): s = r / h >= +0 or NaN, so the branch on the sign of s is never taken
-  /// and the sign factors are 1 (1 * f = f). Both pieces are computed and one is selected (the values of eval()'s
-  /// branches, NaN included: it fails both tests, as there), two pairs at a time with SSE2 (the same IEEE operations
-  /// per lane).
-  template <bool Value, bool Slope>
-  SPHSTAB_ALWAYS_INLINE void row_real(std::size_t len, const double* __restrict r, double* __restrict w,
-                                      double* __restrict gf) const {
-    const double h = m_h, cw = m_cw, cd = m_cd;
-    std::size_t q = 0;
-#if defined(__SSE2__)
-    const __m128d vh = _mm_set1_pd(h), two = _mm_set1_pd(2.0), one = _mm_set1_pd(1.0);
-    for (; q + 2 <= len; q += 2) {
-      const __m128d rq = _mm_loadu_pd(r + q), s = _mm_div_pd(rq, vh), a = _mm_sub_pd(two, s);
-      // s >= 2 and s < 1: a NaN lane is neither (the outer piece, as in eval()).
-      const __m128d outside = _mm_cmpge_pd(s, two), near = _mm_cmplt_pd(s, one), aa = _mm_mul_pd(a, a);
-      if constexpr (Value) {
-        // 1 - 1.5 s s + 0.75 s s s = (1 - (1.5 s) s) + ((0.75 s) s) s; 0.25 (a (a a))
-        const __m128d inner = _mm_add_pd(_mm_sub_pd(one, _mm_mul_pd(_mm_mul_pd(_mm_set1_pd(1.5), s), s)),
-                                         _mm_mul_pd(_mm_mul_pd(_mm_mul_pd(_mm_set1_pd(0.75), s), s), s));
-        const __m128d outer = _mm_mul_pd(_mm_set1_pd(0.25), _mm_mul_pd(a, aa));
-        const __m128d f = _mm_andnot_pd(outside, _mm_or_pd(_mm_and_pd(near, inner), _mm_andnot_pd(near, outer)));
-        _mm_storeu_pd(w + q, _mm_mul_pd(_mm_set1_pd(cw), f));
-      }
-      if constexpr (Slope) {
-        // -3 s + 2.25 s s = (-3 s) + (2.25 s) s; 0.25 (-3 (a a))
-        const __m128d inner =
-            _mm_add_pd(_mm_mul_pd(_mm_set1_pd(-3.0), s), _mm_mul_pd(_mm_mul_pd(_mm_set1_pd(2.25), s), s));
-        const __m128d outer = _mm_mul_pd(_mm_set1_pd(0.25), _mm_mul_pd(_mm_set1_pd(-3.0), aa));
-        const __m128d f = _mm_andnot_pd(outside, _mm_or_pd(_mm_and_pd(near, inner), _mm_andnot_pd(near, outer)));
-        _mm_storeu_pd(gf + q, _mm_div_pd(_mm_mul_pd(_mm_set1_pd(cd), f), rq));
-      }
-    }
-#endif
-    for (; q < len; ++q) {
-      double wq, dw;
-      eval<Value, Slope>(r[q], wq, dw);
-      if constexpr (Value) w[q] = wq;
-      if constexpr (Slope) gf[q] = dw / r[q];
-    }
-  }
-
-  template <bool Value, bool Slope, class Scalar>
-  void eval(const Scalar& r, Scalar& w, Scalar& dw) const {
-    constexpr double kappa = 1.0;
-    const Scalar s_in = kappa * r / m_h;
-    const double sr = detail::re(s_in);
-    const Scalar s = sr < 0 ? Scalar(-s_in) : s_in;
-    const double sign = sr < 0 ? -1.0 : 1.0;  // of the odd derivative; the value's sign is 1
-    const double x = std::abs(sr);
-    if (x >= 2.0) {
-      if constexpr (Value) w = m_cw * Scalar(0.0);
-      if constexpr (Slope) dw = m_cd * Scalar(0.0);
-      return;
-    }
-    Scalar f0 = 0.0, f1 = 0.0;
-    if (x < 1.0) {
-      if constexpr (Value) f0 = 1.0 - 1.5 * s * s + 0.75 * s * s * s;
-      if constexpr (Slope) f1 = -3.0 * s + 2.25 * s * s;
-    } else {
-      if constexpr (Value) f0 = 0.25 * detail::power_term(Scalar(2.0 - s), 3, 0);
-      if constexpr (Slope) f1 = 0.25 * detail::power_term(Scalar(2.0 - s), 3, 1);
-    }
-    if constexpr (Value) w = m_cw * (1.0 * f0);
-    if constexpr (Slope) dw = m_cd * (sign * f1);
-  }
-
-  double m_h, m_cw, m_cd;
-};
-
-/// Calls body(functions) with the kernel's W, dW/dr: written out for the cubic spline, the kernel's own otherwise.
-template <int Dim, class Body>
-void with_kernel_functions(const Kernel<Dim>& kernel, double h, Body&& body) {
-  if (kernel.type() == KernelType::CubicSpline)
-    body(CubicFunctions<Dim>(kernel, h));
-  else
-    body(KernelFunctions<Dim>{kernel, h});
 }
 
 }  // namespace
@@ -393,6 +222,16 @@ RateFormScheme<Dim>::RateFormScheme(std::shared_ptr<const Discretisation<Dim>> d
                                       ", " + std::to_string(j) + ")");
         m_transpose[k] = it - nl.indices.begin();
       }
+  }
+  if (options.pair_loop == PairLoop::Pairs) {
+    if (options.gradient != RateFormGradient::Plain || uses_local_means(options.momentum))
+      throw std::invalid_argument(
+          "RateFormScheme: the pair loop needs the plain gradient with symmetric or antisymmetric momentum");
+    // Rows are sorted and hold i itself (neighbour_list.hpp).
+    m_upper.resize(n);
+    for (int i = 0; i < n; ++i)
+      m_upper[i] = std::upper_bound(nl.indices.begin() + nl.offsets[i], nl.indices.begin() + nl.offsets[i + 1], i) -
+                   nl.indices.begin();
   }
   m_mass = m_density * p.volume;
   m_x_off.assign(n, -1);
@@ -870,6 +709,75 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
       dydt[m_rho_off[i] + 3] = ds(0, 1);
     }
   };
+
+  if constexpr (std::is_same_v<Scalar, double>) {
+    if (o.pair_loop == PairLoop::Pairs && !partial) {  // each pair once (rate_form_pair_loop.hpp)
+      stresses();
+      dydt.resize(m_size);
+      ws.acc.resize(n);
+      ws.L.resize(n);
+      ws.drho.resize(n);
+      ws.xsph_moves.resize(n);
+      for (int i = 0; i < n; ++i) ws.xsph_moves[i] = m_x_off[i] >= 0 && !is_driven(i);
+      const double support = kernel.support_radius(h);
+      rate_form_detail::PairLoopArrays<Dim> A{.n = n,
+                                              .offsets = nl.offsets.data(),
+                                              .upper = m_upper.data(),
+                                              .indices = nl.indices.data(),
+                                              .x = x.data(),
+                                              .v = v.data(),
+                                              .rho = rho.data(),
+                                              .vol = vol.data(),
+                                              .mass = m_mass.data(),
+                                              .sigma_rho2 = sigma_rho2.data(),
+                                              .R = R.data(),
+                                              .xsph_moves = ws.xsph_moves.data(),
+                                              .half_box = half_box,
+                                              .support2 = support * support,
+                                              .h = h,
+                                              .eta2 = eta2,
+                                              .alpha_c0 = -o.viscosity_alpha * c0,
+                                              .beta = o.viscosity_beta,
+                                              .xsph = o.xsph,
+                                              .summation = o.continuity == ContinuityForm::Summation,
+                                              .vhat = vhat.data(),
+                                              .acc = ws.acc.data(),
+                                              .L = ws.L.data(),
+                                              .drho = ws.drho.data()};
+      for (int a = 0; a < Dim; ++a) A.box[a] = p.box_hi[a] - p.box_lo[a];
+      rate_form_detail::PairLoopScratch<Dim> scratch{ws.row, ws.row_j, ws.kept_j, ws.kept_count, ws.kept_g, ws.dvhat};
+      with_kernel_functions(kernel, h, [&](const auto& kf) {
+        const auto with_xsph = [&](auto viscosity_tag, auto stress_tag) {
+          constexpr ViscositySwitch kV = decltype(viscosity_tag)::value;
+          constexpr bool kS = decltype(stress_tag)::value;
+          if (o.xsph > 0)
+            rate_form_detail::pair_loop<Dim, kV, kS, true>(A, kf, pair_factor, scratch);
+          else
+            rate_form_detail::pair_loop<Dim, kV, kS, false>(A, kf, pair_factor, scratch);
+        };
+        const auto with_stress = [&](auto viscosity_tag) {
+          if (o.artificial_stress > 0)
+            with_xsph(viscosity_tag, std::true_type{});
+          else
+            with_xsph(viscosity_tag, std::false_type{});
+        };
+        switch (o.viscosity) {
+          case ViscositySwitch::Off:
+            with_stress(std::integral_constant<ViscositySwitch, ViscositySwitch::Off>{});
+            break;
+          case ViscositySwitch::Compression:
+            with_stress(std::integral_constant<ViscositySwitch, ViscositySwitch::Compression>{});
+            break;
+          case ViscositySwitch::Always:
+            with_stress(std::integral_constant<ViscositySwitch, ViscositySwitch::Always>{});
+            break;
+        }
+      });
+      for (int i = 0; i < n; ++i)
+        if (m_x_off[i] >= 0 || m_rho_off[i] >= 0) finish(i, m_x_off[i] >= 0, ws.L[i], ws.drho[i], ws.acc[i]);
+      return;
+    }
+  }
 
   if (plain && !uses_local_means(o.momentum)) {
     // Plain gradient, symmetric or antisymmetric momentum (the same for the plain gradient): no per-pair arrays over

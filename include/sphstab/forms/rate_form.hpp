@@ -123,6 +123,19 @@ enum class RateFormMomentum {
   StabilisedSph
 };
 
+/// How the plain-gradient symmetric/antisymmetric scheme visits the neighbour pairs (the other forms use Rows).
+enum class PairLoop {
+  /// Row by row, every pair twice (once from each side), each particle's sums in neighbour order: the same bits for
+  /// any thread count, and the same operations for the real and the complex (Jacobian) rate.
+  Rows,
+  /// Each pair once (j > i), its terms added to both particles: the pair terms are symmetric in i and j, so the two
+  /// momentum contributions are equal and opposite up to the masses and the two velocity-gradient contributions share
+  /// one outer product. Pairs of the list beyond the kernel support are skipped before any kernel work. About half
+  /// Rows' arithmetic; the sums run in another order, so the rates agree with Rows to rounding, not bitwise. Runs on
+  /// one thread. Real states only: the complex rate (Jacobians) and a partitioned scheme (set_row_partition) use Rows.
+  Pairs
+};
+
 /// The switchable terms. Defaults: plain SPH (no XSPH, no viscosity, no artificial stress), continuity by summation.
 struct RateFormOptions {
   ContinuityForm continuity = ContinuityForm::Summation;
@@ -143,6 +156,8 @@ struct RateFormOptions {
   /// StabilisedSph: particles with depth <= this never get the correction (0: the outer layer BP of algorithm 4.2;
   /// -1: none).
   int excluded_depth = 0;
+  /// Plain gradient with symmetric or antisymmetric momentum: Rows or Pairs (the constructor refuses Pairs otherwise).
+  PairLoop pair_loop = PairLoop::Rows;
 };
 
 /// Parses "summation" | "divergence" and "off" | "compression" | "always"; throws std::invalid_argument naming the
@@ -152,6 +167,8 @@ ViscositySwitch parse_viscosity_switch(const std::string& name);
 /// Parses "plain" | "ncsph" and "symmetric" | "antisymmetric" | "cij" | "ssph" (throws naming the valid choices).
 RateFormGradient parse_rate_form_gradient(const std::string& name);
 RateFormMomentum parse_rate_form_momentum(const std::string& name);
+/// Parses "rows" | "pairs" (throws naming the valid choices).
+PairLoop parse_pair_loop(const std::string& name);
 
 /// Not thread-safe: rate() reuses scratch buffers owned by the object (kept between calls, one set per scalar type),
 /// so one scheme object must not be evaluated from two threads at once; give each thread its own copy (a copy starts
@@ -292,6 +309,13 @@ class RateFormScheme final : public SemiDiscreteSystem {
     std::vector<Eigen::Matrix<Scalar, Dim + 2, 1>> ring;
     std::vector<long> ready, ring_start;
     std::vector<int> late;
+    // PairLoop::Pairs: per particle the sums and XSPH increments, whether it moves with XSPH; per kept pair j and g;
+    // per row the kept pairs.
+    std::vector<Eigen::Matrix<Scalar, Dim, 1>> acc, dvhat, kept_g;
+    std::vector<Eigen::Matrix<Scalar, Dim, Dim>> L;
+    std::vector<Scalar> drho;
+    std::vector<int> row_j, kept_j, kept_count;
+    std::vector<char> xsph_moves;
   };
 
   std::shared_ptr<const Discretisation<Dim>> m_disc;
@@ -302,6 +326,7 @@ class RateFormScheme final : public SemiDiscreteSystem {
   Eigen::VectorXd m_mass, m_deviator;
   std::vector<int> m_x_off, m_rho_off;       // per particle: offset of x (free only) and of rho (or -1)
   std::vector<long> m_transpose;             // pair (i, j) -> pair (j, i) (antisymmetric momentum)
+  std::vector<long> m_upper;                 // PairLoop::Pairs: per row, the first list entry with j > i
   Eigen::VectorXd m_counts;                  // n_i of the local means (Cij, StabilisedSph)
   std::vector<char> m_in_support;            // per list entry: in the local means' pattern (empty: every entry is)
   std::vector<int> m_driven, m_driven_slot;  // driven particles; per particle: index into m_driven_acc or -1
