@@ -745,7 +745,8 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
                                               .L = ws.L.data(),
                                               .drho = ws.drho.data()};
       for (int a = 0; a < Dim; ++a) A.box[a] = p.box_hi[a] - p.box_lo[a];
-      rate_form_detail::PairLoopScratch<Dim> scratch{ws.row, ws.row_j, ws.kept_j, ws.kept_count, ws.kept_g, ws.dvhat};
+      if (!ws.pair_loop) ws.pair_loop = std::make_shared<rate_form_detail::PairLoopScratch<Dim>>();
+      auto& scratch = *static_cast<rate_form_detail::PairLoopScratch<Dim>*>(ws.pair_loop.get());
       with_kernel_functions(kernel, h, [&](const auto& kf) {
         const auto with_xsph = [&](auto viscosity_tag, auto stress_tag) {
           constexpr ViscositySwitch kV = decltype(viscosity_tag)::value;

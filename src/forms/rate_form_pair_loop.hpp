@@ -45,21 +45,62 @@ struct PairLoopArrays {
   double* drho = nullptr;
 };
 
+/// What a pair reads of its particles, packed so that a neighbour's data are one or two cache lines: position,
+/// velocity, density, mass, and the symmetric sigma / rho^2 and R as xx (, yy, xy).
+template <int Dim>
+struct PairParticle {
+  static constexpr int kSym = Dim * (Dim + 1) / 2;
+  Eigen::Matrix<double, Dim, 1> x, v;
+  double rho, mass;
+  std::array<double, kSym> s, R;
+};
+/// What the velocity-gradient sweep reads of a particle and adds to it.
+template <int Dim>
+struct GradientParticle {
+  Eigen::Matrix<double, Dim, 1> vhat;
+  double vol, mass;
+};
+template <int Dim>
+struct GradientSums {
+  Eigen::Matrix<double, Dim, Dim> L;
+  double drho;
+};
+/// The first sweep's sums: acceleration and XSPH increment.
+template <int Dim>
+struct MotionSums {
+  Eigen::Matrix<double, Dim, 1> acc, dvhat;
+};
+
 /// Scratch of the pair loop, kept between calls (the scheme's workspace).
 template <int Dim>
 struct PairLoopScratch {
-  std::vector<double>& row;                            // the row arrays (SoA)
-  std::vector<int>&row_j, &kept_j, &kept_count;        // a row's neighbours; j of each kept pair, pairs per row
-  std::vector<Eigen::Matrix<double, Dim, 1>>& kept_g;  // g of each kept pair (XSPH)
-  std::vector<Eigen::Matrix<double, Dim, 1>>& dvhat;   // XSPH velocity increments
+  std::vector<double> row;                                   // the row arrays (SoA)
+  std::vector<int> row_j, kept_j, kept_count;                // a row's neighbours; j of each kept pair, pairs per row
+  std::vector<Eigen::Matrix<double, Dim, 1>> row_r, kept_g;  // a row's r_ij; g of each kept pair (XSPH)
+  std::vector<PairParticle<Dim>> particle;
+  std::vector<MotionSums<Dim>> motion;
+  std::vector<GradientParticle<Dim>> gradient_particle;
+  std::vector<GradientSums<Dim>> gradient;
 };
+
+/// p g for a symmetric p stored as xx (, yy, xy).
+template <int Dim>
+SPHSTAB_ALWAYS_INLINE inline Eigen::Matrix<double, Dim, 1> symmetric_times(
+    const std::array<double, Dim*(Dim + 1) / 2>& p, const Eigen::Matrix<double, Dim, 1>& g) {
+  if constexpr (Dim == 1)
+    return Eigen::Matrix<double, 1, 1>(p[0] * g[0]);
+  else
+    return Eigen::Vector2d(p[0] * g[0] + p[2] * g[1], p[2] * g[0] + p[1] * g[1]);
+}
 
 /// The pair loop with the viscosity switch, artificial stress and XSPH compiled in (kf: kernel_rows.hpp).
 template <int Dim, ViscositySwitch kViscosity, bool kStress, bool kXsph, class KernelRows>
 void pair_loop(const PairLoopArrays<Dim>& A, const KernelRows& kf, const PairFactor& pair_factor,
                PairLoopScratch<Dim>& s) {
+  static_assert(Dim == 1 || Dim == 2, "pair_loop: Dim 1 or 2");
   using Vec = Eigen::Matrix<double, Dim, 1>;
   using Mat = Eigen::Matrix<double, Dim, Dim>;
+  constexpr int kSym = PairParticle<Dim>::kSym;
   constexpr bool kViscous = kViscosity != ViscositySwitch::Off;
   const int n = A.n;
   std::size_t longest = 0, upper_pairs = 0;
@@ -68,12 +109,12 @@ void pair_loop(const PairLoopArrays<Dim>& A, const KernelRows& kf, const PairFac
     upper_pairs += A.offsets[i + 1] - A.upper[i];
   }
   const std::size_t stride = longest + 1;  // the compaction writes one slot past the kept pairs
-  constexpr int kArrays = Dim + 9;
+  constexpr int kArrays = 9;
   if (s.row.size() < kArrays * stride) s.row.resize(kArrays * stride);
   if (s.row_j.size() < stride) s.row_j.resize(stride);
-  std::array<double*, Dim> rc;
-  for (int a = 0; a < Dim; ++a) rc[a] = s.row.data() + a * stride;  // r_ij
-  double* const r2 = s.row.data() + Dim * stride;
+  if (s.row_r.size() < stride) s.row_r.resize(stride);
+  Vec* const rv = s.row_r.data();  // r_ij (a vector per pair: g = (dW/dr / r) r is one packed product)
+  double* const r2 = s.row.data();
   double* const rr = r2 + stride;    // |r|
   double* const w = rr + stride;     // W
   double* const gf = w + stride;     // dW/dr / r
@@ -87,25 +128,46 @@ void pair_loop(const PairLoopArrays<Dim>& A, const KernelRows& kf, const PairFac
     s.kept_j.resize(upper_pairs);
     s.kept_g.resize(upper_pairs);
     s.kept_count.resize(n);
-    s.dvhat.assign(n, Vec::Zero());
   }
+  s.particle.resize(n);
+  s.motion.resize(n);
+  s.gradient.resize(n);
   for (int i = 0; i < n; ++i) {
-    A.acc[i].setZero();
-    A.L[i].setZero();
-    A.drho[i] = 0;
+    PairParticle<Dim>& P = s.particle[i];
+    P.x = A.x[i];
+    P.v = A.v[i];
+    P.rho = A.rho[i];
+    P.mass = A.mass[i];
+    const Mat &sr = A.sigma_rho2[i], &R = A.R[i];
+    P.s[0] = sr(0, 0);
+    P.R[0] = R(0, 0);
+    if constexpr (Dim == 2) {
+      P.s[1] = sr(1, 1);
+      P.s[2] = sr(0, 1);
+      P.R[1] = R(1, 1);
+      P.R[2] = R(0, 1);
+    }
+    s.motion[i].acc.setZero();
+    s.motion[i].dvhat.setZero();
+    s.gradient[i].L.setZero();
+    s.gradient[i].drho = 0;
   }
+  const PairParticle<Dim>* const pp = s.particle.data();
+  MotionSums<Dim>* const ms = s.motion.data();
 
   bool periodic = false;
   for (int a = 0; a < Dim; ++a) periodic = periodic || A.half_box[a] < std::numeric_limits<double>::infinity();
   std::size_t kept = 0;  // pairs kept so far (XSPH)
   for (int i = 0; i < n; ++i) {
-    const Vec xi = A.x[i], vi = A.v[i];
-    const double rho_i = A.rho[i], m_i = A.mass[i], vol_i = A.vol[i];
+    const PairParticle<Dim>& Pi = pp[i];
+    const Vec xi = Pi.x, vi = Pi.v;
+    const double rho_i = Pi.rho, m_i = Pi.mass;
     // Gather the row's pairs in support (compaction without a branch: the slot is overwritten when dropped).
     std::size_t len = 0;
     for (long k = A.upper[i]; k < A.offsets[i + 1]; ++k) {
       const int j = A.indices[k];
-      Vec r = xi - A.x[j];
+      const PairParticle<Dim>& Pj = pp[j];
+      Vec r = xi - Pj.x;
       if (periodic)
         for (int a = 0; a < Dim; ++a) {
           if (r[a] > A.half_box[a])
@@ -115,10 +177,10 @@ void pair_loop(const PairLoopArrays<Dim>& A, const KernelRows& kf, const PairFac
         }
       const double rsq = r.squaredNorm();
       jj[len] = j;
-      for (int a = 0; a < Dim; ++a) rc[a][len] = r[a];
+      rv[len] = r;
       r2[len] = rsq;
-      if constexpr (kViscous || kXsph) rhoj[len] = A.rho[j];
-      if constexpr (kViscous) vr[len] = (vi - A.v[j]).dot(r);
+      if constexpr (kViscous || kXsph) rhoj[len] = Pj.rho;
+      if constexpr (kViscous) vr[len] = (vi - Pj.v).dot(r);
       len += rsq < A.support2;
     }
     // Pair scalars as whole-row loops.
@@ -139,81 +201,94 @@ void pair_loop(const PairLoopArrays<Dim>& A, const KernelRows& kf, const PairFac
           c[q] = cq;
       }
     // Scatter to both particles.
-    const Mat& si = A.sigma_rho2[i];
     Vec acc_i = Vec::Zero(), dvh_i = Vec::Zero();
     Mat L_i = Mat::Zero();
     double drho_i = 0;
     const bool moves_i = kXsph && A.xsph_moves[i];
     for (std::size_t q = 0; q < len; ++q) {
       const int j = jj[q];
-      Vec g;
-      for (int a = 0; a < Dim; ++a) g[a] = gf[q] * rc[a][q];
-      Mat P = si + A.sigma_rho2[j];
-      if constexpr (kStress) P += f[q] * (A.R[i] + A.R[j]);
-      Vec T = P * g;
-      if constexpr (kViscous) T -= c[q] * g;  // not on P's diagonal: that store stalls the product's load
-      acc_i += A.mass[j] * T;
-      A.acc[j] -= m_i * T;
+      const PairParticle<Dim>& Pj = pp[j];
+      const Vec g = gf[q] * rv[q];
+      std::array<double, kSym> P;
+      for (int e = 0; e < kSym; ++e) {
+        P[e] = Pi.s[e] + Pj.s[e];
+        if constexpr (kStress) P[e] += f[q] * (Pi.R[e] + Pj.R[e]);
+      }
+      Vec T = symmetric_times<Dim>(P, g);
+      if constexpr (kViscous) T -= c[q] * g;
+      acc_i += Pj.mass * T;
+      ms[j].acc -= m_i * T;
       if constexpr (kXsph) {
         const double cx = A.xsph * w[q] * ib[q];
-        const Vec d = A.v[j] - vi;
-        if (moves_i) dvh_i += (cx * A.mass[j]) * d;
-        if (A.xsph_moves[j]) s.dvhat[j] -= (cx * m_i) * d;
+        const Vec d = Pj.v - vi;
+        if (moves_i) dvh_i += (cx * Pj.mass) * d;
+        if (A.xsph_moves[j]) ms[j].dvhat -= (cx * m_i) * d;
         s.kept_j[kept + q] = j;
         s.kept_g[kept + q] = g;
       } else {
-        const Vec d = A.v[j] - vi;
+        const Vec d = Pj.v - vi;
         const Mat dg = d * g.transpose();
         L_i += A.vol[j] * dg;
-        A.L[j] += vol_i * dg;
+        s.gradient[j].L += A.vol[i] * dg;
         if (A.summation) {
           const double dd = d.dot(g);
-          drho_i -= A.mass[j] * dd;
-          A.drho[j] -= m_i * dd;
+          drho_i -= Pj.mass * dd;
+          s.gradient[j].drho -= m_i * dd;
         }
       }
     }
-    A.acc[i] += acc_i;
+    ms[i].acc += acc_i;
     if constexpr (kXsph) {
-      s.dvhat[i] += dvh_i;
+      ms[i].dvhat += dvh_i;
       s.kept_count[i] = static_cast<int>(len);
       kept += len;
     } else {
-      A.L[i] += L_i;
-      A.drho[i] += drho_i;
+      s.gradient[i].L += L_i;
+      s.gradient[i].drho += drho_i;
     }
-  }
-  if constexpr (!kXsph) {
-    for (int i = 0; i < n; ++i) A.vhat[i] = A.v[i];
-    return;
   }
 
-  for (int i = 0; i < n; ++i) A.vhat[i] = A.xsph_moves[i] ? Vec(A.v[i] + s.dvhat[i]) : A.v[i];
-  const int* kj = s.kept_j.data();
-  const Vec* kg = s.kept_g.data();
-  for (int i = 0; i < n; ++i) {
-    const Vec vh_i = A.vhat[i];
-    const double m_i = A.mass[i], vol_i = A.vol[i];
-    Mat L_i = Mat::Zero();
-    double drho_i = 0;
-    const int len = s.kept_count[i];
-    for (int q = 0; q < len; ++q) {
-      const int j = kj[q];
-      const Vec& g = kg[q];
-      const Vec d = A.vhat[j] - vh_i;
-      const Mat dg = d * g.transpose();
-      L_i += A.vol[j] * dg;
-      A.L[j] += vol_i * dg;
-      if (A.summation) {
-        const double dd = d.dot(g);
-        drho_i -= A.mass[j] * dd;
-        A.drho[j] -= m_i * dd;
-      }
+  if constexpr (kXsph) {
+    s.gradient_particle.resize(n);
+    for (int i = 0; i < n; ++i) {
+      A.vhat[i] = A.xsph_moves[i] ? Vec(A.v[i] + ms[i].dvhat) : A.v[i];
+      s.gradient_particle[i] = {A.vhat[i], A.vol[i], A.mass[i]};
     }
-    A.L[i] += L_i;
-    A.drho[i] += drho_i;
-    kj += len;
-    kg += len;
+    const GradientParticle<Dim>* const gp = s.gradient_particle.data();
+    GradientSums<Dim>* const gs = s.gradient.data();
+    const int* kj = s.kept_j.data();
+    const Vec* kg = s.kept_g.data();
+    for (int i = 0; i < n; ++i) {
+      const Vec vh_i = gp[i].vhat;
+      const double m_i = gp[i].mass, vol_i = gp[i].vol;
+      Mat L_i = Mat::Zero();
+      double drho_i = 0;
+      const int len = s.kept_count[i];
+      for (int q = 0; q < len; ++q) {
+        const int j = kj[q];
+        const Vec& g = kg[q];
+        const Vec d = gp[j].vhat - vh_i;
+        const Mat dg = d * g.transpose();
+        L_i += gp[j].vol * dg;
+        gs[j].L += vol_i * dg;
+        if (A.summation) {
+          const double dd = d.dot(g);
+          drho_i -= gp[j].mass * dd;
+          gs[j].drho -= m_i * dd;
+        }
+      }
+      gs[i].L += L_i;
+      gs[i].drho += drho_i;
+      kj += len;
+      kg += len;
+    }
+  } else {
+    for (int i = 0; i < n; ++i) A.vhat[i] = A.v[i];
+  }
+  for (int i = 0; i < n; ++i) {
+    A.acc[i] = ms[i].acc;
+    A.L[i] = s.gradient[i].L;
+    A.drho[i] = s.gradient[i].drho;
   }
 }
 

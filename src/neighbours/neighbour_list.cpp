@@ -97,6 +97,16 @@ NeighbourList find_neighbours(const ParticleSet<Dim>& p, double radius) {
     for (int i = 0; i < n; ++i) sorted[fill[cell_of[i]]++] = i;
   }
 
+  // Positions in cell order, so that a cell's candidates are read contiguously.
+  std::vector<Point> xs(n);
+  for (int s = 0; s < n; ++s) xs[s] = p.x.row(sorted[s]);
+  std::array<double, Dim> period;
+  bool any_periodic = false;
+  for (int a = 0; a < Dim; ++a) {
+    period[a] = p.box_hi[a] - p.box_lo[a];
+    any_periodic = any_periodic || p.periodic[a];
+  }
+
   NeighbourList list;
   list.radius = radius;
   list.offsets.assign(n + 1, 0);
@@ -104,6 +114,7 @@ NeighbourList find_neighbours(const ParticleSet<Dim>& p, double radius) {
   std::vector<int> row;
   for (int i = 0; i < n; ++i) {
     row.clear();
+    const Point xi = p.x.row(i);
     std::array<int, Dim> ci;
     for (int a = 0; a < Dim; ++a) ci[a] = cell_coord(i, a);
     // Visit the 3^Dim surrounding cells (fewer when an axis has < 3 cells, to avoid double visits).
@@ -131,10 +142,20 @@ NeighbourList find_neighbours(const ParticleSet<Dim>& p, double radius) {
       }
       if (skip) continue;
       for (int a = Dim - 1; a >= 0; --a) c = c * cells[a] + cc[a];
-      for (long s = cell_start[c]; s < cell_start[c + 1]; ++s) {
-        int j = sorted[s];
-        if (j == i || p.separation(i, j).squaredNorm() < r2) row.push_back(j);
+      // ParticleSet::separation()'s arithmetic; appended without a branch (about a third of the candidates pass).
+      const long s0 = cell_start[c], s1 = cell_start[c + 1];
+      std::size_t len = row.size();
+      row.resize(len + static_cast<std::size_t>(s1 - s0));
+      for (long s = s0; s < s1; ++s) {
+        const int j = sorted[s];
+        Point d = xi - xs[s];
+        if (any_periodic)
+          for (int a = 0; a < Dim; ++a)
+            if (p.periodic[a]) d[a] -= period[a] * std::round(d[a] / period[a]);
+        row[len] = j;
+        len += static_cast<std::size_t>((j == i) | (d.squaredNorm() < r2));
       }
+      row.resize(len);
     }
     std::sort(row.begin(), row.end());
     row.erase(std::unique(row.begin(), row.end()), row.end());

@@ -309,13 +309,13 @@ class RateFormScheme final : public SemiDiscreteSystem {
     std::vector<Eigen::Matrix<Scalar, Dim + 2, 1>> ring;
     std::vector<long> ready, ring_start;
     std::vector<int> late;
-    // PairLoop::Pairs: per particle the sums and XSPH increments, whether it moves with XSPH; per kept pair j and g;
-    // per row the kept pairs.
-    std::vector<Eigen::Matrix<Scalar, Dim, 1>> acc, dvhat, kept_g;
+    // PairLoop::Pairs: per particle the sums and whether it moves with XSPH; the pair loop's own scratch
+    // (src/forms/rate_form_pair_loop.hpp), created on first use.
+    std::vector<Eigen::Matrix<Scalar, Dim, 1>> acc;
     std::vector<Eigen::Matrix<Scalar, Dim, Dim>> L;
     std::vector<Scalar> drho;
-    std::vector<int> row_j, kept_j, kept_count;
     std::vector<char> xsph_moves;
+    std::shared_ptr<void> pair_loop;
   };
 
   std::shared_ptr<const Discretisation<Dim>> m_disc;
