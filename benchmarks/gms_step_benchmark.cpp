@@ -5,7 +5,10 @@
 //     h = 1.5 dx, +-0.059 c0; 17 608 particles), at first contact speed;
 //   - Lattice: periodic 2D square lattices of 99 856 and 1e6 particles (GMS units, mu = 0.22, h = 1.5 dx) with random
 //     velocities of 0.01 c0 (so the viscosity switch acts on about half the pairs) and densities 1 +- 0.5 %.
+// Each scene with the row loop and with the pair loop (PairLoop, forms/rate_form.hpp; scene names "<scene>/pairs").
 // Per scene, in the same run:
+//   - Run (RingsSI only): the SI run of studies/gms-rings, 300 steps from y0 with the Verlet list (skin 0.5 dx), its
+//     builds included: the whole-run cost per particle-step of issue 10's target;
 //   - Step: run_rate_form for `steps` predictor-corrector steps with a Verlet list (skin 0.5 dx, rebuilt when a
 //     particle has moved skin / 2; the build at the start is part of every run_rate_form call and is counted);
 //   - StepFixedList: the same steps on the scene's list, never rebuilt (two rate evaluations and the integration);
@@ -14,7 +17,7 @@
 //     row, so kernel and stress work are not separable by timing;
 //   - Rebuild: RateFormScheme::rebuilt (cell-list search at radius support + skin and the scheme's set-up on it);
 //   - Triad: a STREAM triad, the memory bandwidth reference (before and after the scenes);
-//   - Step/<scene>/threads:2, Rate/<scene>/threads:2: Step and Rate with two OpenMP threads (core/threads.hpp), the
+//   - Step/<scene>/threads:2, Rate/<scene>/threads:2 (row loop): Step and Rate with two OpenMP threads, the
 //     same bits as one thread (checked here before timing: the state after the scene's steps); every other benchmark
 //     runs on one thread whatever OMP_NUM_THREADS says.
 // Counters per benchmark: particles, pairs (ordered, list of the timed scheme), steps, builds, model_bytes (the least
@@ -121,7 +124,7 @@ Scene& scene(const std::string& key) {
                        .t_end = static_cast<double>(s.steps) * s.dt,
                        .observer = [&s](long, double, const Eigen::VectorXd& y) { s.states.push_back(y); }});
     if (!r.completed()) throw std::runtime_error("gms_step_benchmark: " + s.name + " set-up run: " + r.message);
-    if (threads_available()) {  // the two-thread benchmarks time the same computation
+    if (threads_available() && key.find("/pairs") == std::string::npos) {  // the pair loop runs on one thread  // the two-thread benchmarks time the same computation
       const ThreadCountGuard two(2);
       const RateFormRunResult r2 =
           run_rate_form(*s.scheme, s.y0, {.dt = s.dt, .t_end = static_cast<double>(s.steps) * s.dt});
@@ -159,6 +162,29 @@ void bm_step(benchmark::State& st, const std::string& key, bool rebuild, int thr
                              .t_end = static_cast<double>(s.steps) * s.dt,
                              .record_every = static_cast<int>(s.steps),
                              .neighbour_skin = rebuild ? kSkin * s.dx : 0.0};
+  long steps = 0, builds = 0;
+  for (auto _ : st) {
+    const RateFormRunResult r = run_rate_form(*s.scheme, s.y0, o);
+    if (!r.completed()) {
+      st.SkipWithError(("run stopped: " + r.message).c_str());
+      return;
+    }
+    steps = r.steps, builds = r.neighbour_builds;
+    benchmark::DoNotOptimize(r.y.data());
+  }
+  set_counters(st, s, steps, builds);
+}
+
+/// The SI rings as studies/gms-rings runs them by default: kRunSteps steps from y0 with the Verlet list (skin 0.5 dx),
+/// its builds included: the whole-run cost per particle-step of issue 10's target.
+constexpr long kRunSteps = 300;
+void bm_run(benchmark::State& st, const std::string& key) {
+  const ThreadCountGuard guard(1);
+  Scene& s = scene(key);
+  const RateFormRunOptions o{.dt = s.dt,
+                             .t_end = static_cast<double>(kRunSteps) * s.dt,
+                             .record_every = static_cast<int>(kRunSteps),
+                             .neighbour_skin = kSkin * s.dx};
   long steps = 0, builds = 0;
   for (auto _ : st) {
     const RateFormRunResult r = run_rate_form(*s.scheme, s.y0, o);
@@ -229,14 +255,15 @@ int main(int argc, char** argv) {
   for (const auto& [key, count] : keys) {
     if (count > max_particles) continue;
     const int reps = count >= 1000000 ? 1 : 3;
-    auto reg = [&](const char* what, auto fn, const char* suffix = "") {
+    auto reg = [&](const char* what, auto fn, const char* suffix = "", int iterations = 0) {
       const std::string name = std::string(what) + "/" + key + suffix;
       benchmark::RegisterBenchmark(name.c_str(), fn)
           ->Unit(benchmark::kMillisecond)
-          ->Iterations(count >= 1000000 ? 1 : 3)
+          ->Iterations(iterations > 0 ? iterations : count >= 1000000 ? 1 : 3)
           ->Repetitions(reps)
           ->ReportAggregatesOnly(false);
     };
+    if (key.rfind("RingsSI", 0) == 0) reg("Run", [key](benchmark::State& st) { bm_run(st, key); }, "", 1);
     reg("Step", [key](benchmark::State& st) { bm_step(st, key, true); });
     reg("StepFixedList", [key](benchmark::State& st) { bm_step(st, key, false); });
     reg("Rate", [key](benchmark::State& st) { bm_rate(st, key); });

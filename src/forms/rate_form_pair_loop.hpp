@@ -16,6 +16,7 @@
 #include <array>
 #include <cstddef>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "kernel_rows.hpp"
@@ -158,31 +159,39 @@ void pair_loop(const PairLoopArrays<Dim>& A, const KernelRows& kf, const PairFac
   bool periodic = false;
   for (int a = 0; a < Dim; ++a) periodic = periodic || A.half_box[a] < std::numeric_limits<double>::infinity();
   std::size_t kept = 0;  // pairs kept so far (XSPH)
+  const long *const offsets = A.offsets, *const upper = A.upper;
+  const int* const indices = A.indices;
+  const double support2 = A.support2;
   for (int i = 0; i < n; ++i) {
     const PairParticle<Dim>& Pi = pp[i];
     const Vec xi = Pi.x, vi = Pi.v;
     const double rho_i = Pi.rho, m_i = Pi.mass;
     // Gather the row's pairs in support (compaction without a branch: the slot is overwritten when dropped).
-    std::size_t len = 0;
-    for (long k = A.upper[i]; k < A.offsets[i + 1]; ++k) {
-      const int j = A.indices[k];
-      const PairParticle<Dim>& Pj = pp[j];
-      Vec r = xi - Pj.x;
-      if (periodic)
-        for (int a = 0; a < Dim; ++a) {
-          if (r[a] > A.half_box[a])
-            r[a] -= A.box[a];
-          else if (r[a] < -A.half_box[a])
-            r[a] += A.box[a];
-        }
-      const double rsq = r.squaredNorm();
-      jj[len] = j;
-      rv[len] = r;
-      r2[len] = rsq;
-      if constexpr (kViscous || kXsph) rhoj[len] = Pj.rho;
-      if constexpr (kViscous) vr[len] = (vi - Pj.v).dot(r);
-      len += rsq < A.support2;
-    }
+    const auto gather = [&](auto periodic_tag) SPHSTAB_ALWAYS_INLINE {
+      std::size_t m = 0;
+      const long k1 = offsets[i + 1];
+      for (long k = upper[i]; k < k1; ++k) {
+        const int j = indices[k];
+        const PairParticle<Dim>& Pj = pp[j];
+        Vec r = xi - Pj.x;
+        if constexpr (decltype(periodic_tag)::value)
+          for (int a = 0; a < Dim; ++a) {
+            if (r[a] > A.half_box[a])
+              r[a] -= A.box[a];
+            else if (r[a] < -A.half_box[a])
+              r[a] += A.box[a];
+          }
+        const double rsq = r.squaredNorm();
+        jj[m] = j;
+        rv[m] = r;
+        r2[m] = rsq;
+        if constexpr (kViscous || kXsph) rhoj[m] = Pj.rho;
+        if constexpr (kViscous) vr[m] = (vi - Pj.v).dot(r);
+        m += rsq < support2;
+      }
+      return m;
+    };
+    const std::size_t len = periodic ? gather(std::true_type{}) : gather(std::false_type{});
     // Pair scalars as whole-row loops.
     Eigen::Map<Eigen::ArrayXd>(rr, len) = Eigen::Map<const Eigen::ArrayXd>(r2, len).sqrt();
     row_pairs(kf, len, rr, w, gf);

@@ -16,6 +16,7 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <stdexcept>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -51,6 +52,7 @@ struct RingCase {
   long steps = 0;      ///< > 0: a fixed number of steps (the SI timing run)
   int frames = 12;     ///< VTK frames over the run (0: none)
   double skin = 0.5;   ///< Verlet skin of the neighbour list, in dp
+  PairLoop loop = PairLoop::Rows;  ///< how the rate visits the pairs (forms/rate_form.hpp)
 };
 
 /// The case's units against GMS's: length unit (1 cm), speed unit (c0) and time unit, in the case's own units.
@@ -69,6 +71,7 @@ struct RingRun {
   // Series, one entry per record (times in GMS units, velocities over c0, lengths over the length unit).
   std::vector<double> t, ke, dmin, vx0, vx1, sxx_max;
   std::vector<int> frag_all, frag0, frag1, lost0, lost1;
+  Eigen::VectorXd y_end;  ///< the state at the end
 };
 
 /// The SI material of the issue: E = 1e7 Pa, nu = 0.3975 (mu / K = 0.22, GMS's ratio), rho0 = 1 kg/m^3.
@@ -107,7 +110,9 @@ RingRun run_rings(const RingCase& c, const std::string& out) {
   r.per_ring = n;
   r.h = 1.5 * c.dp;
   const Kernel<2> kernel(KernelType::CubicSpline);
-  const RateFormScheme<2> scheme(make_discretisation(rings.particles, kernel, r.h), mat, study::gms_options(c.eps));
+  RateFormOptions options = study::gms_options(c.eps);
+  options.pair_loop = c.loop;
+  const RateFormScheme<2> scheme(make_discretisation(rings.particles, kernel, r.h), mat, options);
   Eigen::VectorXd y0 = scheme.uniform_state();
   for (int i = 0; i < r.particles; ++i) scheme.set_velocity(y0, i, rings.velocity.col(i));
   const double support = kernel.support_radius(r.h), bond = 1.5 * c.dp;
@@ -156,6 +161,7 @@ RingRun run_rings(const RingCase& c, const std::string& out) {
   const RateFormRunResult run = study::timed_run(scheme, y0, ro, r.cost);
   r.dt = run.dt;
   r.status = run.completed() ? "completed" : run.message;
+  r.y_end = run.y;
   if (!frames.empty()) write_pvd(vtk_dir + "/" + c.tag + ".pvd", frames);
 
   std::ofstream csv(out + "/series/" + c.tag + ".csv");
@@ -325,11 +331,26 @@ int main(int argc, char** argv) try {
       c.steps = si_steps;
     cases.push_back(c);
   }
+  // The same runs with the pair loop (each pair once, PairLoop::Pairs): the rates agree with the row loop's to
+  // rounding, so the comparison shows what that rounding does to a collision and what the loop saves.
+  const std::size_t row_cases = cases.size();
+  for (std::size_t k = 0; k < row_cases; ++k) {
+    RingCase c = cases[k];
+    c.tag += "_pairs";
+    c.loop = PairLoop::Pairs;
+    c.frames = 0;
+    cases.push_back(c);
+  }
   std::fprintf(stderr, "gms-rings: %zu runs on %d threads\n", cases.size(), threads);
   const std::vector<RingRun> runs = run_all(cases, out, threads);
+  const auto run_of = [&](bool si_units, double eps, PairLoop loop) -> const RingRun& {
+    for (const RingRun& r : runs)
+      if (r.c.si == si_units && r.c.eps == eps && r.c.loop == loop) return r;
+    throw std::logic_error("gms-rings: no run for that case");
+  };
 
   std::ofstream runs_csv(out + "/runs.csv");
-  runs_csv << "tag,units,eps,dp,gap,particles,per_ring,h,dt,steps,t_end,status,wall,cpu,us_per_particle_step,us_cpu,"
+  runs_csv << "tag,units,eps,loop,dp,gap,particles,per_ring,h,dt,steps,t_end,status,wall,cpu,us_per_particle_step,us_cpu,"
               "neighbour_builds,contact_first,contact_last,touch_first,touch_last,separated,com_vx0_after,"
               "com_vx1_after,restitution,fragments_end,fragments_max,ring_fragments_end,ring_fragments_max,"
               "ring_break_time,lost_end,lost_max,ke_end_over_ke0,sigma_xx_max\n";
@@ -345,6 +366,7 @@ int main(int argc, char** argv) try {
     runs_csv << csv_line({r.c.tag,
                           r.c.si ? "SI" : "GMS",
                           format_number(r.c.eps),
+                          r.c.loop == PairLoop::Pairs ? "pairs" : "rows",
                           format_number(r.c.dp),
                           format_number(r.c.gap),
                           std::to_string(r.particles),
@@ -381,6 +403,23 @@ int main(int argc, char** argv) try {
                                study::fixed(r.cost.cpu, 1), study::sig(r.cost.us_per_particle_step(), 3),
                                study::sig(r.cost.us_cpu(), 3), std::to_string(r.cost.neighbour_builds)});
     const bool full = r.c.steps == 0;
+    if (r.c.loop == PairLoop::Pairs) {  // compared with the row loop below
+      if (!r.c.si) {
+        const std::string k = std::string("pairs_") + (r.c.eps > 0 ? "eps03" : "eps0");
+        s.set(k + "_ring_fragments_end", m.frag_ring_end);
+        s.set(k + "_ring_fragments_max", m.frag_ring_max);
+        s.set(k + "_lost_end", m.lost_end);
+        s.set(k + "_ring_break_time", m.ring_break_time, 4);
+        s.set(k + "_touch_first", m.touch_first, 3);
+        s.set(k + "_touch_last", m.touch_last, 4);
+        s.set(k + "_contact_last", m.contact_last, 4);
+        s.set(k + "_separated", m.separated ? "yes" : "no");
+        s.set(k + "_restitution", m.restitution, 3);
+        s.set(k + "_ke_end", m.ke_end_over_ke0, 3);
+        s.set(k + "_sxx_max", m.sxx_max, 3);
+      }
+      continue;
+    }
     if (full)
       study::md_row(
           table, {r.c.tag, study::fixed(r.c.eps, 1), study::sig(t_end_g, 4), std::to_string(m.frag_all_end),
@@ -439,7 +478,21 @@ int main(int argc, char** argv) try {
                                        (m.frag_ring_max > 1 ? "a ring breaks" : "the rings do not separate by t_end"));
   }
   const RingRun& g = runs.front();
-  const RingRun& si_run = runs.back();
+  const RingRun& si_run = run_of(true, 0.3, PairLoop::Rows);
+  // Row loop against pair loop: positions at the end (the largest distance over dp) and the thread CPU per
+  // particle-step (the run's own cost; the two runs of a pair need not share the machine's load).
+  std::string loops_table;
+  for (bool si_units : {false, true})
+    for (double eps : {0.0, 0.3}) {
+      const RingRun &a = run_of(si_units, eps, PairLoop::Rows), &b = run_of(si_units, eps, PairLoop::Pairs);
+      double dx_max = 0;
+      for (int i = 0; i < a.particles; ++i)
+        dx_max = std::max(dx_max, (a.y_end.segment<2>(8 * i) - b.y_end.segment<2>(8 * i)).norm());
+      study::md_row(loops_table, {si_units ? "SI" : "GMS", study::fixed(eps, 1), std::to_string(a.cost.steps),
+                                  study::sig(dx_max / a.c.dp, 3), study::sig(a.cost.us_cpu(), 3),
+                                  study::sig(b.cost.us_cpu(), 3), study::fixed(a.cost.us_cpu() / b.cost.us_cpu(), 2)});
+    }
+  s.set("loops_table", loops_table);
   s.set("results_table", table);
   s.set("cost_table", cost_table);
   s.set("particles", g.particles);
