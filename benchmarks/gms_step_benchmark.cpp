@@ -124,7 +124,9 @@ Scene& scene(const std::string& key) {
                        .t_end = static_cast<double>(s.steps) * s.dt,
                        .observer = [&s](long, double, const Eigen::VectorXd& y) { s.states.push_back(y); }});
     if (!r.completed()) throw std::runtime_error("gms_step_benchmark: " + s.name + " set-up run: " + r.message);
-    if (threads_available() && key.find("/pairs") == std::string::npos) {  // the pair loop runs on one thread  // the two-thread benchmarks time the same computation
+    if (threads_available() &&
+        key.find("/pairs") == std::string::npos) {  // the pair loop runs on one thread  // the two-thread benchmarks
+                                                    // time the same computation
       const ThreadCountGuard two(2);
       const RateFormRunResult r2 =
           run_rate_form(*s.scheme, s.y0, {.dt = s.dt, .t_end = static_cast<double>(s.steps) * s.dt});
@@ -259,11 +261,15 @@ int main(int argc, char** argv) {
       const std::string name = std::string(what) + "/" + key + suffix;
       benchmark::RegisterBenchmark(name.c_str(), fn)
           ->Unit(benchmark::kMillisecond)
-          ->Iterations(iterations > 0 ? iterations : count >= 1000000 ? 1 : 3)
+          ->Iterations(iterations > 0     ? iterations
+                       : count >= 1000000 ? 1
+                                          : 3)
           ->Repetitions(reps)
           ->ReportAggregatesOnly(false);
     };
-    if (key.rfind("RingsSI", 0) == 0) reg("Run", [key](benchmark::State& st) { bm_run(st, key); }, "", 1);
+    if (key.rfind("RingsSI", 0) == 0)
+      reg(
+          "Run", [key](benchmark::State& st) { bm_run(st, key); }, "", 1);
     reg("Step", [key](benchmark::State& st) { bm_step(st, key, true); });
     reg("StepFixedList", [key](benchmark::State& st) { bm_step(st, key, false); });
     reg("Rate", [key](benchmark::State& st) { bm_rate(st, key); });

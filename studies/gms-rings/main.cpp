@@ -16,8 +16,8 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
-#include <stdexcept>
 #include <mutex>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -44,14 +44,14 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 struct RingCase {
   std::string tag;
-  bool si = false;     ///< the SI configuration (m, s, Pa) instead of GMS units
-  double eps = 0.3;    ///< artificial stress
-  double dp = 0.1;     ///< grid spacing (case units)
-  double gap = 0.2;    ///< between the outer circles (case units)
-  double t_end = 250;  ///< run length (case units); with `steps` > 0 it is steps * dt
-  long steps = 0;      ///< > 0: a fixed number of steps (the SI timing run)
-  int frames = 12;     ///< VTK frames over the run (0: none)
-  double skin = 0.5;   ///< Verlet skin of the neighbour list, in dp
+  bool si = false;                 ///< the SI configuration (m, s, Pa) instead of GMS units
+  double eps = 0.3;                ///< artificial stress
+  double dp = 0.1;                 ///< grid spacing (case units)
+  double gap = 0.2;                ///< between the outer circles (case units)
+  double t_end = 250;              ///< run length (case units); with `steps` > 0 it is steps * dt
+  long steps = 0;                  ///< > 0: a fixed number of steps (the SI timing run)
+  int frames = 12;                 ///< VTK frames over the run (0: none)
+  double skin = 0.5;               ///< Verlet skin of the neighbour list, in dp
   PairLoop loop = PairLoop::Rows;  ///< how the rate visits the pairs (forms/rate_form.hpp)
 };
 
@@ -350,10 +350,11 @@ int main(int argc, char** argv) try {
   };
 
   std::ofstream runs_csv(out + "/runs.csv");
-  runs_csv << "tag,units,eps,loop,dp,gap,particles,per_ring,h,dt,steps,t_end,status,wall,cpu,us_per_particle_step,us_cpu,"
-              "neighbour_builds,contact_first,contact_last,touch_first,touch_last,separated,com_vx0_after,"
-              "com_vx1_after,restitution,fragments_end,fragments_max,ring_fragments_end,ring_fragments_max,"
-              "ring_break_time,lost_end,lost_max,ke_end_over_ke0,sigma_xx_max\n";
+  runs_csv
+      << "tag,units,eps,loop,dp,gap,particles,per_ring,h,dt,steps,t_end,status,wall,cpu,us_per_particle_step,us_cpu,"
+         "neighbour_builds,contact_first,contact_last,touch_first,touch_last,separated,com_vx0_after,"
+         "com_vx1_after,restitution,fragments_end,fragments_max,ring_fragments_end,ring_fragments_max,"
+         "ring_break_time,lost_end,lost_max,ke_end_over_ke0,sigma_xx_max\n";
   study::Summary s;
   std::string table, cost_table;
   double wall_runs = 0, cpu_runs = 0;

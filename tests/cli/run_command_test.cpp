@@ -105,6 +105,33 @@ TEST(RunCommand, SeriesIsTheLibrarysRunOfTheSameScene) {
   }
 }
 
+TEST(RunCommand, PairLoopRunsTheSameSeriesToRounding) {
+  // --pair-loop pairs against the library's row loop on the same kicked bar: the rates agree to rounding
+  // (rate_form_pair_loop_test), so over 300 predictor-corrector steps the kinetic energy agrees to far below its
+  // scale, and the two are not bitwise equal (the option reaches the scheme).
+  const RateFormScheme<1> scheme = bar(15, 1.01, false);
+  Eigen::VectorXd y = scheme.uniform_state();
+  scheme.set_velocity(y, 7, Eigen::Matrix<double, 1, 1>(1e-3));  // a kick far above the positions' rounding
+  const RateFormRunResult direct = run_rate_form(
+      scheme, y, {.dt = 0.005, .t_end = 1.5, .record_every = 10, .integrator = RateFormIntegrator::PredictorCorrector});
+  ASSERT_TRUE(direct.completed());
+  const std::vector<std::string> args = {
+      "run", "--dim",        "1",  "--n",  "15",    "--xi",        "1.01",  "--t-end", "1.5", "--record-every",
+      "10",  "--integrator", "pc", "--dt", "0.005", "--pair-loop", "pairs", "--kick",  "1e-3"};
+  const test::CliOutcome r = run(args);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<double> ke = read_csv(r.out_path).numeric_column("kinetic_energy");
+  ASSERT_EQ(ke.size(), direct.kinetic_energy.size());
+  double ke_max = 0, diff = 0;
+  for (std::size_t k = 0; k < ke.size(); ++k) {
+    ke_max = std::max(ke_max, direct.kinetic_energy[k]);
+    diff = std::max(diff, std::abs(ke[k] - direct.kinetic_energy[k]));
+  }
+  EXPECT_GT(ke_max, 0);
+  EXPECT_LT(diff, 1e-9 * ke_max);
+  EXPECT_GT(diff, 0);
+}
+
 TEST(RunCommand, CompressedBarStaysBoundedAndTensionGrowsAtTheSpectralRate) {
   // Plain SPH in 1D is stable in compression (xi = 0.98: every lambda imaginary): 2000 leap-frog steps at the default
   // dt keep the kinetic energy at or below its initial value (energy moves into strain energy and back).
@@ -215,6 +242,9 @@ TEST(RunCommand, BadInputIsOneErrorLine) {
                                             {"run", "--momentum", "plus"},
                                             {"run", "--switch-rule", "x"},
                                             {"run", "--counting", "x"},
+                                            {"run", "--pair-loop", "half"},
+                                            {"run", "--pair-loop", "pairs", "--gradient", "ncsph"},
+                                            {"run", "--pair-loop", "pairs", "--momentum", "cij"},
                                             {"run", "--integrator", "rk4"},
                                             {"run", "--kernel", "nope"},
                                             {"run", "--lattice", "cubic"},
