@@ -83,8 +83,8 @@ TIMING_COLUMN_RULES: list[tuple[str, str]] = [
     (r".*", r"ratio_to_(copy|pair_loop|real_force)|ratio_over_colours|complex_over_real|setup_over_real"),
     # generic timing words (none in the current headers; kept for new benchmark columns)
     (r".*", r".*(elapsed|throughput|wall_?time|gflops|mflops|speedup).*"),
-    # bare wall seconds of a run or a linear analysis: wall (swegle-nonlinear), wall_run, wall_linear
-    (r".*", r"wall(_\w+)?"),
+    # bare wall or thread-CPU seconds of a run: wall (swegle-nonlinear), wall_run, wall_linear, cpu (gms-rings)
+    (r".*", r"(wall|cpu)(_\w+)?"),
     # memory measured from the OS: peak_rss_MB
     (r".*", r".*rss.*"),
     # Google Benchmark iteration counts (chosen from the measured time) in benchmark CSVs
