@@ -8,7 +8,8 @@
 // Each scene with the row loop and with the pair loop (PairLoop, forms/rate_form.hpp; scene names "<scene>/pairs").
 // Per scene, in the same run:
 //   - Run (RingsSI only): the SI run of studies/gms-rings, 300 steps from y0 with the Verlet list (skin 0.5 dx), its
-//     builds included: the whole-run cost per particle-step of issue 10's target;
+//     builds included: the whole-run cost per particle-step of issue 10's target; RunOneRate: the same with one rate
+//     evaluation per step (RateFormRunOptions::reuse_corrector_rate);
 //   - Step: run_rate_form for `steps` predictor-corrector steps with a Verlet list (skin 0.5 dx, rebuilt when a
 //     particle has moved skin / 2; the build at the start is part of every run_rate_form call and is counted);
 //   - StepFixedList: the same steps on the scene's list, never rebuilt (two rate evaluations and the integration);
@@ -178,12 +179,13 @@ void bm_step(benchmark::State& st, const std::string& key, bool rebuild, int thr
 /// The SI rings as studies/gms-rings runs them by default: kRunSteps steps from y0 with the Verlet list (skin 0.5 dx),
 /// its builds included: the whole-run cost per particle-step of issue 10's target.
 constexpr long kRunSteps = 300;
-void bm_run(benchmark::State& st, const std::string& key) {
+void bm_run(benchmark::State& st, const std::string& key, bool one_rate) {
   const ThreadCountGuard guard(1);
   Scene& s = scene(key);
   const RateFormRunOptions o{.dt = s.dt,
                              .t_end = static_cast<double>(kRunSteps) * s.dt,
                              .record_every = static_cast<int>(kRunSteps),
+                             .reuse_corrector_rate = one_rate,
                              .neighbour_skin = kSkin * s.dx};
   long steps = 0, builds = 0;
   for (auto _ : st) {
@@ -265,9 +267,10 @@ int main(int argc, char** argv) {
           ->Repetitions(reps)
           ->ReportAggregatesOnly(false);
     };
-    if (key.rfind("RingsSI", 0) == 0)
-      reg(
-          "Run", [key](benchmark::State& st) { bm_run(st, key); }, "", 1);
+    if (key.rfind("RingsSI", 0) == 0) {
+      reg("Run", [key](benchmark::State& st) { bm_run(st, key, false); }, "", 1);
+      reg("RunOneRate", [key](benchmark::State& st) { bm_run(st, key, true); }, "", 1);
+    }
     reg("Step", [key](benchmark::State& st) { bm_step(st, key, true); });
     reg("StepFixedList", [key](benchmark::State& st) { bm_step(st, key, false); });
     reg("Rate", [key](benchmark::State& st) { bm_rate(st, key); });

@@ -53,7 +53,8 @@ struct RunSetup {
   RateFormSetup scheme;
   double kick = 0;
   RateFormIntegrator integrator = RateFormIntegrator::Leapfrog;
-  double dt = kNaN;  ///< NaN: cfl x the leap-frog limit
+  bool reuse_rate = false;  ///< pc1: the predictor-corrector with one rate evaluation per step
+  double dt = kNaN;         ///< NaN: cfl x the leap-frog limit
   double cfl = 0.5;
   double t_end = kNaN;  ///< NaN: 1000 dt
   int record_every = 10;
@@ -76,15 +77,20 @@ RunSetup parse_run_args(const RunArgs& a) {
   r.scheme = parse_rate_form_args(a.scheme, "run", false, 3, 10'000'000, 10'000);
   if (a.block && a.scheme.periodic) throw std::invalid_argument("run: --block and --periodic exclude each other");
   r.kick = parse_double(a.kick, "run: --kick");
-  if (a.integrator == "pc" || a.integrator == "predictor-corrector")
+  if (a.integrator == "pc" || a.integrator == "predictor-corrector" || a.integrator == "pc1")
     r.integrator = RateFormIntegrator::PredictorCorrector;
   else if (a.integrator != "leapfrog")
-    throw std::invalid_argument("run: unknown --integrator '" + a.integrator + "' (valid: pc, leapfrog)");
+    throw std::invalid_argument("run: unknown --integrator '" + a.integrator + "' (valid: pc, pc1, leapfrog)");
+  r.reuse_rate = a.integrator == "pc1";
   if (!a.dt.empty()) r.dt = positive(a.dt, "run: --dt");
   r.cfl = positive(a.cfl, "run: --cfl");
   if (!a.t_end.empty()) r.t_end = positive(a.t_end, "run: --t-end");
   r.record_every = static_cast<int>(parse_integer(a.record_every, 1, 1'000'000'000, "run: --record-every"));
   if (!a.yield.empty()) r.yield = positive(a.yield, "run: --yield");
+  if (r.reuse_rate && !a.yield.empty())
+    throw std::invalid_argument(
+        "run: --integrator pc1 with --yield: the radial return changes S after the rate that "
+        "pc1 reuses (use pc)");
   if (!a.energy_growth.empty()) {
     r.energy_growth = parse_double(a.energy_growth, "run: --energy-growth");
     if (!(r.energy_growth > 1))
@@ -384,6 +390,7 @@ void run_scheme(const RunSetup& r) {
                                throw DisplacementStop{step, time, m.max_displacement, m.moved_most};
                            },
                        .integrator = r.integrator,
+                       .reuse_corrector_rate = r.reuse_rate,
                        .yield_stress = r.yield};
   RateFormRunResult result;
   try {
@@ -430,7 +437,8 @@ void register_run_command(CLI::App& app) {
                   "V0: velocity along x of the block's centre particle, or amplitude of the periodic lattice's "
                   "v_x = V0 sin(k (x - x_lo)) at the shortest wavelength (default 1e-10)");
   cmd->add_option("--integrator", a->integrator,
-                  "leapfrog (Powell alg. 1.1, the default) | pc (GMS 6.14-6.18 predictor-corrector)");
+                  "leapfrog (Powell alg. 1.1, the default) | pc (GMS 6.14-6.18 predictor-corrector) | pc1 (the same, "
+                  "one rate evaluation per step: a step reuses the previous corrector's rate)");
   auto* dt = cmd->add_option("--dt", a->dt, "time step > 0 (default: --cfl x the leap-frog stability limit)");
   cmd->add_option("--cfl", a->cfl,
                   "default dt as a fraction of the leap-frog limit 2 / max |Im lambda| of the spectrum at rest "

@@ -149,7 +149,10 @@ void predictor_corrector(RunBook<Dim>& b, const VonMises* plastic) {
   RateFormRunResult& r = b.r;
   Eigen::VectorXd f0, f1, yp;
   for (long step = 1; step <= b.nsteps; ++step) {
-    b.rate(r.y, f0);
+    if (!o.reuse_corrector_rate || step == 1) {
+      b.rate(r.y, f0);
+      r.rate_evaluations += 1;
+    }
     yp = r.y + dt * f0;  // predictor for v, rho, S (and a first-order x, replaced below)
     for (int i = 0; i < n; ++i) {
       const int xo = b.base.position_offset(i);
@@ -158,7 +161,7 @@ void predictor_corrector(RunBook<Dim>& b, const VonMises* plastic) {
             r.y.segment(xo, Dim) + dt * f0.segment(xo, Dim) + 0.5 * dt * dt * f0.segment(xo + Dim, Dim);
     }
     b.rate(yp, f1);
-    r.rate_evaluations += 2;
+    r.rate_evaluations += 1;
     Eigen::VectorXd y = yp + 0.5 * dt * (f1 - f0);
     for (int i = 0; i < n; ++i) {
       const int xo = b.base.position_offset(i);
@@ -170,6 +173,7 @@ void predictor_corrector(RunBook<Dim>& b, const VonMises* plastic) {
     }
     if (plastic) return_to_yield_surface(b.base, *plastic, y);
     r.y.swap(y);
+    if (o.reuse_corrector_rate) f0.swap(f1);  // the next step's F^0: F(x, v_p, rho_p, S_p) of this step
     if (!b.finish_step(step)) break;
   }
 }
@@ -301,6 +305,12 @@ void check_run_options(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd&
   if (o.absorbing_half_step && o.integrator != RateFormIntegrator::Leapfrog)
     throw std::invalid_argument(who +
                                 ": absorbing_half_step needs the leap-frog integrator (it is Powell's algorithm 2.3)");
+  if (o.reuse_corrector_rate && o.integrator != RateFormIntegrator::PredictorCorrector)
+    throw std::invalid_argument(who + ": reuse_corrector_rate needs the predictor-corrector integrator");
+  if (o.reuse_corrector_rate && std::isfinite(o.yield_stress))
+    throw std::invalid_argument(who +
+                                ": reuse_corrector_rate with a yield stress: the radial return changes S after the "
+                                "corrector's rate evaluation, so that rate is not the next step's");
   if (!(o.yield_stress > 0))
     throw std::invalid_argument(who + ": yield_stress must be > 0 (+infinity: elastic; got " +
                                 format_number(o.yield_stress) + ")");

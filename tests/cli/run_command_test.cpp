@@ -246,6 +246,7 @@ TEST(RunCommand, BadInputIsOneErrorLine) {
                                             {"run", "--pair-loop", "pairs", "--gradient", "ncsph"},
                                             {"run", "--pair-loop", "pairs", "--momentum", "cij"},
                                             {"run", "--integrator", "rk4"},
+                                            {"run", "--integrator", "pc1", "--yield", "0.1"},
                                             {"run", "--kernel", "nope"},
                                             {"run", "--lattice", "cubic"},
                                             {"run", "--n", "2"},

@@ -7,8 +7,8 @@
 ///   predictor   v_p = v0 + dt a0,  rho_p = rho0 + dt drho0,  S_p = S0 + dt dS0,
 ///               x = x0 + dt vhat0 + dt^2/2 a0   (particles move with the XSPH velocity; x is not corrected)
 ///   corrector   v = v_p + dt/2 (a - a0),  rho = rho_p + dt/2 (drho - drho0),  S likewise,
-/// with (a, drho, dS) = F(x, v_p, rho_p, S_p). Two rate evaluations per step. Second order in dt without XSPH; with
-/// XSPH, d^2x/dt^2 = d vhat/dt is not a0, so GMS's uncorrected x is FIRST order
+/// with (a, drho, dS) = F(x, v_p, rho_p, S_p). Two rate evaluations per step (one with reuse_corrector_rate). Second
+/// order in dt without XSPH; with XSPH, d^2x/dt^2 = d vhat/dt is not a0, so GMS's uncorrected x is FIRST order
 /// (tests/growth/rate_form_spectrum_test.cpp measures 1.25). PositionUpdate::Trapezoid corrects x like the rest, x = x0
 /// + dt/2 (vhat0 + vhat_p), which is second order with XSPH too; its predictor keeps GMS's x_p, so the step is Heun's
 /// for the whole state only where a does not depend on x (at rest without pre-stress, Jvx = 0). There, for
@@ -104,6 +104,13 @@ struct RateFormRunOptions {
   /// Called at every record with (step, time, state); may be empty.
   std::function<void(long, double, const Eigen::VectorXd&)> observer = {};
   RateFormIntegrator integrator = RateFormIntegrator::PredictorCorrector;
+  /// Predictor-corrector only: a step's F^0 is the previous step's corrector evaluation F(x, v_p, rho_p, S_p) instead
+  /// of a fresh F at the corrected state: ONE rate evaluation per step. [GMS2001, §6.2] call the scheme a
+  /// "predictor-corrector leapfrog" and do not say F^0 is recomputed; read as a leapfrog, F is evaluated once per step
+  /// (for a = a(x) it is velocity Verlet). The two readings differ by O(dt^2) in the rates (the corrections of v, rho,
+  /// S), and both are second order without XSPH (tests/integrate/rate_form_reuse_rate_test.cpp). Not with a yield
+  /// stress (the radial return changes S after the corrector's evaluation).
+  bool reuse_corrector_rate = false;
   /// Leap-frog only: epsilon of Powell's XSPH (2.71), >= 0 (Powell 0.1); 0: off. The predictor-corrector's XSPH is
   /// the scheme's own, RateFormOptions::xsph [GMS2001, (3.6)].
   double leapfrog_xsph = 0;
