@@ -239,6 +239,12 @@ RingMeasures measure(const RingRun& r) {
   return m;
 }
 
+/// The outcome in a few words (a table cell): a ring breaks, or intact and separated or not.
+std::string outcome(const RingMeasures& m) {
+  if (m.frag_ring_max > 1) return "a ring breaks (" + std::to_string(m.lost_end) + " particles lost)";
+  return m.separated ? "intact, separated" : "intact, not separated by t_end";
+}
+
 /// The in-plane n = 2 (ovalling) period of a thin ring of mean radius R and thickness t, plane strain:
 /// omega^2 = E' I / (rho A R^4) n^2 (n^2 - 1)^2 / (n^2 + 1), E' = E / (1 - nu^2), I / A = t^2 / 12.
 double ring_ovalling_period(double K, double mu, double R, double t) {
@@ -425,6 +431,7 @@ int main(int argc, char** argv) try {
         s.set(k + "_restitution", m.restitution, 3);
         s.set(k + "_ke_end", m.ke_end_over_ke0, 3);
         s.set(k + "_sxx_max", m.sxx_max, 3);
+        s.set(k + "_outcome", outcome(m));
       }
       continue;
     }
@@ -473,6 +480,7 @@ int main(int argc, char** argv) try {
     s.set(k + "_cpu", r.cost.cpu, 3);
     s.set(k + "_steps", r.cost.steps);
     s.set(k + "_status", r.status);
+    s.set(k + "_outcome", outcome(m));
     if (k == "eps0")
       s.set("eps0_verdict", m.frag_ring_end > 1
                                 ? "**Reproduced**: the rings break (" + std::to_string(m.frag_ring_end) +
