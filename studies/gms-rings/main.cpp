@@ -54,6 +54,7 @@ struct RingCase {
   double skin = 0.5;               ///< Verlet skin of the neighbour list, in dp
   PairLoop loop = PairLoop::Rows;  ///< how the rate visits the pairs (forms/rate_form.hpp)
   bool one_rate = false;           ///< one rate evaluation per step (RateFormRunOptions::reuse_corrector_rate)
+  double dt_scale = 1;             ///< dt = dt_scale x 0.5 h / c_p
 };
 
 /// The case's units against GMS's: length unit (1 cm), speed unit (c0) and time unit, in the case's own units.
@@ -117,7 +118,7 @@ RingRun run_rings(const RingCase& c, const std::string& out) {
   Eigen::VectorXd y0 = scheme.uniform_state();
   for (int i = 0; i < r.particles; ++i) scheme.set_velocity(y0, i, rings.velocity.col(i));
   const double support = kernel.support_radius(r.h), bond = 1.5 * c.dp;
-  r.dt = 0.5 * r.h / mat.p_wave_speed();
+  r.dt = c.dt_scale * 0.5 * r.h / mat.p_wave_speed();
   const double t_end = c.steps > 0 ? c.steps * r.dt : c.t_end;
 
   const Eigen::VectorXd ring_field = Eigen::Map<const Eigen::VectorXi>(rings.ring.data(), r.particles).cast<double>();
@@ -353,11 +354,18 @@ int main(int argc, char** argv) try {
       c.frames = 0;
       cases.push_back(c);
     }
+  // The dt sensitivity of the eps = 0.3 bounce: the row loop at half the time step.
+  RingCase half = cases[1];
+  half.tag += "_halfdt";
+  half.dt_scale = 0.5;
+  half.frames = 0;
+  cases.push_back(half);
   std::fprintf(stderr, "gms-rings: %zu runs on %d threads\n", cases.size(), threads);
   const std::vector<RingRun> runs = run_all(cases, out, threads);
   const auto run_of = [&](bool si_units, double eps, PairLoop loop, bool one_rate = false) -> const RingRun& {
     for (const RingRun& r : runs)
-      if (r.c.si == si_units && r.c.eps == eps && r.c.loop == loop && r.c.one_rate == one_rate) return r;
+      if (r.c.si == si_units && r.c.eps == eps && r.c.loop == loop && r.c.one_rate == one_rate && r.c.dt_scale == 1)
+        return r;
     throw std::logic_error("gms-rings: no run for that case");
   };
 
@@ -417,9 +425,13 @@ int main(int argc, char** argv) try {
                                study::fixed(r.cost.cpu, 1), study::sig(r.cost.us_per_particle_step(), 3),
                                study::sig(r.cost.us_cpu(), 3), std::to_string(r.cost.neighbour_builds)});
     const bool full = r.c.steps == 0;
-    if (r.c.loop == PairLoop::Pairs) {  // compared with the row loop below
+    if (r.c.loop == PairLoop::Pairs || r.c.dt_scale != 1) {  // compared with the row loop below
       if (!r.c.si) {
-        const std::string k = std::string(r.c.one_rate ? "fast_" : "pairs_") + (r.c.eps > 0 ? "eps03" : "eps0");
+        const std::string k = std::string(r.c.dt_scale != 1 ? "halfdt_"
+                                          : r.c.one_rate    ? "fast_"
+                                                            : "pairs_") +
+                              (r.c.eps > 0 ? "eps03" : "eps0");
+        s.set(k + "_vx_end", r.vx1.back(), 3);
         s.set(k + "_ring_fragments_end", m.frag_ring_end);
         s.set(k + "_ring_fragments_max", m.frag_ring_max);
         s.set(k + "_lost_end", m.lost_end);
@@ -481,6 +493,7 @@ int main(int argc, char** argv) try {
     s.set(k + "_steps", r.cost.steps);
     s.set(k + "_status", r.status);
     s.set(k + "_outcome", outcome(m));
+    s.set(k + "_vx_end", r.vx1.back(), 3);
     if (k == "eps0")
       s.set("eps0_verdict", m.frag_ring_end > 1
                                 ? "**Reproduced**: the rings break (" + std::to_string(m.frag_ring_end) +
