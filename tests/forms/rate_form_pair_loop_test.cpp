@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "forms_fixture.hpp"
+#include "sphstab/core/threads.hpp"
 #include "sphstab/forms/rate_form.hpp"
 
 namespace sphstab {
@@ -131,6 +132,32 @@ TEST(RateFormPairLoop, RebuiltKeepsTheLoopAndComplexStatesUseTheRowLoop) {
   pairs.rate(Eigen::VectorXcd(y.cast<std::complex<double>>()), fc);
   rows.rate(Eigen::VectorXcd(y.cast<std::complex<double>>()), gc);
   EXPECT_EQ(Eigen::VectorXd(fc.real()), Eigen::VectorXd(gc.real()));
+}
+
+TEST(RateFormPairLoop, SameBitsOnOneAndTwoThreads) {
+  // The pair loop is serial; the per-particle passes around it (unpack, stresses, rates) are threaded row by row. A
+  // 40 x 40 block (about 1900 particles with the layers: above the 512 rows per thread that turn threading on) with
+  // every GMS term.
+  if (!threads_available()) GTEST_SKIP() << "built without OpenMP";
+  const auto disc = test::lattice_discretisation<2>({.n = 40, .h = 1.3, .perturbation = 0.1});
+  const RateFormScheme<2> s(disc, kGms,
+                            {.continuity = ContinuityForm::Divergence,
+                             .xsph = 0.5,
+                             .viscosity = ViscositySwitch::Compression,
+                             .artificial_stress = 0.3,
+                             .pair_loop = PairLoop::Pairs});
+  const Eigen::VectorXd y = busy_state(s, 6);
+  Eigen::VectorXd f1, f2;
+  {
+    const ThreadCountGuard one(1);
+    s.rate(y, f1);
+  }
+  {
+    const ThreadCountGuard two(2);
+    s.rate(y, f2);
+  }
+  ASSERT_EQ(f1.size(), f2.size());
+  EXPECT_EQ(f1, f2);
 }
 
 TEST(RateFormPairLoop, RefusesTheFormsItDoesNotCover) {
