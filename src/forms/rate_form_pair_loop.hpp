@@ -1,7 +1,7 @@
 #pragma once
 /// \file rate_form_pair_loop.hpp
 /// Internal to src/forms: RateFormScheme's pair loop (PairLoop::Pairs, rate_form.hpp) for the plain gradient with
-/// symmetric momentum on real states. Each pair (i, j > i) of the neighbour list is visited once; pairs at or beyond
+/// symmetric momentum (the antisymmetric form is the same for the plain gradient) on real states. Each pair (i, j > i) of the neighbour list is visited once; pairs at or beyond
 /// the kernel support are dropped before any kernel work. With r = x_i - x_j, g = grad_i W_ij = (dW/dr / r) r
 /// (grad_j W_ji = -g), the pair terms of rate_form.hpp are symmetric in i and j (sigma_i/rho_i^2 + sigma_j/rho_j^2,
 /// Pi_ij: v_ij . r_ij and rhobar_ij are, f_ij^n, R_i + R_j), so with T = (sigma_i/rho_i^2 + sigma_j/rho_j^2
