@@ -157,6 +157,23 @@ void set_counters(benchmark::State& st, const Scene& s, long steps, long builds)
   st.counters["model_bytes"] = model_bytes(s.particles(), s.pairs());
 }
 
+/// Times run_rate_form(scheme, y0, o) per iteration and sets the counters; false (the benchmark skipped) when a run
+/// stops early.
+bool time_runs(benchmark::State& st, const Scene& s, const RateFormRunOptions& o) {
+  long steps = 0, builds = 0;
+  for (auto _ : st) {
+    const RateFormRunResult r = run_rate_form(*s.scheme, s.y0, o);
+    if (!r.completed()) {
+      st.SkipWithError(("run stopped: " + r.message).c_str());
+      return false;
+    }
+    steps = r.steps, builds = r.neighbour_builds;
+    benchmark::DoNotOptimize(r.y.data());
+  }
+  set_counters(st, s, steps, builds);
+  return true;
+}
+
 void bm_step(benchmark::State& st, const std::string& key, bool rebuild, int threads = 1) {
   const ThreadCountGuard guard(threads);
   Scene& s = scene(key);
@@ -164,17 +181,7 @@ void bm_step(benchmark::State& st, const std::string& key, bool rebuild, int thr
                              .t_end = static_cast<double>(s.steps) * s.dt,
                              .record_every = static_cast<int>(s.steps),
                              .neighbour_skin = rebuild ? kSkin * s.dx : 0.0};
-  long steps = 0, builds = 0;
-  for (auto _ : st) {
-    const RateFormRunResult r = run_rate_form(*s.scheme, s.y0, o);
-    if (!r.completed()) {
-      st.SkipWithError(("run stopped: " + r.message).c_str());
-      return;
-    }
-    steps = r.steps, builds = r.neighbour_builds;
-    benchmark::DoNotOptimize(r.y.data());
-  }
-  set_counters(st, s, steps, builds);
+  time_runs(st, s, o);
 }
 
 /// The SI rings as studies/gms-rings runs them by default: kRunSteps steps from y0 with the Verlet list (skin 0.5 dx),
@@ -198,18 +205,7 @@ void bm_run(benchmark::State& st, const std::string& key, bool one_rate, double 
       return;
     }
   }
-  long steps = 0, builds = 0;
-  for (auto _ : st) {
-    const RateFormRunResult r = run_rate_form(*s.scheme, s.y0, o);
-    if (!r.completed()) {
-      st.SkipWithError(("run stopped: " + r.message).c_str());
-      return;
-    }
-    steps = r.steps, builds = r.neighbour_builds;
-    benchmark::DoNotOptimize(r.y.data());
-  }
-  set_counters(st, s, steps, builds);
-  st.counters["skin"] = skin;
+  if (time_runs(st, s, o)) st.counters["skin"] = skin;
 }
 
 void bm_rate(benchmark::State& st, const std::string& key, int threads = 1) {

@@ -89,6 +89,29 @@ namespace {
 
 bool uses_local_means(RateFormMomentum m) { return m == RateFormMomentum::Cij || m == RateFormMomentum::StabilisedSph; }
 
+/// Calls body(viscosity_tag, stress_tag) with the viscosity switch and whether the artificial stress acts as
+/// compile-time tags, so that the pair loops are compiled for the active terms only.
+template <class Body>
+void with_term_tags(ViscositySwitch viscosity, bool stress, Body&& body) {
+  const auto with_stress = [&](auto viscosity_tag) {
+    if (stress)
+      body(viscosity_tag, std::true_type{});
+    else
+      body(viscosity_tag, std::false_type{});
+  };
+  switch (viscosity) {
+    case ViscositySwitch::Off:
+      with_stress(std::integral_constant<ViscositySwitch, ViscositySwitch::Off>{});
+      break;
+    case ViscositySwitch::Compression:
+      with_stress(std::integral_constant<ViscositySwitch, ViscositySwitch::Compression>{});
+      break;
+    case ViscositySwitch::Always:
+      with_stress(std::integral_constant<ViscositySwitch, ViscositySwitch::Always>{});
+      break;
+  }
+}
+
 // The helpers below repeat operations of other files exactly (the same expressions on the same types, in the same
 // order), so that evaluate() gives bitwise the results it gave when it called those functions; they only drop work
 // whose result evaluate() does not read. Change them together with the originals.
@@ -756,23 +779,7 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
           else
             rate_form_detail::pair_loop<Dim, kV, kS, false>(A, kf, pair_factor, scratch);
         };
-        const auto with_stress = [&](auto viscosity_tag) {
-          if (o.artificial_stress > 0)
-            with_xsph(viscosity_tag, std::true_type{});
-          else
-            with_xsph(viscosity_tag, std::false_type{});
-        };
-        switch (o.viscosity) {
-          case ViscositySwitch::Off:
-            with_stress(std::integral_constant<ViscositySwitch, ViscositySwitch::Off>{});
-            break;
-          case ViscositySwitch::Compression:
-            with_stress(std::integral_constant<ViscositySwitch, ViscositySwitch::Compression>{});
-            break;
-          case ViscositySwitch::Always:
-            with_stress(std::integral_constant<ViscositySwitch, ViscositySwitch::Always>{});
-            break;
-        }
+        with_term_tags(o.viscosity, o.artificial_stress > 0, with_xsph);
       });
       for (int i = 0; i < n; ++i)
         if (m_x_off[i] >= 0 || m_rho_off[i] >= 0) finish(i, m_x_off[i] >= 0, ws.L[i], ws.drho[i], ws.acc[i]);
@@ -1104,23 +1111,7 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
           sums(i, now, std::false_type{});
         }
       };
-      const auto with_stress = [&](auto viscosity_tag) {
-        if (o.artificial_stress > 0)
-          rows(viscosity_tag, std::true_type{});
-        else
-          rows(viscosity_tag, std::false_type{});
-      };
-      switch (o.viscosity) {
-        case ViscositySwitch::Off:
-          with_stress(std::integral_constant<ViscositySwitch, ViscositySwitch::Off>{});
-          break;
-        case ViscositySwitch::Compression:
-          with_stress(std::integral_constant<ViscositySwitch, ViscositySwitch::Compression>{});
-          break;
-        case ViscositySwitch::Always:
-          with_stress(std::integral_constant<ViscositySwitch, ViscositySwitch::Always>{});
-          break;
-      }
+      with_term_tags(o.viscosity, o.artificial_stress > 0, rows);
     });
   } else {
     // The corrected gradient (NCSPH) and the local means of C_ij / S-SPH: per-pair arrays, as later passes read them:
