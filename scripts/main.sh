@@ -1,30 +1,23 @@
 #!/usr/bin/env bash
-# README main job: install dependencies, build, run every default study into results/.
-# A study is studies/<name>/ with main.cpp (built to build/bin/study_<name>) and optionally plot.py,
-# or with a run.sh (called as run.sh BIN_DIR OUT_DIR) for studies that drive other programs (benchmarks).
+# README main job: install dependencies, build what the chosen studies need (Release), run them.
+#   bash scripts/main.sh                 the default main job: the headline studies in full into results/, and one
+#                                        short (--quick) run of the other families into build/quick/ (about 10 min)
+#   bash scripts/main.sh --all           every study in full: regenerates the results/ tree as committed (hours)
+#   bash scripts/main.sh NAME...         the named studies in full
+#   options: --jobs N (studies side by side, default the core count), --list (print the plan and estimate only)
+# The studies, their families and which belong to the default job: studies/index.toml. The engine, with the estimate
+# and progress lines: scripts/run_studies.py. Wall times of the last full runs: results/timings.csv.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+py=${PYTHON:-/usr/bin/python3}
+if [ ! -x "$py" ]; then bash scripts/install-deps.sh; fi
+targets=$("$py" scripts/run_studies.py --targets "$@")
+for a in "$@"; do [ "$a" = "--list" ] && exec "$py" scripts/run_studies.py "$@"; done
 bash scripts/install-deps.sh
-bash scripts/build.sh
-bin=${BUILD_DIR:-build}/bin
-only=${1:-}
-for dir in studies/*/; do
-  name=$(basename "$dir")
-  [ -n "$only" ] && [ "$only" != "$name" ] && continue
-  exe="$bin/study_${name//-/_}"
-  [ -x "$exe" ] || [ -f "$dir/run.sh" ] || continue
-  echo "== study $name"
-  mkdir -p "results/$name"
-  start=$SECONDS
-  if [ -f "$dir/run.sh" ]; then
-    bash "$dir/run.sh" "$bin" "results/$name"
-  else
-    "$exe" --out "results/$name"
-  fi
-  if [ -f "$dir/plot.py" ]; then "${PYTHON:-/usr/bin/python3}" "$dir/plot.py" "results/$name"; fi
-  if [ -f "$dir/summary.md.in" ]; then
-    "${PYTHON:-/usr/bin/python3}" scripts/render_summary.py "$dir/summary.md.in" "results/$name/summary.json" \
-      > "results/$name/summary.md"
-  fi
-  echo "== study $name done in $((SECONDS - start)) s"
-done
+if [ "$targets" = "all" ]; then
+  bash scripts/build.sh
+else
+  # shellcheck disable=SC2086
+  SPHSTAB_TARGETS="$targets" bash scripts/build.sh
+fi
+exec "$py" scripts/run_studies.py "$@"
