@@ -44,7 +44,8 @@ def load_index():
     with open(os.path.join(ROOT, "studies", "index.toml"), "rb") as f:
         index = tomllib.load(f)
     for name, entry in index.items():
-        unknown = set(entry) - {"family", "main", "after", "alone", "estimate_min"}
+        unknown = set(entry) - {"family", "main", "after", "alone", "estimate_min",
+                               "question", "sources", "headline", "extract", "summary"}  # the last five: results map
         if unknown:
             sys.exit(f"run_studies: studies/index.toml [{name}]: unknown field(s) {', '.join(sorted(unknown))}")
         if entry.get("main") not in (None, "full", "quick"):
