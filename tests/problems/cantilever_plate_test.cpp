@@ -13,7 +13,7 @@ TEST(CantileverPlate, FundamentalRootAndTheNotesRecomputedPeriods) {
   const double kl = cantilever_fundamental_kl();
   EXPECT_NEAR(std::cos(kl) * std::cosh(kl), -1.0, 1e-14);
   EXPECT_NEAR(kl, 1.8751040687119611, 1e-13);
-  // seed-gms.md §4.1 [RC]: K = rho = 1, kL = 1.8751; H = 2: 1448.8 / 1275.0 / 978.8, H = 1: 2897.5 / 2550.1 / 1957.6.
+  // [GMS2001, (7.1)], K = rho = 1, kL = 1.8751: H = 2: 1448.8 / 1275.0 / 978.8, H = 1: 2897.5 / 2550.1 / 1957.6.
   const double mus[3] = {0.22, 0.30, 0.60}, h2[3] = {1448.8, 1275.0, 978.8}, h1[3] = {2897.5, 2550.1, 1957.6};
   for (int i = 0; i < 3; ++i) {
     const IsotropicModuli m = isotropic_moduli(1.0, mus[i]);

@@ -1,7 +1,7 @@
-// Plane-wave reflection at absorbing boundaries (spectral/plane_wave_reflection.hpp) against the exact solutions of
-// [Powell2012, (2.49)] in the notes (seed-powell-nrbc.md §1, plane strain nu = 0.3, printed to 4 decimals), the scalar
+// Plane-wave reflection at absorbing boundaries (spectral/plane_wave_reflection.hpp) against
+// [Powell2012, (2.49)] solved exactly for this project (plane strain nu = 0.3, printed to 4 decimals), the scalar
 // Engquist-Majda R = tan^2(theta/2), normal incidence (every first-order condition is exact there), and the Rayleigh
-// speed against the closed form at nu = 1/4 and the notes' 0.92741 at nu = 0.3.
+// speed against the closed form at nu = 1/4 and 0.92741 at nu = 0.3 (the root of [Powell2012, (A.35)]).
 #include "sphstab/spectral/plane_wave_reflection.hpp"
 
 #include <gtest/gtest.h>
