@@ -20,7 +20,7 @@ TEST(CantileverPlate, FundamentalRootAndTheNotesRecomputedPeriods) {
     EXPECT_NEAR(thin_plate_period(m.youngs, m.poisson, 1.0, 2.0, 20.0), h2[i], 0.06) << mus[i];
     EXPECT_NEAR(thin_plate_period(m.youngs, m.poisson, 1.0, 1.0, 20.0), h1[i], 0.06) << mus[i];
   }
-  // The notes' Poisson ratios 0.398 / 0.364 / 0.25 and E from K and mu: 3K = E/(1 - 2 nu), 2mu = E/(1 + nu).
+  // The recomputed Poisson ratios 0.398 / 0.364 / 0.25 and E from K and mu: 3K = E/(1 - 2 nu), 2mu = E/(1 + nu).
   const IsotropicModuli m = isotropic_moduli(1.0, 0.22);
   EXPECT_NEAR(m.poisson, 0.398, 5e-4);
   EXPECT_NEAR(m.youngs / (1 - 2 * m.poisson), 3.0, 1e-13);
