@@ -4,9 +4,9 @@
 // (every file of the tree but .git and build directories when the source is not a git checkout), text files only:
 //
 //   anywhere         a machine's work or home directory: /work, /root or /home followed by a slash;
-//                    the notes folder the project was started from and its files (shared + /notes, notes + /seed-,
-//                    seed-<name>.md) and the folders beside the repository that held them (../shared + /,
-//                    shared + /seeds);
+//                    the notes folder the project was started from and its files (shared + /notes, notes + /seed +
+//                    dash, seed + dash + <name>.md) and the folders beside the repository that held them
+//                    (../shared + /, shared + /seeds);
 //   recorded output  /tmp followed by a slash as well, in results/ and in data files anywhere (.csv, .json, .mtx,
 //                    .vtp, .pvd, .tsv): a path there was recorded by a run. Scripts, sources and docs may use /tmp as
 //                    a scratch place (benchmarks/distributed/critical_strain_petsc.sh does), so it is not flagged
@@ -34,9 +34,9 @@ const std::string kSlash = "/";
 
 /// Needles flagged in every tracked text file.
 std::vector<std::string> everywhere() {
-  return {kSlash + "work" + kSlash,    kSlash + "root" + kSlash,   kSlash + "home" + kSlash,
-          "shared" + kSlash + "notes", "notes" + kSlash + "seed-", ".." + kSlash + "shared" + kSlash,
-          "shared" + kSlash + "seeds"};
+  return {kSlash + "work" + kSlash,        kSlash + "root" + kSlash,        kSlash + "home" + kSlash,
+          "shared" + kSlash + "notes",     "notes" + kSlash + "seed" + "-", ".." + kSlash + "shared" + kSlash,
+          "shared" + kSlash + "seed" + "s"};
 }
 
 /// A notes file named by itself (seed, a dash, a name, .md), without its folder.
