@@ -3,6 +3,7 @@
 
 /usr/bin/time -v build/bin/rate_form_step_benchmark --benchmark_out=results/rate-form-speed/benchmark.json \
     --benchmark_out_format=json
+python3 benchmarks/relative_executable.py results/rate-form-speed/benchmark.json   (no machine path in the json)
 python3 benchmarks/rate_form_step_report.py results/rate-form-speed/benchmark.json results/rate-form-speed/benchmark.md \
     [PEAK_RSS_MB]   (optional, "Maximum resident set size" of /usr/bin/time -v, in MB)
     [--before results/rate-form-speed/benchmark_before.json]   (optional: an earlier run to compare the library with)

@@ -12,4 +12,6 @@ TIMEFORMAT='%R %U %S'
   >"$out/benchmark_default.json"; } 2>"$out/time_default.txt"
 { time GLIBC_TUNABLES=glibc.malloc.hugetlb=1 "$bin/assembly_benchmark" --benchmark_filter="$filter" \
   --benchmark_format=json >"$out/benchmark_hugepages.json"; } 2>"$out/time_hugepages.txt"
+"${PYTHON:-/usr/bin/python3}" benchmarks/relative_executable.py "$out/benchmark_default.json" \
+  "$out/benchmark_hugepages.json"
 "${PYTHON:-/usr/bin/python3}" "$(dirname "$0")/report.py" "$out"

@@ -255,7 +255,7 @@ std::vector<PlateRun> run_all(const std::vector<PlateCase>& cases, const std::st
   return runs;
 }
 
-/// GMS Tables 1 and 2 (T_sph, cm / c0), seed-gms.md §4.1.
+/// GMS Tables 1 and 2 (T_sph, cm / c0), [GMS2001, §7.1, Tables 1-2].
 struct PaperRow {
   double thickness, mu, tip_speed, period;
 };

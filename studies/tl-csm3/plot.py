@@ -10,7 +10,7 @@ import sys
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
 from plot_common import num, plt, read  # noqa: E402
 
-REF = {"ux": (-14.305e-3, 14.305e-3), "uy": (-63.607e-3, 65.160e-3)}
+REF = {"ux": (-14.305e-3, 14.645e-3), "uy": (-63.607e-3, 65.160e-3)}  # [TurekHron2006], CSM3: mean, amplitude (m)
 
 
 def band(ax, key):

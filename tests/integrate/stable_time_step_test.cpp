@@ -69,7 +69,7 @@ TEST(StableTimeStep, SpectraAgreesWithLapackOnADeformedNeoHookeanBar) {
 
 TEST(StableTimeStep, PeriodicLatticeIsTheVonNeumannLimitOfTheKernel) {
   // Periodic Hooke bar (c = sqrt(E / rho)): A = c^2 X^T X, eigenvalues c^2 |X(k)|^2 with
-  // X(k) = 2 sum_{j > 0} W'(j dx) dx sin(k j dx) at k = 2 pi m / (N dx) (Ismail's von Neumann check, notes §4).
+  // X(k) = 2 sum_{j > 0} W'(j dx) dx sin(k j dx) at k = 2 pi m / (N dx) (a von Neumann check of [Ismail2009, (4.46)]).
   const int n = 64;
   const double rho = 3.0;
   for (const auto type : {KernelType::ModifiedMollifier, KernelType::CubicSpline}) {

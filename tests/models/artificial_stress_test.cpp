@@ -46,7 +46,7 @@ TEST(PrincipalFrame, RotationDiagonalisesAndPreservesTrace) {
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(as_matrix(s));
     EXPECT_NEAR(f.minor, es.eigenvalues()[0], 1e-14);
     EXPECT_NEAR(f.major, es.eigenvalues()[1], 1e-14);
-    // The printed (6.3), +2sc sxy, breaks the trace unless sc sxy = 0 (seed-gms.md [RC] typo).
+    // The printed (6.3), +2sc sxy, breaks the trace unless sc sxy = 0 (a typo of [GMS2001, (6.3)], recomputed here).
     const double printed_yy = sn * sn * s.xx + 2 * sn * c * s.xy + c * c * s.yy;
     EXPECT_NEAR(bxx + printed_yy - (s.xx + s.yy), 4 * sn * c * s.xy, 1e-14);
     // Back-rotation of (major, minor) reproduces sigma (6.5-6.7 are the inverse rotation).
@@ -212,7 +212,7 @@ TEST(ArtificialStress, PowerAndPairFactor) {
   EXPECT_NEAR(z.imag() / 1e-30, 2.5 * std::pow(0.3, 1.5), 1e-14);
   Kernel<2> w(KernelType::CubicSpline);
   const double h = 1.5, wdp = artificial_stress_reference_kernel(w, h, 1.0);
-  EXPECT_NEAR(wdp, 50 / (63 * M_PI * h * h), 1e-15);  // seed-gms.md §2: W(dp) at h = 1.5 dp
+  EXPECT_NEAR(wdp, 50 / (63 * M_PI * h * h), 1e-15);  // [GMS2001, (3.13)]: W(dp) at h = 1.5 dp
   EXPECT_NEAR(artificial_stress_reference_kernel(w, 1.0, 1.0), 5 / (14 * M_PI), 1e-15);
   EXPECT_NEAR(artificial_stress_pair_factor(w.value(1.0, h), wdp, 4), 1.0, 1e-15);
   EXPECT_NEAR(artificial_stress_pair_factor(w.value(1.2, h), wdp, 4), std::pow(w.value(1.2, h) / wdp, 4), 1e-15);

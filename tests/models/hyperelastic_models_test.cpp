@@ -1,6 +1,6 @@
 // The finite-strain materials (models/hooke.hpp, st_venant_kirchhoff.hpp, neo_hookean.hpp): P = dPsi/dF and the
 // tangent = dP/dF by complex step, the linear elastic limit at F = I, frame indifference, the analytic uniaxial
-// Cauchy stress table of the seed notes §7.3 [Ismail2009, (5.5)], and the loss of hyperbolicity at nu = 0.49.
+// Cauchy stress table of [Ismail2009, (5.5)] (studies/tl-neo-hookean-1d), and the loss of hyperbolicity at nu = 0.49.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -135,7 +135,7 @@ TEST(HyperelasticModels, FrameIndifferenceOfTheHyperelasticModelsOnly) {
   }
 }
 
-// The seed notes §7.3 table [D] of T11/mu for lambda_3 = 1 (4 decimals), checked against the models' Cauchy stress
+// The table of [Ismail2009, (5.5)], T11/mu for lambda_3 = 1 (4 decimals), checked against the models' Cauchy stress
 // T = J^{-1} P F^T [Ismail2009, (3.33), (5.5)].
 struct TableRow {
   double nu, lambda2;

@@ -69,7 +69,7 @@ TEST(BoundaryParticles, LineEndsAndErrors) {
   const ParticleSet<1> p = make_lattice<1>(LatticeType::Line, 100, {.spacing = dx, .fixed_layers = 0});
   const NeighbourList nl = find_neighbours(p, kernel.support_radius(h));
   const BoundaryParticles<1> b = boundary_particles(p, kernel, h, nl);
-  EXPECT_EQ(b.layers, 3);  // the notes: 3 layers in 1D at h = 1.3 dx
+  EXPECT_EQ(b.layers, 3);  // floor(2h/dx) + 1 = 3 layers in 1D at h = 1.3 dx ([Powell2012, Fig. 2.12])
   for (int i = 0; i < 100; ++i) {
     const int d = std::min(i, 99 - i);
     EXPECT_EQ(b.layer[i], d < 3 ? d : -1) << i;

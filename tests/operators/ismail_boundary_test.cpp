@@ -75,7 +75,7 @@ TEST(EtaBoundary1D, PrescribedValueIsReachedExactlyAndOnlyTheTargetsChange) {
 }
 
 TEST(EtaBoundary1D, LinearFieldWithItsOwnBoundaryValuesIsLeftUnchanged) {
-  // Support 5.5 dx: sum W dV = 1 and <x_x> = 1 to ~1e-5 (notes §2), so a linear field f = 2 x + 1 already satisfies
+  // Support 5.5 dx: sum W dV = 1 and <x_x> = 1 to ~1e-5 (lattice sum), so a linear field f = 2 x + 1 already satisfies
   // its own Dirichlet value and slope at b and eta is ~0.
   const Line l = make_line(30);
   Eigen::VectorXd f = (2 * l.set.x.col(0)).array() + 1.0;

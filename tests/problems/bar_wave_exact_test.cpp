@@ -142,7 +142,7 @@ TEST(BarJumpExact, DisplacementIsConsistentWithVelocityAndStress) {
 
 TEST(BarJumpExact, ReproducesPowellsParticle80History) {
   // Powell §3.1 (semi-infinite bar; an 8 cm bar is semi-infinite for x = 0.795 until t = 28 µs):
-  // v = -0.01 for t < 0.858, 0 until 2.207, then -0.01 (notes/seed-powell-nrbc.md §3).
+  // v = -0.01 for t < 0.858, 0 until 2.207, then -0.01 (the exact solution of [Powell2012, (2.68)] at x = 0.795).
   BarJumpProblem p;
   p.length = 8.0;
   BarJumpExact ex(p);

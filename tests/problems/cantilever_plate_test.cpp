@@ -13,14 +13,14 @@ TEST(CantileverPlate, FundamentalRootAndTheNotesRecomputedPeriods) {
   const double kl = cantilever_fundamental_kl();
   EXPECT_NEAR(std::cos(kl) * std::cosh(kl), -1.0, 1e-14);
   EXPECT_NEAR(kl, 1.8751040687119611, 1e-13);
-  // seed-gms.md §4.1 [RC]: K = rho = 1, kL = 1.8751; H = 2: 1448.8 / 1275.0 / 978.8, H = 1: 2897.5 / 2550.1 / 1957.6.
+  // [GMS2001, (7.1)], K = rho = 1, kL = 1.8751: H = 2: 1448.8 / 1275.0 / 978.8, H = 1: 2897.5 / 2550.1 / 1957.6.
   const double mus[3] = {0.22, 0.30, 0.60}, h2[3] = {1448.8, 1275.0, 978.8}, h1[3] = {2897.5, 2550.1, 1957.6};
   for (int i = 0; i < 3; ++i) {
     const IsotropicModuli m = isotropic_moduli(1.0, mus[i]);
     EXPECT_NEAR(thin_plate_period(m.youngs, m.poisson, 1.0, 2.0, 20.0), h2[i], 0.06) << mus[i];
     EXPECT_NEAR(thin_plate_period(m.youngs, m.poisson, 1.0, 1.0, 20.0), h1[i], 0.06) << mus[i];
   }
-  // The notes' Poisson ratios 0.398 / 0.364 / 0.25 and E from K and mu: 3K = E/(1 - 2 nu), 2mu = E/(1 + nu).
+  // The recomputed Poisson ratios 0.398 / 0.364 / 0.25 and E from K and mu: 3K = E/(1 - 2 nu), 2mu = E/(1 + nu).
   const IsotropicModuli m = isotropic_moduli(1.0, 0.22);
   EXPECT_NEAR(m.poisson, 0.398, 5e-4);
   EXPECT_NEAR(m.youngs / (1 - 2 * m.poisson), 3.0, 1e-13);

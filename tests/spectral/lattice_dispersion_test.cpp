@@ -15,7 +15,7 @@ const double pi = M_PI;
 const Eigen::Vector2d k_short(pi, 0);  // k = (pi/dp, 0), dp = 1
 
 TEST(LatticeDispersion, SquareCheckValuesAtHEqualsDp) {
-  // seed-gms.md §7 check 3 (units 1/dp^2), to the printed precision.
+  // [GMS2001, (5.20)-(5.29)] lattice sums (units 1/dp^2), to the printed precision.
   Kernel<2> w(KernelType::CubicSpline);
   auto s = lattice_sums(LatticeType::Square, w, 1.0, k_short, {.exponent = 4});
   EXPECT_NEAR(s.Bx, 3.996, 5e-4);
@@ -28,7 +28,7 @@ TEST(LatticeDispersion, SquareCheckValuesAtHEqualsDp) {
   EXPECT_NEAR(s.fxy, 0.0, 1e-14);
   auto nn = lattice_sums(LatticeType::Square, w, 1.0, k_short, {.exponent = 4, .max_distance = 1.0});
   EXPECT_NEAR(nn.fxx, 19.10, 5e-3);
-  // Closed forms (GMS 5.21; beta per its definition, seed-gms.md [RC]), to rounding.
+  // Closed forms (GMS 5.21; beta per its definition [GMS2001, (5.5)], recomputed), to rounding.
   const double c = 5 / (14 * pi), r2 = std::sqrt(2.0);
   EXPECT_NEAR(s.Bx, 150 * (2 - r2) / (7 * pi), 1e-13);
   EXPECT_NEAR(s.beta, 10 / (7 * pi) * (0.5 + std::pow(2 - r2, 3)), 1e-14);

@@ -1,7 +1,7 @@
-// Plane-wave reflection at absorbing boundaries (spectral/plane_wave_reflection.hpp) against the exact solutions of
-// [Powell2012, (2.49)] in the notes (seed-powell-nrbc.md §1, plane strain nu = 0.3, printed to 4 decimals), the scalar
+// Plane-wave reflection at absorbing boundaries (spectral/plane_wave_reflection.hpp) against
+// [Powell2012, (2.49)] solved exactly for this project (plane strain nu = 0.3, printed to 4 decimals), the scalar
 // Engquist-Majda R = tan^2(theta/2), normal incidence (every first-order condition is exact there), and the Rayleigh
-// speed against the closed form at nu = 1/4 and the notes' 0.92741 at nu = 0.3.
+// speed against the closed form at nu = 1/4 and 0.92741 at nu = 0.3 (the root of [Powell2012, (A.35)]).
 #include "sphstab/spectral/plane_wave_reflection.hpp"
 
 #include <gtest/gtest.h>
@@ -24,7 +24,7 @@ void expect_table(AbsorbingCondition b, const std::vector<Row>& rows) {
   for (const Row& r : rows) {
     const Reflection p = elastic_reflection(b, kCp, kCs, deg(r.theta), WaveKind::P);
     const Reflection s = elastic_reflection(b, kCp, kCs, deg(r.theta), WaveKind::S);
-    // The notes print 4 decimals: agreement to half a unit of the last one.
+    // The table has 4 decimals: agreement to half a unit of the last one.
     EXPECT_NEAR(std::abs(p.to_p), r.pp, 5e-5) << r.theta;
     EXPECT_NEAR(std::abs(p.to_s), r.ps, 5e-5) << r.theta;
     EXPECT_NEAR(std::abs(s.to_p), r.sp, 5e-5) << r.theta;
@@ -142,7 +142,7 @@ TEST(PlaneWaveReflection, SpeedScaleScalesTheConditionOnly) {
 }
 
 TEST(PlaneWaveReflection, ScalarEngquistMajdaAndHigdon) {
-  // The notes' values of tan^2(theta / 2) and the second-order tan^4 at 45 degrees.
+  // The values of tan^2(theta / 2) and the second-order tan^4 at 45 degrees.
   const double expected[] = {0.0077, 0.0718, 0.1716, 0.3333};
   const double angles[] = {10, 30, 45, 60};
   for (int k = 0; k < 4; ++k) {
@@ -161,7 +161,7 @@ TEST(PlaneWaveReflection, RayleighSpeed) {
   EXPECT_NEAR(rayleigh_speed(std::sqrt(3.0), 1.0), std::sqrt(2 - 2 / std::sqrt(3.0)), 1e-14);
   EXPECT_NEAR(rayleigh_speed(kCp, kCs), 0.92741, 5e-6);
   // Steel of the impact test (rho 7.8, E 2.1 Mbar, nu 0.3): c_s = sqrt(E / (2 (1 + nu) rho)) = 0.32179 cm/us, so
-  // (A.35) gives c_r = 0.29843 cm/us; the notes' 0.2985 is the approximation (A.36), 0.92769 c_s (0.03 % higher).
+  // (A.35) gives c_r = 0.29843 cm/us; the 0.2985 is the approximation (A.36), 0.92769 c_s (0.03 % higher).
   const double cs = std::sqrt(2.1 / (2 * 1.3 * 7.8));
   EXPECT_NEAR(rayleigh_speed(kCp * cs, cs), 0.29843, 5e-6);
   EXPECT_NEAR(0.92769 * cs, 0.2985, 5e-5);

@@ -9,11 +9,11 @@
 ///   - ClaytonEngquist ("P", (2.42)): a = -c_p ((L n) . n) n - c_s ((L n) . t) t.
 ///   - Sochaki ("M", (2.45)): a = -[c_p (L n) . n + (c_p - c_s) (L t) . t] n - [c_s (L n) . t + (c_p - c_s) (L t) . n]
 ///   t.
-///     The thesis's pseudocode for M has the signs flipped and the cross terms swapped (the notes); this is (2.45)
+///     The thesis's pseudocode for M has the signs flipped and the cross terms swapped (our check); this is (2.45)
 ///     itself, and it does not depend on the orientation of t.
 ///   - Higdon's condition is second order in time and has no such velocity form; Powell's "H" (c_p, c_s scaled by
 ///     the a-priori k . n) is the ClaytonEngquist law with those speeds (AbsorbingParticles::speed_scale), and
-///     Higdon's own first-order factor (cos a d_t + c d_n, the notes' correction of (2.33)) the same law with the
+///     Higdon's own first-order factor (cos a d_t + c d_n, our correction of (2.33)) the same law with the
 ///     speeds divided by k . n.
 ///   - ViscousTraction (Powell (2.75), the LS-DYNA / Lysmer-Kuhlemeyer viscous boundary, his baseline): not a
 ///     replacement of the momentum equation but a traction sigma n = -rho (c_p (v . n) n + c_s (v . t) t) on the

@@ -5,7 +5,7 @@
 ///   a_k(u) = a_inner,k(u) + b_{k mod Dim}      (free DOFs, interleaved dof = f * Dim + c)
 ///
 /// the rho0 b term of the total-Lagrangian momentum equation rho0 v' = Div P + rho0 b [Ismail2009, ch. 3] (the TL
-/// equation of motion; seed notes §3). Fixed particles are not unknowns, so they carry no body force (their
+/// equation of motion; [Ismail2009, §3]). Fixed particles are not unknowns, so they carry no body force (their
 /// displacement is prescribed).
 ///
 /// \note Potential: with U_b(u) = -sum_k m_k b_{k mod Dim} u_k (m = dof_mass), M a = -d(U_inner + U_b)/du whenever the

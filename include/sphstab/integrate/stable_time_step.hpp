@@ -11,8 +11,8 @@
 /// u'' = -A u with eigenvalue mu > 0 is bounded iff dt <= 2 / sqrt(mu).
 ///
 /// \note Ismail's rule [Ismail2009, (4.47)] is dt = h / c with his h the SUPPORT radius of the modified mollifier,
-///       i.e. 2h in sphstab's support-2h convention. On a periodic lattice of the modified mollifier at
-///       support >= 3 dx the linear limit is 0.7226 (support) / c (notes seed-ismail.md §4, [D]); h/c is unstable.
+///       i.e. 2h in sphstab's support-2h convention. On a periodic lattice of the modified mollifier at support >= 3 dx
+///       the linear limit is 0.7226 (support) / c (our von Neumann check, studies/tl-time-step); h/c is unstable.
 /// \note A non-symmetric K (Ismail's plain pair at a boundary, unequal volumes) is reduced to its symmetric part;
 ///       `asymmetry` reports ||S - S^T||_F / ||S||_F so a caller can tell when the result is only indicative.
 ///

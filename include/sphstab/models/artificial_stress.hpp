@@ -10,7 +10,7 @@
 ///
 /// \note Rotation (GMS 6.1-6.3) with e1 = (c, s), e2 = (-s, c), tan 2 theta = 2 sxy / (sxx - syy):
 ///       sigmabar^xx = c^2 sxx + 2sc sxy + s^2 syy, sigmabar^yy = s^2 sxx - 2sc sxy + c^2 syy. The printed (6.3)
-///       has +2sc sxy, a typo (it does not preserve the trace; seed-gms.md [RC]).
+///       has +2sc sxy, a typo (it does not preserve the trace of [GMS2001, (6.2)-(6.3)]; recomputed here).
 /// \note Complex-step safety: the rotation is evaluated from double-angle quantities that are analytic in the
 ///       stress entries, cos 2theta = (sxx - syy)/(2 r), sin 2theta = sxy / r, r = sqrt(((sxx-syy)/2)^2 + sxy^2),
 ///       c^2 = (1 + cos 2theta)/2, s^2 = (1 - cos 2theta)/2, sc = sin 2theta / 2 -- no atan2, no angle. Branches

@@ -15,7 +15,7 @@
 ///     dP/dF = mu (1 + F^-2) + lambda [(1/F + 2 s'/s)/F - ln(F s^2)/F^2],  s' = -(lambda/F) / (2 mu s + 2 lambda/s).
 ///   At F = 1 the 1D-stress tangent is Young's E (s' = -nu).
 /// \note The 1D-strain tangent vanishes where mu (F^2 + 1) + lambda (1 - ln F) = 0: for lambda/mu = 49 (nu = 0.49)
-///       at F = 3.6307 and 6.3997 (loss of hyperbolicity; seed notes §7.3); for nu = 0.3 it stays positive.
+///       at F = 3.6307 and 6.3997 (loss of hyperbolicity; cf. [Ismail2009, §5.3]); for nu = 0.3 it stays positive.
 /// \note J <= 0 (an inverted particle) has no energy: every evaluation throws std::invalid_argument.
 /// \code{.cpp}
 /// const auto lame = sphstab::LameParameters::from_young_poisson(200e9, 0.49);

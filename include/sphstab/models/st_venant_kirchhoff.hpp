@@ -2,7 +2,7 @@
 /// \file st_venant_kirchhoff.hpp
 /// The St Venant-Kirchhoff material [Ismail2009, §3.3.2]:
 ///   E = 1/2 (F^T F - I),  Psi = lambda/2 (tr E)^2 + mu E:E,  S = lambda tr(E) I + 2 mu E,  P = F S
-/// (the thesis prints "S = FP" and omits the 1/2 in E; P = F S is the correct relation, seed notes §3), and
+/// (the thesis prints "S = FP" and omits the 1/2 in E; P = F S is the correct relation, [Ismail2009, §3.3]), and
 ///   dP_ab/dF_cd = delta_ac S_db + lambda F_ab F_cd + mu (F_ad F_cb + (F F^T)_ac delta_bd)   (derived here; checked
 ///   against the complex-step derivative of P in tests/models/hyperelastic_models_test.cpp).
 /// Dim = 2: plane strain (E_33 = 0). Dim = 1: S = M E_11 with M = lambda + 2 mu (1D strain) or Young's E (1D stress:

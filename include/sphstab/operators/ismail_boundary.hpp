@@ -11,7 +11,7 @@
 /// with <f>_b = sum_q f_q W(x_b - x_q) dV_q and <f_x>_b = sum_q f_q dW(x_b - x_q)/dx_b dV_q (Ismail's direct sums,
 /// the rows of his W and X, over every particle within the support of b).
 /// \note [Ismail2009] prints the sums over B + I + G (both sides of b). Over a symmetric cover N = sum W W' dV = 0
-///       (W W' is odd), so the Neumann correction must be one-sided (notes seed-ismail.md §5; his algorithm 4.1
+///       (W W' is odd), so the Neumann correction must be one-sided ([Ismail2009, §2.8.3]; his algorithm 4.1
 ///       comments "set G"); b itself is excluded (W'(0) = 0, and (2.39) says 0 < |x_b - x_q|). A vanishing
 ///       denominator throws.
 ///

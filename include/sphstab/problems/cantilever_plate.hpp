@@ -7,8 +7,8 @@
 /// Theory used to validate a run (plane strain, so the plate modulus is E/(1 - nu^2)):
 ///   [GMS2001, (7.1)]  omega^2 = E H^2 k^4 / (12 rho (1 - nu^2)),   [GMS2001, (7.2)]  cos(kL) cosh(kL) = -1,
 ///   fundamental kL = 1.8751040687...; isotropic E = 9K mu/(3K + mu), nu = (3K - 2mu)/(2(3K + mu)) from the bulk
-///   modulus K of the equation of state and the shear modulus mu (GMS print a wrong nu formula (2.8); the notes
-///   show their T_theory column is not reproducible and recompute it: 1448.8 / 1275.0 / 978.8 for H = 2 and
+///   modulus K of the equation of state and the shear modulus mu (GMS print a wrong nu formula (2.8); recomputing
+///   shows their T_theory column is not reproducible and recompute it: 1448.8 / 1275.0 / 978.8 for H = 2 and
 ///   mu = 0.22 / 0.30 / 0.60, twice that for H = 1).
 ///   [GMS2001, (7.3)-(7.4)]  v_y(x) / c0 = V_f [M (cos kx - cosh kx) - N (sin kx - sinh kx)] / Q,
 ///   M = sin kL + sinh kL, N = cos kL + cosh kL, Q = 2 (cos kL sinh kL - sin kL cosh kL): the clamped-free mode

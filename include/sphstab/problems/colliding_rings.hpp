@@ -4,7 +4,7 @@
 /// ref. 18]): two identical annuli of inner radius r_in and outer radius r_out, cut from a square grid of spacing dp
 /// ("as a result the rings have a slightly roughened appearance"), moving towards each other along x at equal speeds.
 /// GMS values (units rho0 = c0 = 1, cm): r_in = 3, r_out = 4, dp = 0.1, speed 0.059 each (relative 0.118 c0),
-/// mu = 0.22; with eps = 0 the rings fracture, with eps = 0.3 they bounce intact (seed-gms.md §4.2).
+/// mu = 0.22; with eps = 0 the rings fracture, with eps = 0.3 they bounce intact ([GMS2001, §7.2, Figs. 6-7]).
 ///
 /// Geometry (our choices where GMS give none):
 ///   - Each ring has its own grid, aligned with its centre c: the cell centres c + ((i + 1/2) dp, (j + 1/2) dp) for all

@@ -5,12 +5,12 @@
 /// end a constant acceleration a = 5e-6 along the long axis (-a x̂ at the left end, +a x̂ at the right end). Units of
 /// GMS: rho0 = c0 = 1, cm; mu = 0.3, von Mises yield 0.03, no damage model (fracture emerges from necking). With
 /// eps = 0 the slab breaks unphysically at the forced/free junction by t = 119; with eps = 0.3 it necks from t = 394
-/// and breaks at t = 542 with the neck ~10 particles thick (seed-gms.md §4.3).
+/// and breaks at t = 542 with the neck ~10 particles thick ([GMS2001, §7.3, Figs. 8-10]).
 ///
 /// Each end moves d(t) = a t^2 / 2 (slab_end_displacement): 2.5e-6 t^2, 0.4 at t = 400.
 /// \note GMS's "strain 0.13" at t = 400 is 0.4 / 3, the displacement of ONE end over the length. Both ends move, so
 ///       the elongation is 2 d = 0.8 and the engineering strain 2 d / L = 0.27 (or 2 d / (L - 2 * 0.2) = 0.31 over
-///       the part between the driven zones). The notes flag this as ambiguous; this file does not pick a strain, it
+///       the part between the driven zones). [GMS2001, §7.3] is ambiguous here; this file does not pick a strain, it
 ///       gives d(t).
 ///
 /// Grid (our choices where GMS give none): L / dp = 187.5 and W / dp = 62.5 are not whole numbers, so the slab has

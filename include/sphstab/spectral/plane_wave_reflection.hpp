@@ -49,7 +49,7 @@ double reflected_energy(AbsorbingCondition condition, double c_p, double c_s, do
                         double speed_scale = 1.0);
 
 /// |R| of a scalar wave (u_tt = c^2 Lap u) at Higdon's condition prod_i (cos a_i d_t + c d_x) u = 0 [Powell2012,
-/// (2.32), with the factor corrected, see the notes]: prod_i |cos theta - cos a_i| / (cos theta + cos a_i). One a = 0
+/// (2.32), with the factor corrected (cos a_i d_t)]: prod_i |cos theta - cos a_i| / (cos theta + cos a_i). One a = 0
 /// is the first-order Engquist-Majda condition, |R| = tan^2(theta / 2). Throws std::invalid_argument for theta outside
 /// [0, pi/2) or an angle outside [0, pi/2).
 double scalar_reflection(double theta, const std::vector<double>& absorbing_angles = {0.0});
