@@ -12,8 +12,8 @@ study's last full run, rewritten by this script) and a list schedule on N worker
 starts and ends, with elapsed and remaining time. Independent studies run side by side (--jobs, default the number of
 cores); a study marked `alone` (a speed measurement) runs with nothing beside it, and `after` orders studies that read
 another's results. Each study is one process; its output goes to BUILD/logs/<name>.log. Running side by side changes
-no result: the drivers take no input from each other except through `after`, and each runs single-threaded unless it
-sets its own thread count (timing columns aside, which is why the speed studies run alone).
+no result: the drivers take no input from each other except through `after`, and those that run cases concurrently
+give each case its own result slot (timing columns aside, which is why the speed studies run alone).
 
 A study is studies/<name>/main.cpp (built to BIN/study_<name>, called as `study_<name> --out DIR [--quick]`), or
 studies/<name>/run.sh (called as `run.sh BIN DIR`); then its plot.py DIR and the rendering of summary.md from
