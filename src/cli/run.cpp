@@ -1,6 +1,7 @@
 #include "run.hpp"
 
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <cstdio>
 #include <iostream>
 #include <new>
@@ -56,7 +57,18 @@ int run(int argc, const char* const* argv) {
     std::cerr << "sphstab: error: " << one_line(e.what()) << "\n";
     code = 1;
   }
-  std::fflush(stdout);
+  // A result that did not reach its reader is not a success (stdout on a full disk, /dev/full, a closed file): both the
+  // C++ stream and C stdio are flushed and checked. A reader that closed a pipe early (`| head -1`) is not an error.
+  errno = 0;
+  std::cout.flush();
+  const bool stream_failed = !std::cout;
+  const bool stdio_failed = std::fflush(stdout) != 0 || std::ferror(stdout);
+  if ((stream_failed || stdio_failed) && errno != EPIPE && code == 0) {
+    std::cerr << "sphstab: error: cannot write the output to standard output (disk full or stream closed)\n";
+    code = 1;
+  }
+  std::cout.clear();
+  std::clearerr(stdout);
   set_memory_limit_bytes(0);  // process-wide: leave both as found for the next in-process call
   set_threads(threads_before);
   return code;
