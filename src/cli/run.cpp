@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 #include <new>
+#include <stdexcept>
 #include <string>
 
 #include "commands.hpp"
@@ -41,6 +42,13 @@ int run(int argc, const char* const* argv) {
   register_commands(app);
   int code = 0;
   try {
+    // One rule for every subcommand: an empty argument is never a value (CLI11 would store '' and the option would
+    // silently fall back to a default or an empty name, e.g. --lattice '' or --out '').
+    for (int i = 1; i < argc; ++i)
+      if (argv[i] == nullptr || argv[i][0] == '\0')
+        throw std::invalid_argument(i > 1 ? std::string("empty value after '") + argv[i - 1] +
+                                                "' (give a value or leave the option out)"
+                                          : std::string("empty argument (give a subcommand)"));
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) {

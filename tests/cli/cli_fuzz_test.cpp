@@ -146,6 +146,18 @@ TEST(CliFuzz, TheIssuesFailingCasesAreOneLineErrors) {
   for (size_t k = 0; k < cases.size(); ++k) expect_contract(words(cases[k]), "fixed" + std::to_string(k), 1);
 }
 
+TEST(CliFuzz, EmptyValuesAreOneLineErrors) {
+  // Issue 36: empty values were taken as defaults (exit 0). Each is now one error line with exit 1.
+  const std::string out = scratch("E").string();
+  const std::vector<std::vector<std::string>> cases = {
+      {"spectrum", "--n", "6", "--lattice", ""}, {"run", "--n", "5", "--lattice", ""},
+      {"scene", "plate", "--mu", ""},           {"scene", "plate", "--nu", ""},
+      {"run", "--n", "5", "--yield", ""},       {"scene", "rings", "--dp", ""},
+      {"run", "--n", "5", "--t-end", ""},       {"run", "--n", "5", "--t-end", "0.5", "--out", ""},
+      {""},                                     {"tcrit", ""}};
+  for (size_t k = 0; k < cases.size(); ++k) expect_contract(cases[k], "empty" + std::to_string(k), 1);
+}
+
 TEST(CliFuzz, NoNeighbourInsideTheSupportIsNanAndNumericalIssueOnEveryRoute) {
   for (const std::string c :
        {"tcrit --h 0.3", "tcrit --h 0.3 --form minus", "tcrit --h 0.3 --form plus --compression",
