@@ -164,7 +164,7 @@ void run_scene(const SceneArgs& a) {
   std::vector<std::pair<double, std::string>> frames;
   if (!a.out.empty()) std::filesystem::create_directories(a.out);
   const double bond = 1.5 * sc.dp;
-  std::printf("%s\n", csv_line({"step", "t", "kinetic", "fragments", sc.measure_name, "status", "particle"}).c_str());
+  std::printf("%s", csv_line({"step", "t", "kinetic", "fragments", sc.measure_name, "status", "particle"}).c_str());
   RateFormRunOptions o{
       .dt = dt, .t_end = t_end, .record_every = every, .yield_stress = sc.yield, .neighbour_skin = skin};
   o.observer = [&](long step, double t, const Eigen::VectorXd& y) {
@@ -200,7 +200,7 @@ void register_scene_command(CLI::App& app) {
   cmd->add_option("--across", a->across, "plate: particles across H (default 10; dp = H / across)");
   cmd->add_option("--thickness", a->thickness, "plate: H > 0 (default 2)");
   cmd->add_option("--length", a->length, "plate: L > 0 (default 20)");
-  cmd->add_option("--mu", a->mu, "shear modulus >= 0 over K (default 0.22; slab 0.3)");
+  cmd->add_option("--mu", a->mu, "shear modulus > 0 over K (default 0.22; slab 0.3)");
   cmd->add_option("--nu", a->nu, "or Poisson's ratio in (-1, 0.5) (mu = 3 (1 - 2 nu) / (2 (1 + nu)))");
   cmd->add_option("--eps", a->eps, "artificial stress >= 0 (default 0.3)");
   cmd->add_option("--tip-speed", a->tip_speed, "plate: V_f of (7.3)-(7.4) (default 0.01)");

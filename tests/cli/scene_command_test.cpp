@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -68,6 +69,12 @@ TEST(SceneCommand, PlateSeriesIsTheLibrarysRun) {
   const test::CliOutcome r = run({"scene", "plate", "--across", "4", "--mu", "0.3", "--tip-speed", "0.02", "--t-end",
                                   "150", "--record-every", "40"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  {  // no blank line anywhere (issue 36: a blank second line after the header)
+    std::ifstream raw(r.out_path);
+    std::string line;
+    int count = 0;
+    while (std::getline(raw, line)) EXPECT_FALSE(line.empty()) << "line " << ++count;
+  }
   const CsvTable t = read_csv(r.out_path);
   ASSERT_EQ(t.rows.size(), direct.times.size() + 1);  // + the status row
   const std::vector<std::string> status = t.text_column("status");
