@@ -87,7 +87,8 @@ void run(const RateFormSetup& setup, const VerdictSetup& verdict) {
       "mode_kx_over_pi,mode_ky_over_pi,equilibrium_residual,status,reason";
   if (verdict.on)
     out +=
-        ",integrator,dt,floor,map_growth,map_spectral_radius,integrator_excess,verdict,verdict_status,verdict_reason";
+        ",integrator,dt,floor,map_growth,map_spectral_radius,integrator_excess,map_mode_kx_over_pi,map_mode_ky_over_pi,"
+        "verdict,verdict_status,verdict_reason";
   out += "\n";
   for (KernelType kt : setup.kernels)
     for (double h : setup.h_over_dx) {
@@ -133,10 +134,13 @@ void run(const RateFormSetup& setup, const VerdictSetup& verdict) {
                                      status_name(s.status),
                                      s.reason};
         if (verdict.on) {
-          const StabilityVerdict v = stability_verdict(scheme, y, verdict.run, {.floor = verdict.floor});
+          StabilityVerdictOptions vo{.floor = verdict.floor};
+          if constexpr (Dim == 2) vo.lattice = bravais_lattice_2d(setup.lattice, setup.dx);
+          const StabilityVerdict v = stability_verdict(scheme, y, verdict.run, vo);
+          // Where the map's growth lives (NaN unless it grows above the floor): for class I, the integrator's mode.
           row.insert(row.end(), {v.integrator, num(v.dt), num(v.floor), num(v.map_growth), num(v.map_spectral_radius),
-                                 num(v.integrator_excess), v.status == Status::Successful ? v.letter() : "",
-                                 status_name(v.status), v.reason});
+                                 num(v.integrator_excess), num(v.map_mode.kx_over_pi), num(v.map_mode.ky_over_pi),
+                                 v.status == Status::Successful ? v.letter() : "", status_name(v.status), v.reason});
         }
         out += csv_line(row);
       }

@@ -168,6 +168,9 @@ void locate(VerdictMode& m, const Discretisation<Dim>& d, const std::optional<Br
     if (e > best) best = e, m.particle = d.free[f];
   }
   m.particle_share = total > 0 ? best / total : NAN;
+  double along_x = 0;
+  for (int f = 0; f < d.free_count(); ++f) along_x += m.shape[f * Dim] * m.shape[f * Dim];
+  m.x_share = total > 0 ? along_x / total : NAN;
   const Eigen::MatrixXd x = d.free_positions();
   if constexpr (Dim == 1) {
     m.kx_over_pi = dominant_wavenumber(m.shape, x.col(0), d.particles.periodic[0]).k_projection;

@@ -80,6 +80,7 @@ TEST(SpectrumCommand, VerdictColumns) {
   const CsvTable u = read_csv(q.out_path);
   ASSERT_EQ(u.rows.size(), 1u);
   EXPECT_EQ(u.rows[0][u.column_index("verdict")], "I") << u.rows[0][u.column_index("verdict_reason")];
+  EXPECT_GT(u.numeric_column("map_mode_kx_over_pi")[0], 0.0);  // the integrator's growth is located
   // Without --integrator the columns are the spectrum's alone.
   const test::CliOutcome plain = run({"spectrum", "--dim", "1", "--periodic", "--n", "8", "--dx", "1"});
   ASSERT_EQ(plain.exit_code, 0) << plain.err;

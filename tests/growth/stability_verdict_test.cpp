@@ -161,8 +161,38 @@ TEST(StabilityVerdict, TensionUnderTheLeapfrogIsSemiDiscrete) {
   EXPECT_LT(std::abs(v.integrator_excess), v.floor);
   EXPECT_GT(v.semi_discrete_mode.kx_over_pi, 0.0);
   EXPECT_GE(v.semi_discrete_mode.particle, 0);
+  EXPECT_DOUBLE_EQ(v.semi_discrete_mode.x_share, 1.0);  // 1D
   std::printf("tension xi %.2f: semi-discrete %.6e, symbol %.6e, map %.6e, mode k dx/pi %.3f\n", xi,
               v.semi_discrete_growth, analytic, v.map_growth, v.semi_discrete_mode.kx_over_pi);
+}
+
+// 2D: basic SPH on a periodic 8 x 8 square lattice at xi = 1.02 grows at 0.1868 (the GMS lattice dispersion value of
+// tests/cli/spectrum_command_test.cpp and rate_form_test); under the leap-frog below its limit: U, the mode located
+// on the lattice.
+TEST(StabilityVerdict, TensionOnASquareLatticeUnderTheLeapfrog) {
+  const auto disc = test::lattice_discretisation<2>({.n = 8, .h = 1.3, .periodic = true});
+  const RateFormScheme<2> scheme(disc, kGms, {}, 1.0 / 1.02);
+  const Eigen::VectorXd y = scheme.uniform_state();
+  const BravaisLattice2D lattice = bravais_lattice_2d(LatticeType::Square, 1.0);
+  const double omega = stability_verdict(scheme, y, pc(0.01), {.floor = 0.01}).lambda_max;
+  const StabilityVerdict v = stability_verdict(scheme, y, leapfrog(0.5 / omega), {.floor = 0.01, .lattice = lattice});
+  ASSERT_EQ(v.status, Status::Successful) << v.reason;
+  EXPECT_EQ(v.verdict, VerdictClass::SemiDiscrete) << v.letter();
+  EXPECT_NEAR(v.semi_discrete_growth, 0.1868, 2e-4);
+  EXPECT_EQ(v.map_size, scheme.size() + 2 * disc->dofs());
+  for (const VerdictMode* m : {&v.semi_discrete_mode, &v.map_mode}) {
+    EXPECT_EQ(m->shape.size(), disc->dofs());
+    EXPECT_GE(m->kx_over_pi, 0.0);
+    EXPECT_LE(m->kx_over_pi, 1.0 + 1e-9);
+    EXPECT_GE(m->ky_over_pi, 0.0);
+    EXPECT_LE(m->ky_over_pi, 1.0 + 1e-9);
+    EXPECT_GE(m->x_share, 0.0);
+    EXPECT_LE(m->x_share, 1.0);
+    EXPECT_GE(m->particle, 0);
+  }
+  std::printf("2D tension: semi-discrete %.6e at k dx/pi (%.3f, %.3f) x share %.3f; map %.6e at (%.3f, %.3f)\n",
+              v.semi_discrete_growth, v.semi_discrete_mode.kx_over_pi, v.semi_discrete_mode.ky_over_pi,
+              v.semi_discrete_mode.x_share, v.map_growth, v.map_mode.kx_over_pi, v.map_mode.ky_over_pi);
 }
 
 // x' = v, v' = k x: gamma_J = sqrt(k); the staggered leap-frog's map has mu + 1/mu = 2 + k dt^2, so gamma_M =

@@ -76,6 +76,9 @@ struct VerdictMode {
   double ky_over_pi = nan;      ///< dominant_wavevector, when a lattice is given); NaN when not estimated
   int particle = -1;            ///< the particle (index in the particle set) with the largest |v| in the shape
   double particle_share = nan;  ///< that particle's share of the squared norm (1: one particle; 1/N: spread evenly)
+  /// Polarisation in the lattice axes: the share of the squared norm in the x components (1 in 1D; 2D: 1 for motion
+  /// along x, 0 along y). NaN without particles.
+  double x_share = nan;
 };
 
 struct StabilityVerdict {
