@@ -140,16 +140,23 @@ struct RunBook {
   }
 };
 
-/// [GMS2001, (6.14)-(6.18)] (rate_form_run.hpp).
+/// [GMS2001, (6.14)-(6.18)] (rate_form_run.hpp), one step at a time so that the run and the step matrix
+/// (rate_form_step_matrix) execute the same code. Between steps it holds r.y and, with reuse_corrector_rate, the
+/// carried rate f0 (the previous corrector's evaluation F(x, v_p, rho_p, S_p)).
 template <int Dim>
-void predictor_corrector(RunBook<Dim>& b, const VonMises* plastic) {
-  const RateFormRunOptions& o = b.o;
-  const double dt = b.dt;
-  const int n = b.base.discretisation().size();
-  RateFormRunResult& r = b.r;
-  Eigen::VectorXd f0, f1, yp;
-  for (long step = 1; step <= b.nsteps; ++step) {
-    if (!o.reuse_corrector_rate || step == 1) {
+struct PredictorCorrector {
+  RunBook<Dim>& b;
+  const VonMises* plastic;
+  Eigen::VectorXd f0{}, f1{}, yp{}, y{};
+
+  /// From b.r.y to the next step's state in b.r.y. fresh: f0 = F(b.r.y) first (always without reuse_corrector_rate;
+  /// the first step with it); otherwise f0 must hold the carried rate.
+  void step(bool fresh) {
+    const RateFormRunOptions& o = b.o;
+    const double dt = b.dt;
+    const int n = b.base.discretisation().size();
+    RateFormRunResult& r = b.r;
+    if (fresh) {
       b.rate(r.y, f0);
       r.rate_evaluations += 1;
     }
@@ -162,7 +169,7 @@ void predictor_corrector(RunBook<Dim>& b, const VonMises* plastic) {
     }
     b.rate(yp, f1);
     r.rate_evaluations += 1;
-    Eigen::VectorXd y = yp + 0.5 * dt * (f1 - f0);
+    y = yp + 0.5 * dt * (f1 - f0);
     for (int i = 0; i < n; ++i) {
       const int xo = b.base.position_offset(i);
       if (xo < 0) continue;
@@ -174,6 +181,14 @@ void predictor_corrector(RunBook<Dim>& b, const VonMises* plastic) {
     if (plastic) return_to_yield_surface(b.base, *plastic, y);
     r.y.swap(y);
     if (o.reuse_corrector_rate) f0.swap(f1);  // the next step's F^0: F(x, v_p, rho_p, S_p) of this step
+  }
+};
+
+template <int Dim>
+void predictor_corrector(RunBook<Dim>& b, const VonMises* plastic) {
+  PredictorCorrector<Dim> pc{.b = b, .plastic = plastic};
+  for (long step = 1; step <= b.nsteps; ++step) {
+    pc.step(!b.o.reuse_corrector_rate || step == 1);
     if (!b.finish_step(step)) break;
   }
 }
@@ -353,41 +368,67 @@ RateFormRunResult run_rate_form(const RateFormScheme<Dim>& scheme, const Eigen::
   return std::move(b.r);
 }
 
+namespace {
+
+/// Central differences of one step of the integrator's own code (rate_form_step_matrix); `who` names the caller in
+/// the error messages.
 template <int Dim>
-Eigen::MatrixXd leapfrog_step_matrix(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y, double dt,
-                                     const RateFormRunOptions& options, double delta) {
+Eigen::MatrixXd step_matrix(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y, double dt,
+                            const RateFormRunOptions& options, double delta, const std::string& who) {
   RateFormRunOptions o = options;
   o.dt = dt, o.t_end = dt;
-  check_run_options(scheme, y, o, "leapfrog_step_matrix");
-  if (o.integrator != RateFormIntegrator::Leapfrog)
-    throw std::invalid_argument("leapfrog_step_matrix: options.integrator must be the leap-frog");
+  check_run_options(scheme, y, o, who);
   if (o.neighbour_skin > 0 || std::isfinite(o.yield_stress))
     throw std::invalid_argument(
-        "leapfrog_step_matrix: needs the scheme's own neighbour list and an elastic run (no skin, no yield stress)");
+        who + ": needs the scheme's own neighbour list and an elastic run (no skin, no yield stress)");
   if (!(delta > 0) || !std::isfinite(delta))
-    throw std::invalid_argument("leapfrog_step_matrix: delta must be finite and > 0 (got " + format_number(delta) +
-                                ")");
+    throw std::invalid_argument(who + ": delta must be finite and > 0 (got " + format_number(delta) + ")");
   RunBook<Dim> b{.base = scheme, .o = o, .nsteps = 1, .dt = dt, .ke0 = 0, .r = {}};
   b.scheme = &scheme;
   b.x_build = scheme.discretisation().particles.x;
-  Leapfrog<Dim> lf(b, nullptr);
   const Eigen::Index ny = y.size(), nv = scheme.discretisation().dofs();
-  // z0 = (y, v^{n+1/2} = v of y, a^n = F(y)'s acceleration).
-  Eigen::VectorXd z0(ny + 2 * nv), f0, v0, a0;
+  Eigen::VectorXd z0, f0;
   b.rate(y, f0);
-  lf.get_velocities(y, v0);
-  lf.get_velocities(f0, a0);
-  z0 << y, v0, a0;
-  const auto step = [&](const Eigen::VectorXd& z) {
-    lf.y = z.head(ny);
-    lf.vh = z.segment(ny, nv);
-    lf.ve = z.tail(nv);
-    b.rate(lf.y, lf.fe);
-    lf.step();
-    Eigen::VectorXd out(z.size());
-    out << lf.y, lf.vh, lf.ve;
-    return out;
-  };
+  std::function<Eigen::VectorXd(const Eigen::VectorXd&)> step;
+  Leapfrog<Dim> lf(b, nullptr);
+  PredictorCorrector<Dim> pc{.b = b, .plastic = nullptr};
+  if (o.integrator == RateFormIntegrator::Leapfrog) {
+    // z0 = (y, v^{n+1/2} = v of y, a^n = F(y)'s acceleration).
+    Eigen::VectorXd v0, a0;
+    lf.get_velocities(y, v0);
+    lf.get_velocities(f0, a0);
+    z0.resize(ny + 2 * nv);
+    z0 << y, v0, a0;
+    step = [&](const Eigen::VectorXd& z) {
+      lf.y = z.head(ny);
+      lf.vh = z.segment(ny, nv);
+      lf.ve = z.tail(nv);
+      b.rate(lf.y, lf.fe);
+      lf.step();
+      Eigen::VectorXd out(z.size());
+      out << lf.y, lf.vh, lf.ve;
+      return out;
+    };
+  } else if (o.reuse_corrector_rate) {
+    // z0 = (y, F^0 = F(y)): the carried rate is state (docs/conventions.md §7, "One rate per step").
+    z0.resize(2 * ny);
+    z0 << y, f0;
+    step = [&](const Eigen::VectorXd& z) {
+      b.r.y = z.head(ny);
+      pc.f0 = z.tail(ny);
+      pc.step(false);
+      Eigen::VectorXd out(z.size());
+      out << b.r.y, pc.f0;
+      return out;
+    };
+  } else {
+    z0 = y;
+    step = [&](const Eigen::VectorXd& z) {
+      b.r.y = z;
+      pc.step(true);
+      return Eigen::VectorXd(b.r.y);
+    };
+  }
   Eigen::MatrixXd M(z0.size(), z0.size());
   for (Eigen::Index k = 0; k < z0.size(); ++k) {
     const double e = delta * std::max(1.0, std::abs(z0[k]));
@@ -398,6 +439,26 @@ Eigen::MatrixXd leapfrog_step_matrix(const RateFormScheme<Dim>& scheme, const Ei
   return M;
 }
 
+}  // namespace
+
+template <int Dim>
+Eigen::MatrixXd rate_form_step_matrix(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y, double dt,
+                                      const RateFormRunOptions& options, double delta) {
+  return step_matrix(scheme, y, dt, options, delta, "rate_form_step_matrix");
+}
+
+template <int Dim>
+Eigen::MatrixXd leapfrog_step_matrix(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y, double dt,
+                                     const RateFormRunOptions& options, double delta) {
+  if (options.integrator != RateFormIntegrator::Leapfrog)
+    throw std::invalid_argument("leapfrog_step_matrix: options.integrator must be the leap-frog");
+  return step_matrix(scheme, y, dt, options, delta, "leapfrog_step_matrix");
+}
+
+template Eigen::MatrixXd rate_form_step_matrix<1>(const RateFormScheme<1>&, const Eigen::VectorXd&, double,
+                                                  const RateFormRunOptions&, double);
+template Eigen::MatrixXd rate_form_step_matrix<2>(const RateFormScheme<2>&, const Eigen::VectorXd&, double,
+                                                  const RateFormRunOptions&, double);
 template Eigen::MatrixXd leapfrog_step_matrix<1>(const RateFormScheme<1>&, const Eigen::VectorXd&, double,
                                                  const RateFormRunOptions&, double);
 template Eigen::MatrixXd leapfrog_step_matrix<2>(const RateFormScheme<2>&, const Eigen::VectorXd&, double,

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <string>
 
@@ -36,20 +38,76 @@ TEST(SpectrumCommand, GrowthRateInGmsUnits) {
   EXPECT_GE(t.numeric_column("mode_kx_over_pi")[0], 0.0);
 }
 
+TEST(SpectrumCommand, VerdictColumns) {
+  // 1D periodic, GMS units (K = 1, mu = 0.3, rho0 = 1, dx = 1). Leap-frog at dt = 0.2 (below its limit): xi = 1 is
+  // neutral (S), xi = 1.05 in tension grows (U, the map at the semi-discrete rate). The predictor-corrector at xi = 1:
+  // the map grows at ln(1 + (omega dt)^4 / 4) / (2 dt), which only a long enough run detects (S, then I).
+  const std::vector<std::string> base{"spectrum",  "--dim",
+                                      "1",         "--periodic",
+                                      "--n",       "12",
+                                      "--h",       "1.3",
+                                      "--dx",      "1",
+                                      "--youngs",  "0.8181818181818182",
+                                      "--poisson", "0.36363636363636365",
+                                      "--density", "1",
+                                      "--dt",      "0.2"};
+  std::vector<std::string> lf = base;
+  lf.insert(lf.end(), {"--xi", "1,1.05", "--integrator", "leapfrog", "--t-end", "100"});
+  const test::CliOutcome r = run(lf);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const CsvTable t = read_csv(r.out_path);
+  ASSERT_EQ(t.rows.size(), 2u);
+  const auto verdict = t.column_index("verdict");
+  EXPECT_EQ(t.rows[0][verdict], "S");
+  EXPECT_EQ(t.rows[1][verdict], "U");
+  EXPECT_NEAR(t.numeric_column("floor")[0], std::log(100.0) / 200, 1e-9);
+  EXPECT_EQ(t.rows[0][t.column_index("integrator")], "leapfrog");
+  EXPECT_EQ(t.rows[1][t.column_index("verdict_status")], "successful");
+  // U: the map's growth is the semi-discrete one to within the floor.
+  EXPECT_NEAR(t.numeric_column("map_growth")[1], t.numeric_column("growth_rate")[1], t.numeric_column("floor")[1]);
+  // The PC's growth at omega dt = 0.18 is ~7e-4: below the 100-unit run's floor 0.023 (S), above a 10^4-unit run's
+  // 2.3e-4 (I).
+  std::vector<std::string> pc = base;
+  pc.insert(pc.end(), {"--xi", "1", "--integrator", "pc"});
+  std::vector<std::string> pc_short = pc;
+  pc_short.insert(pc_short.end(), {"--t-end", "100"});
+  const test::CliOutcome short_run = run(pc_short);
+  ASSERT_EQ(short_run.exit_code, 0) << short_run.err;
+  EXPECT_EQ(read_csv(short_run.out_path).rows[0][verdict], "S");
+  pc.insert(pc.end(), {"--t-end", "10000"});
+  const test::CliOutcome q = run(pc);
+  ASSERT_EQ(q.exit_code, 0) << q.err;
+  const CsvTable u = read_csv(q.out_path);
+  ASSERT_EQ(u.rows.size(), 1u);
+  EXPECT_EQ(u.rows[0][u.column_index("verdict")], "I") << u.rows[0][u.column_index("verdict_reason")];
+  EXPECT_GT(u.numeric_column("map_mode_kx_over_pi")[0], 0.0);  // the integrator's growth is located
+  // Without --integrator the columns are the spectrum's alone.
+  const test::CliOutcome plain = run({"spectrum", "--dim", "1", "--periodic", "--n", "8", "--dx", "1"});
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  const CsvTable p = read_csv(plain.out_path);
+  EXPECT_EQ(std::find(p.columns.begin(), p.columns.end(), "verdict"), p.columns.end());
+}
+
 TEST(SpectrumCommand, BadInputIsOneErrorLine) {
-  for (const std::vector<std::string>& a : {std::vector<std::string>{"spectrum", "--poisson", "0.5"},
-                                            {"spectrum", "--xi", "0"},
-                                            {"spectrum", "--xi", ","},
-                                            {"spectrum", "--viscosity", "on"},
-                                            {"spectrum", "--youngs", "-1"},
-                                            {"spectrum", "--lattice", "cubic"},
-                                            {"spectrum", "--dim", "3"},
-                                            {"spectrum", "--artificial-stress", "-0.3"},
-                                            {"spectrum", "--continuity", "x"},
-                                            {"spectrum", "--n", "100000"},
-                                            {"spectrum", "--dx", "1e-300"},
-                                            {"spectrum", "--threads", "0"},
-                                            {"--threads", "two", "spectrum"}}) {
+  for (const std::vector<std::string>& a :
+       {std::vector<std::string>{"spectrum", "--poisson", "0.5"},
+        {"spectrum", "--xi", "0"},
+        {"spectrum", "--xi", ","},
+        {"spectrum", "--viscosity", "on"},
+        {"spectrum", "--youngs", "-1"},
+        {"spectrum", "--lattice", "cubic"},
+        {"spectrum", "--dim", "3"},
+        {"spectrum", "--artificial-stress", "-0.3"},
+        {"spectrum", "--continuity", "x"},
+        {"spectrum", "--n", "100000"},
+        {"spectrum", "--dx", "1e-300"},
+        {"spectrum", "--threads", "0"},
+        {"spectrum", "--dt", "0.1"},
+        {"spectrum", "--integrator", "rk4", "--dt", "0.1", "--t-end", "1"},
+        {"spectrum", "--integrator", "pc", "--dt", "0.1"},
+        {"spectrum", "--integrator", "pc", "--dt", "0", "--t-end", "1"},
+        {"spectrum", "--integrator", "pc", "--dt", "0.1", "--t-end", "1", "--energy-ratio", "1"},
+        {"--threads", "two", "spectrum"}}) {
     const test::CliOutcome r = run(a);
     EXPECT_EQ(r.exit_code, 1) << test::join_args(a) << ": " << r.out;
     EXPECT_EQ(r.err.rfind("sphstab: error: ", 0), 0u) << test::join_args(a);

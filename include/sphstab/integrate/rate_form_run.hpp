@@ -157,6 +157,22 @@ template <int Dim>
 RateFormRunResult run_rate_form(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y0,
                                 const RateFormRunOptions& options);
 
+/// The one-step map of the integrator `options` chooses, linearised at state y by central differences of the
+/// integrator's own step code (the run's code, not a re-derivation), with increments delta max(1, |z_k|). The state
+/// z it acts on is the integrator's whole carried state, so the map's size depends on it:
+///   - predictor-corrector [GMS2001, (6.14)-(6.18)]: z = y (size scheme.size());
+///   - with reuse_corrector_rate (pc1): z = (y, F^0), the carried rate is state (2 size; linearised at F^0 = F(y));
+///   - leap-frog [Powell2012, algorithm 1.1]: z = (y with v*^n in its velocity slots, v^{n+1/2}, a^n) (size + 2 dofs),
+///     as leapfrog_step_matrix.
+/// At a rest state (F(y) = 0) the step is linear to O(delta^2), and the spectral radius rho of the matrix is the
+/// integrator's amplification of small perturbations at this dt: ln(rho) / dt is the map's growth rate
+/// (growth/stability_verdict.hpp). integrate/linear_step_map.hpp writes the same maps in closed form from J = dF/dy;
+/// the two agree (tests/integrate/linear_step_map_test.cpp). Dense: size(z)^2 doubles and 2 size(z) steps. Throws
+/// std::invalid_argument for the options run_rate_form rejects, a neighbour skin or a yield stress, or delta <= 0.
+template <int Dim>
+Eigen::MatrixXd rate_form_step_matrix(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y, double dt,
+                                      const RateFormRunOptions& options, double delta = 1e-7);
+
 /// The leap-frog's one-step map linearised at state y: the matrix M with dz^{n+1} = M dz^n for the staggered state
 /// z = (y^n with v*^n in its velocity slots, v^{n+1/2}, a^n) (sizes scheme.size() + 2 dofs), by central differences
 /// of the integrator's own step (steps 1-5 above, Powell's XSPH and absorbing_half_step included) with increments
