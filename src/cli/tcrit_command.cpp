@@ -30,6 +30,7 @@
 #include "sphstab/spectral/tension_estimates.hpp"
 #include "sphstab/stability/critical_load.hpp"
 #include "sphstab/stability/critical_load_problem.hpp"
+#include "sphstab/stability/critical_strain_sweep.hpp"
 #ifdef SPHSTAB_WITH_PETSC
 #include "sphstab/distributed/petsc_critical_load_solver.hpp"
 #endif
@@ -192,41 +193,29 @@ DistributedCriticalLoadSolver petsc_solver() {
 #endif
 }
 
-/// Every case of a --dim 2 or --dim 3 sweep through the critical-load front door (critical_load_problem.hpp: route
-/// choice, memory estimate, fallbacks). Every case's route and memory are checked before anything is computed, so a
-/// refusal is one error line and an empty stdout. `label` gives the memory refusal's text for a route and an h.
+/// A --dim 2 or --dim 3 sweep (critical_strain_sweep.hpp: every case through the critical-load front door, route and
+/// memory checked for every case before anything is computed, so a refusal is one error line and an empty stdout) as
+/// CSV. `label` gives the memory refusal's text for a route and an h.
 template <int Dim, class Label>
 void run_lattice_sweep(const TcritArgs& a, const ElasticSweep& sw, ElasticLatticeProblem<Dim> p,
                        CriticalLoadRouteOptions opt, Label&& label) {
   if (opt.route == CriticalLoadRoute::Distributed) opt.distributed = petsc_solver();
   p.material = sw.material;
   p.prestrain = sw.kind;
-  const LoadDirection sign = a.compression ? LoadDirection::Compression : LoadDirection::Tension;
-  auto each_case = [&](auto&& f) {
-    for (KernelType kt : sw.kernels)
-      for (double h : sw.hs)
-        for (MomentumForm form : sw.forms) {
-          p.kernel = kt;
-          p.h = h;
-          p.form = form;
-          opt.memory_label = [&, h](CriticalLoadRoute route) { return label(route, h); };
-          f();
-        }
-  };
-  each_case([&] { choose_critical_load_route(p, opt); });
-  std::string out = kCriticalPrestrainHeader;
   SweepProgress progress(static_cast<long>(sw.kernels.size() * sw.hs.size() * sw.forms.size()));
-  each_case([&] {
-    const double nan = CriticalLoadResult::nan;
-    SymbolCriticalStrain inf;
-    inf.e = nan;
-    if constexpr (Dim == 2)
-      inf = critical_strain_infinite_2d(
-          ElasticSymbol2D(p.lattice, Kernel<2>(p.kernel), p.h, 1.0, p.material, p.form, p.prestrain), sign);
-    const CriticalLoadResult r = critical_load(p, sign, opt);
-    out += csv_line(critical_prestrain_row(p, sign, r, inf.e, inf.kx_over_pi, inf.ky_over_pi));
-    progress.case_done();
-  });
+  const CriticalStrainSweep<Dim> sweep{
+      .base = p,
+      .kernels = sw.kernels,
+      .hs = sw.hs,
+      .forms = sw.forms,
+      .direction = a.compression ? LoadDirection::Compression : LoadDirection::Tension,
+      .options = opt,
+      .memory_label = [&](CriticalLoadRoute route, const ElasticLatticeProblem<Dim>& q) { return label(route, q.h); },
+      .on_case = [&] { progress.case_done(); }};
+  std::string out = kCriticalPrestrainHeader;
+  for (const CriticalStrainCase<Dim>& c : critical_strain_sweep(sweep))
+    out += csv_line(critical_prestrain_row(c.problem, sweep.direction, c.result, c.infinite.e, c.infinite.kx_over_pi,
+                                           c.infinite.ky_over_pi));
   std::fputs(out.c_str(), stdout);
 }
 
