@@ -1,7 +1,8 @@
 // `sphstab tcrit`: critical tension of a 1D lattice (Powell ch. 3) with the closed-form estimates, as CSV; with
 // --correction, of the 1D forms with a corrected kernel gradient (Powell ch. 3 §4.1.1, ch. 4 §2) by the general
-// affine route (critical_load.hpp); or (--dim 2) the critical pre-strain of a 2D lattice (elastic forms,
-// analytic Jacobian A0 + e A1).
+// affine route (critical_tension_sweep.hpp); or (--dim 2, 3) the critical pre-strain of an elastic lattice through the
+// critical-load front door (critical_strain_sweep.hpp, critical_load_problem.hpp: route, memory, fallbacks). This file
+// parses, validates, names the route and prints; the computing is the library's.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -16,21 +17,19 @@
 #include "parse.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/length_scale.hpp"
-#include "sphstab/core/memory_budget.hpp"
-#include "sphstab/forms/correction_gradient.hpp"
 #include "sphstab/forms/momentum_form.hpp"
 #include "sphstab/forms/wave_1d.hpp"
 #include "sphstab/io/csv.hpp"
 #include "sphstab/io/progress.hpp"
 #include "sphstab/kernel/kernel.hpp"
+#include "sphstab/operators/correction.hpp"
 #include "sphstab/particles/lattice.hpp"
-#include "sphstab/particles/lattice_presets.hpp"
-#include "sphstab/spectral/fourier_symbol.hpp"
 #include "sphstab/spectral/fourier_symbol_2d.hpp"
 #include "sphstab/spectral/tension_estimates.hpp"
 #include "sphstab/stability/critical_load.hpp"
 #include "sphstab/stability/critical_load_problem.hpp"
 #include "sphstab/stability/critical_strain_sweep.hpp"
+#include "sphstab/stability/critical_tension_sweep.hpp"
 #ifdef SPHSTAB_WITH_PETSC
 #include "sphstab/distributed/petsc_critical_load_solver.hpp"
 #endif
@@ -109,17 +108,6 @@ class SweepProgress {
   std::chrono::steady_clock::time_point m_start;
   std::optional<ProgressLine> m_line;
 };
-
-/// Peak memory of one 1D case, estimated before anything is built (the library checks each allocation again): the
-/// lattice, the neighbour list, G and H, the Jacobian (about 120 bytes per entry of G, analytic_jacobian_1d.cpp), the
-/// Cholesky factor of the banded A0 (bandwidth 2 supports) and, for a dense eigen route, five n x n copies.
-void require_tcrit_1d_memory(int nfree, double support, int layer_supports, bool periodic, bool dense) {
-  const double particles = nfree + (periodic ? 0.0 : 2.0 * std::floor(layer_supports * support + 1));
-  const double pairs = particles * std::min(particles, 1 + 2 * support);
-  const double bytes = 21 * particles + 150 * pairs + 18 * nfree * std::min<double>(nfree, 4 * support + 1) +
-                       (dense ? 40.0 * nfree * nfree : 0.0);
-  require_memory(bytes, "tcrit: --n " + std::to_string(nfree) + " with h/dx = " + num(support / 2));
-}
 
 /// The sweep of a --dim 2 or --dim 3 run: pre-strain kind, material (rho = 1: it cancels in e_crit), kernels, forms
 /// and h values, validated in this order.
@@ -334,122 +322,59 @@ void run_tcrit(const TcritArgs& a) {
   const std::vector<double> hs = parse_h(a.h);
   const CriticalLoadMethod method = parse_critical_load_method(a.method);
   const EigenBackend backend = parse_eigen_backend(a.backend);
-  for (double h : hs) {
-    const double support = Kernel<1>(kernels[0]).support_radius(h);
-    const bool dense = method != CriticalLoadMethod::Bisection &&
-                       (backend == EigenBackend::Dense ||
-                        nfree <= (correction == Correction::None ? CriticalLoadOptions{}.dense_max
-                                                                 : CriticalLoadOptions{}.spectrum_dense_max));
-    require_tcrit_1d_memory(nfree, support, correction == Correction::None ? 1 : kCorrectedLayerSupports, a.periodic,
-                            dense);
-  }
-  auto with_routes = [&](CriticalLoadOptions o) {
-    o.method = method;
-    o.backend = backend;
-    o.want_mode = method != CriticalLoadMethod::Bisection;
-    return o;
-  };
+  SweepProgress progress(static_cast<long>(kernels.size() * hs.size() * forms.size()));
+  const CriticalTensionSweep sweep{.n = nfree,
+                                   .periodic = a.periodic,
+                                   .direction = direction,
+                                   .kernels = kernels,
+                                   .hs = hs,
+                                   .forms = forms,
+                                   .correction = correction,
+                                   .corrected = corrected,
+                                   .method = method,
+                                   .backend = backend,
+                                   .corrected_layer_supports = kCorrectedLayerSupports,
+                                   .memory_label =
+                                       [&](double h) {
+                                         return "tcrit: --n " + std::to_string(nfree) +
+                                                " with h/dx = " + num(Kernel<1>(kernels[0]).support_radius(h) / 2);
+                                       },
+                                   .on_case = [&] { progress.case_done(); }};
+  const std::vector<CriticalTensionCase> cases = critical_tension_sweep(sweep);
 
-  // Rows are collected first so that an error on any row leaves stdout empty (one error line, exit 1).
+  // Rows are collected first so that an error on any row leaves stdout empty (one error line, exit 1). Corrected
+  // routes have no closed-form estimates or symbols (NaN) and fixed layers (periodic 0).
   std::string out =
       "kernel,form,N,periodic,h_over_dx,method,backend,tcrit,tcrit_eig,tcrit_bisect,rel_diff,t_first_minor,"
       "t_second_minor,t_nn,t_nn_minor,t_swegle,tcrit_infinite,tcrit_symbol,mode_k_over_pi,status,reason,criterion\n";
-  auto add_row = [&out](const std::vector<std::string>& row) { out += csv_line(row); };
-  // Corrected routes have no closed-form estimates or symbols: those columns are NaN.
-  auto add_corrected_row = [&](KernelType type, MomentumForm form, double h, const CriticalLoad& r,
-                               const std::string& backend, const std::string& reason, const std::string& criterion) {
-    const std::string nan_cell = num(CriticalLoad::nan);
-    std::vector<std::string> row{kernel_name(type),
-                                 momentum_form_name(form),
-                                 std::to_string(nfree),
-                                 "0",
-                                 num(h),
-                                 a.method,
-                                 backend,
-                                 num(r.load),
-                                 num(r.load_eigen),
-                                 num(r.load_bisection),
-                                 num(r.relative_difference)};
-    row.insert(row.end(), 7, nan_cell);  // t_first_minor ... tcrit_symbol
-    row.insert(row.end(), {num(r.reported_wavenumber().k_projection), status_name(r.status), reason, criterion});
-    add_row(row);
-  };
   const double nan = CriticalLoad::nan;
-  SweepProgress progress(static_cast<long>(kernels.size() * hs.size() * forms.size()));
-  for (KernelType type : kernels) {
-    Kernel<1> kernel(type);
-    for (double h : hs) {
-      if (correction == Correction::None) {
-        // Plain kernel: the analytic Jacobian K - n T L (Powell 3.40) and the closed-form estimates.
-        const ParticleSet<1> set = tension_lattice_1d(kernel, h, nfree, a.periodic);
-        for (MomentumForm form : forms) {
-          const int n = initial_stress_multiplier(form);
-          const CriticalLoad r =
-              critical_tension_1d(set, kernel, h, form, with_routes(CriticalLoadOptions::tension_1d()), direction);
-          const TensionEstimates1D e = tension_estimates_1d(kernel, h, 1.0, n);
-          const SymbolCriticalTension inf = critical_tension_infinite_1d(kernel, h, 1.0, n);
-          const double symbol =
-              a.periodic && !a.compression ? critical_tension_periodic_symbol_1d(kernel, h, 1.0, nfree, n).tcrit : nan;
-          const bool t = !a.compression;  // the estimates are tension formulas
-          add_row({kernel_name(type),
-                   momentum_form_name(form),
-                   std::to_string(nfree),
-                   a.periodic ? "1" : "0",
-                   num(h),
-                   a.method,
-                   r.eigen_backend.empty() ? "none" : r.eigen_backend,
-                   num(r.load),
-                   num(r.load_eigen),
-                   num(r.load_bisection),
-                   num(r.relative_difference),
-                   num(t ? e.first_minor : nan),
-                   num(t ? e.second_minor : nan),
-                   num(t ? e.nearest_neighbour : nan),
-                   num(t ? e.nearest_neighbour_minor : nan),
-                   num(t ? e.swegle : nan),
-                   num(t ? inf.tcrit : nan),
-                   num(symbol),
-                   num(r.mode_wavenumber.k_projection),
-                   status_name(r.status),
-                   a.compression ? "compression: T < 0 searched as K + |T| n L; " + r.reason : r.reason,
-                   criterion_name(r.criterion)});
-          progress.case_done();
-        }
-        continue;
-      }
-      // Corrected kernel: complex-step A(T) = A0 + T A1 of the force function, then the general criteria.
-      if (kernel.support_radius(h) <= 1.0) {
-        // One rule with the plain routes: no neighbour inside the support -> NaN and numerical-issue (a correction
-        // such as NCSPH is not even defined there).
-        CriticalLoad none;
-        none.status = Status::NumericalIssue;
-        for (MomentumForm form : forms)
-          add_corrected_row(type, form, h, none, "none",
-                            "no neighbour inside the kernel support (2h = " + num(kernel.support_radius(h)) +
-                                " <= dx): every operator is diagonal",
-                            "none");
-        continue;
-      }
-      const ParticleSet<1> set = tension_lattice_1d(kernel, h, nfree, false, kCorrectedLayerSupports);
-      auto disc = make_discretisation(set, kernel, h);
-      const Eigen::MatrixXd x = disc->free_positions();
-      const auto provider = make_gradient_provider<1>(correction);
-      const CriticalLoadOptions fopt = with_routes(CriticalLoadOptions::force_function());
-      for (MomentumForm form : forms) {
-        WaveForm1D force(disc, form, 0.0, provider, {.corrected = corrected});
-        const ForceCriticalLoad load = force_critical_loads(force, direction, x, fopt);
-        std::string note = "corrected " + force.name().substr(force.name().rfind('/') + 1) + "; fixed layers " +
-                           std::to_string(kCorrectedLayerSupports) + " supports";
-        if (load.residual_relative > 1e-10)
-          note += "; WARNING u = 0 is not an equilibrium (max|a(0)|/max|A0| = " + num(load.residual_relative) + ")";
-        for (const CriticalLoad& r : load.results) {
-          const bool pd = r.criterion != Criterion::Spectrum;
-          const std::string backend = pd ? (r.eigen_backend.empty() ? "none" : r.eigen_backend) : std::string("dgeev");
-          add_corrected_row(type, form, h, r, backend, note + "; " + r.reason, criterion_name(r.criterion));
-        }
-        progress.case_done();
-      }
-    }
+  for (const CriticalTensionCase& c : cases) {
+    const CriticalLoad& r = c.result;
+    TensionEstimates1D e;
+    e.first_minor = e.second_minor = e.nearest_neighbour = e.nearest_neighbour_minor = e.swegle = nan;
+    if (c.estimates) e = *c.estimates;
+    out += csv_line({kernel_name(c.kernel),
+                     momentum_form_name(c.form),
+                     std::to_string(nfree),
+                     a.periodic && correction == Correction::None ? "1" : "0",
+                     num(c.h),
+                     a.method,
+                     c.backend,
+                     num(r.load),
+                     num(r.load_eigen),
+                     num(r.load_bisection),
+                     num(r.relative_difference),
+                     num(e.first_minor),
+                     num(e.second_minor),
+                     num(e.nearest_neighbour),
+                     num(e.nearest_neighbour_minor),
+                     num(e.swegle),
+                     num(c.infinite),
+                     num(c.symbol),
+                     num(c.mode_k_over_pi),
+                     status_name(r.status),
+                     c.reason,
+                     c.criterion});
   }
   std::fputs(out.c_str(), stdout);
 }
