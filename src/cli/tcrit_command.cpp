@@ -1,7 +1,8 @@
 // `sphstab tcrit`: critical tension of a 1D lattice (Powell ch. 3) with the closed-form estimates, as CSV; with
 // --correction, of the 1D forms with a corrected kernel gradient (Powell ch. 3 §4.1.1, ch. 4 §2) by the general
-// affine route (critical_load.hpp); or (--dim 2) the critical pre-strain of a 2D lattice (elastic forms,
-// analytic Jacobian A0 + e A1).
+// affine route (critical_tension_sweep.hpp); or (--dim 2, 3) the critical pre-strain of an elastic lattice through the
+// critical-load front door (critical_strain_sweep.hpp, critical_load_problem.hpp: route, memory, fallbacks). This file
+// parses, validates, names the route and prints; the computing is the library's.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -16,24 +17,22 @@
 #include "parse.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/length_scale.hpp"
-#include "sphstab/core/memory_budget.hpp"
-#include "sphstab/forms/correction_gradient.hpp"
 #include "sphstab/forms/momentum_form.hpp"
 #include "sphstab/forms/wave_1d.hpp"
 #include "sphstab/io/csv.hpp"
 #include "sphstab/io/progress.hpp"
-#include "sphstab/jacobian/analytic_jacobian_2d.hpp"
-#include "sphstab/jacobian/matrix_free_linearisation.hpp"
 #include "sphstab/kernel/kernel.hpp"
+#include "sphstab/operators/correction.hpp"
 #include "sphstab/particles/lattice.hpp"
-#include "sphstab/particles/lattice_presets.hpp"
-#include "sphstab/spectral/fourier_symbol.hpp"
 #include "sphstab/spectral/fourier_symbol_2d.hpp"
 #include "sphstab/spectral/tension_estimates.hpp"
 #include "sphstab/stability/critical_load.hpp"
-#include "sphstab/stability/lattice_sine_preconditioner.hpp"
-#include "sphstab/stability/lattice_stencil.hpp"
-#include "sphstab/stability/matrix_free_critical_load.hpp"
+#include "sphstab/stability/critical_load_problem.hpp"
+#include "sphstab/stability/critical_strain_sweep.hpp"
+#include "sphstab/stability/critical_tension_sweep.hpp"
+#ifdef SPHSTAB_WITH_PETSC
+#include "sphstab/distributed/petsc_critical_load_solver.hpp"
+#endif
 
 namespace sphstab::cli {
 
@@ -42,12 +41,12 @@ namespace {
 struct TcritArgs {
   std::string dim = "1", lattice = "line", n = "30", kernel = "cubic", form = "conservative", h = "1.2",
               method = "both", backend = "auto", correction = "none", corrected = "auto", prestrain = "isotropic",
-              criterion = "auto";
+              criterion = "auto", route = "auto";
   // Plane strain, nu = 0.3 with E = 2.1 (Powell's Swegle test): the critical strain depends on nu only.
   std::string lambda = "1.2115384615384615", mu = "0.80769230769230769";
   bool periodic = false, compression = false;
   bool lattice_given = false, prestrain_given = false, lame_given = false, criterion_given = false,
-       method_given = false;
+       method_given = false, route_given = false;
 };
 
 /// Fixed layers of the lattice used with a kernel correction, in kernel supports (2h): every particle that the free
@@ -110,36 +109,6 @@ class SweepProgress {
   std::optional<ProgressLine> m_line;
 };
 
-/// Peak memory of one 1D case, estimated before anything is built (the library checks each allocation again): the
-/// lattice, the neighbour list, G and H, the Jacobian (about 120 bytes per entry of G, analytic_jacobian_1d.cpp), the
-/// Cholesky factor of the banded A0 (bandwidth 2 supports) and, for a dense eigen route, five n x n copies.
-void require_tcrit_1d_memory(int nfree, double support, int layer_supports, bool periodic, bool dense) {
-  const double particles = nfree + (periodic ? 0.0 : 2.0 * std::floor(layer_supports * support + 1));
-  const double pairs = particles * std::min(particles, 1 + 2 * support);
-  const double bytes = 21 * particles + 150 * pairs + 18 * nfree * std::min<double>(nfree, 4 * support + 1) +
-                       (dense ? 40.0 * nfree * nfree : 0.0);
-  require_memory(bytes, "tcrit: --n " + std::to_string(nfree) + " with h/dx = " + num(support / 2));
-}
-
-/// The same for a 2D block: the lattice, neighbours, G and H, the Jacobian (analytic_jacobian_2d.cpp) and dense copies
-/// for a dense route. The Cholesky factor's fill is checked by CHOLMOD's analysis (cholmod_factor.cpp).
-void require_tcrit_2d_memory(int n, double support, bool dense) {
-  const double side = n + 2.0 * std::floor(support + 2), particles = side * side, nf = double(n) * n;
-  const double q = std::min(particles, 1 + M_PI * support * support),
-               q2 = std::min(particles, 1 + 4 * M_PI * support * support);
-  const double bytes = 25 * particles + 66 * particles * q + 96 * nf * (q + q2) + (dense ? 160.0 * nf * nf : 0.0);
-  require_memory(bytes, "tcrit: --dim 2 --n " + std::to_string(n) + " with h/dx = " + num(support / 2));
-}
-
-/// --method lobpcg: the matrix-free linearisation (about 1.2 kB per particle, matrix_free_linearisation.hpp) and
-/// BlockLobpcg's blocks (10 b + 8 vectors of 2 doubles per free particle, b = 4): 2.6 GB measured at n = 1000
-/// (results/critical-strain-large).
-void require_tcrit_2d_lobpcg_memory(int n, double support) {
-  const double side = n + 2.0 * std::floor(support + 2), particles = side * side, nf = double(n) * n;
-  const double bytes = 1400 * particles + 16 * 48 * nf;
-  require_memory(bytes, "tcrit: --dim 2 --method lobpcg --n " + std::to_string(n) + " with h/dx = " + num(support / 2));
-}
-
 /// The sweep of a --dim 2 or --dim 3 run: pre-strain kind, material (rho = 1: it cancels in e_crit), kernels, forms
 /// and h values, validated in this order.
 struct ElasticSweep {
@@ -164,41 +133,30 @@ ElasticSweep parse_elastic_sweep(const TcritArgs& a) {
   return sw;
 }
 
-/// --dim 3: the matrix-free linearisation (stored G and H values, about 28 + 48 bytes per pair within the support,
-/// q pairs per particle) and BlockLobpcg's 10 b + 8 vectors of 3 doubles per free particle (b = 4): 7.9 GB measured
-/// at n = 100 (results/critical-strain-3d).
-void require_tcrit_3d_lobpcg_memory(int n, double support) {
-  const double side = n + 2.0 * std::floor(support + 2), particles = side * side * side, nf = double(n) * n * n;
-  const double q = std::min(particles, 1 + 4.0 / 3.0 * M_PI * support * support * support);
-  const double bytes = particles * (100 + 28 * q) + nf * (48 * q + 24 * 48);
-  require_memory(bytes, "tcrit: --dim 3 --n " + std::to_string(n) + " with h/dx = " + num(support / 2));
-}
-
 /// Shared row of the --dim 2 and --dim 3 tables (the infinite-lattice columns NaN where not computed).
-std::vector<std::string> critical_prestrain_row(KernelType kt, MomentumForm form, LatticeType type, int n,
-                                                bool periodic, const std::string& prestrain, LoadDirection sign,
-                                                double h, const std::string& method, const std::string& backend,
-                                                const std::string& criterion, const CriticalLoad& r, double e_inf,
-                                                double e_symbol, double inf_kx, double inf_ky) {
-  return {kernel_name(kt),
-          momentum_form_name(form),
-          lattice_name(type),
-          std::to_string(n),
-          periodic ? "1" : "0",
-          prestrain,
+template <int Dim>
+std::vector<std::string> critical_prestrain_row(const ElasticLatticeProblem<Dim>& p, LoadDirection sign,
+                                                const CriticalLoadResult& r, double e_inf, double inf_kx,
+                                                double inf_ky) {
+  return {kernel_name(p.kernel),
+          momentum_form_name(p.form),
+          lattice_name(p.lattice),
+          std::to_string(p.n),
+          p.periodic ? "1" : "0",
+          prestrain_kind_name(p.prestrain),
           load_direction_name(sign),
-          num(h),
+          num(p.h),
           "critical-prestrain",
-          method,
-          backend,
-          criterion,
+          r.method,
+          r.backend,
+          criterion_name(r.criterion),
           num(r.load),
           num(r.load_eigen),
           num(r.load_bisection),
           num(r.relative_difference),
           mechanism_name(r.mechanism),
           num(e_inf),
-          num(e_symbol),
+          num(r.symbol ? r.symbol->e : CriticalLoadResult::nan),
           num(r.mode_wavevector.kx_over_pi),
           num(r.mode_wavevector.ky_over_pi),
           num(r.mode_wavevector.peak_fraction),
@@ -213,40 +171,65 @@ const char* kCriticalPrestrainHeader =
     "ecrit_bisect,rel_diff,mechanism,ecrit_infinite,ecrit_symbol,mode_kx_over_pi,mode_ky_over_pi,"
     "mode_peak_fraction,infinite_kx_over_pi,infinite_ky_over_pi,status,reason\n";
 
-/// Free particles per side of the smallest lattice whose stencil can be probed (lattice_stencil.hpp): the central
-/// particle's A0 column reaches two hops of the support, 2 ceil(2 s) lattice spacings, and must stay off the edge.
-int probe_lattice_size(double support_over_dx) { return 2 * static_cast<int>(std::ceil(2 * support_over_dx)) + 3; }
-
-/// The block LOBPCG result as a CriticalLoad row (definiteness criterion, matrix-free). A lattice smaller than
-/// probe_n takes the stencil of a probe_n lattice built by `linearisation_of_size` (same kernel, h, material, form).
-template <int Dim, class MakeLinearisation>
-CriticalLoad lobpcg_critical_load(const MatrixFreeLinearisation<Dim>& lin, LoadDirection sign, int n, int probe_n,
-                                  MakeLinearisation&& linearisation_of_size) {
-  MatrixFreeCriticalLoadOptions o{.method = MatrixFreeEigenMethod::BlockLobpcg};
-  MatrixFreeCriticalLoad m;
-  if (n >= probe_n) {
-    m = matrix_free_critical_load(lin, sign, o);
-  } else {
-    const LatticeStencil<Dim> st = probe_lattice_stencil(linearisation_of_size(probe_n), sign);
-    if (lattice_symbol_ratio_max(st, n) > 0) {
-      m = matrix_free_critical_load(lin, sign, o, LatticeSinePreconditioner<Dim>(st, n, o.margin));
-    } else {
-      o.preconditioner = MatrixFreePreconditioner::None;  // no shift exists (as the library's own fallback)
-      m = matrix_free_critical_load(lin, sign, o);
-      m.preconditioner += " (symbol ratio L/K <= 0 on the lattice grid: no interior instability)";
-    }
-  }
-  CriticalLoad r;
-  r.load = r.load_eigen = m.load;
-  r.mechanism = std::isfinite(m.load) ? InstabilityMechanism::RealCrossing : InstabilityMechanism::None;
-  r.status = m.status;
-  r.reason = m.status == Status::Successful ? "block LOBPCG, preconditioner " + m.preconditioner + ": " +
-                                                  std::to_string(m.iterations) + " steps, residual " + num(m.residual)
-                                            : m.reason;
-  return r;
+/// --route petsc: the PETSc/SLEPc backend's solver (library sphstab_petsc) in a session for the rest of the process.
+DistributedCriticalLoadSolver petsc_solver() {
+#ifdef SPHSTAB_WITH_PETSC
+  ensure_petsc_session();
+  return petsc_critical_load_solver();
+#else
+  throw std::invalid_argument("tcrit: --route petsc needs sphstab built with SPHSTAB_WITH_PETSC (PETSc and SLEPc)");
+#endif
 }
 
-/// --dim 3: critical pre-strain of an n x n x n cubic lattice with fixed layers by the matrix-free block LOBPCG.
+/// A --dim 2 or --dim 3 sweep (critical_strain_sweep.hpp: every case through the critical-load front door, route and
+/// memory checked for every case before anything is computed, so a refusal is one error line and an empty stdout) as
+/// CSV. `label` gives the memory refusal's text for a route and an h.
+template <int Dim, class Label>
+void run_lattice_sweep(const TcritArgs& a, const ElasticSweep& sw, ElasticLatticeProblem<Dim> p,
+                       CriticalLoadRouteOptions opt, Label&& label) {
+  if (opt.route == CriticalLoadRoute::Distributed) opt.distributed = petsc_solver();
+  p.material = sw.material;
+  p.prestrain = sw.kind;
+  SweepProgress progress(static_cast<long>(sw.kernels.size() * sw.hs.size() * sw.forms.size()));
+  const CriticalStrainSweep<Dim> sweep{
+      .base = p,
+      .kernels = sw.kernels,
+      .hs = sw.hs,
+      .forms = sw.forms,
+      .direction = a.compression ? LoadDirection::Compression : LoadDirection::Tension,
+      .options = opt,
+      .memory_label = [&](CriticalLoadRoute route, const ElasticLatticeProblem<Dim>& q) { return label(route, q.h); },
+      .on_case = [&] { progress.case_done(); }};
+  std::string out = kCriticalPrestrainHeader;
+  for (const CriticalStrainCase<Dim>& c : critical_strain_sweep(sweep))
+    out += csv_line(critical_prestrain_row(c.problem, sweep.direction, c.result, c.infinite.e, c.infinite.kx_over_pi,
+                                           c.infinite.ky_over_pi));
+  std::fputs(out.c_str(), stdout);
+}
+
+/// --route, or the route that --method implies: lobpcg is the matrix-free route; a periodic lattice the symbol route;
+/// otherwise the assembled route (the front door's own choice, auto, only when asked: it would run a lattice too
+/// large for the assembled route matrix-free instead of refusing it).
+CriticalLoadRoute tcrit_route(const TcritArgs& a, bool lobpcg) {
+  if (a.route_given) {
+    const CriticalLoadRoute r = parse_critical_load_route(a.route);
+    if (lobpcg && r != CriticalLoadRoute::MatrixFree)
+      throw std::invalid_argument("tcrit: --method lobpcg is the matrix-free route (got --route " + a.route + ")");
+    return r;
+  }
+  if (lobpcg) return CriticalLoadRoute::MatrixFree;
+  return a.periodic ? CriticalLoadRoute::Symbol : CriticalLoadRoute::Assembled;
+}
+
+/// "--method lobpcg " or "--route NAME " for messages (empty for the assembled route asked by --method).
+std::string route_flag(const TcritArgs& a, CriticalLoadRoute route) {
+  if (route == CriticalLoadRoute::MatrixFree && !a.route_given) return "--method lobpcg ";
+  if (!a.route_given || route == CriticalLoadRoute::Assembled || route == CriticalLoadRoute::Auto) return "";
+  return "--route " + a.route + " ";
+}
+
+/// --dim 3: critical pre-strain of an n x n x n cubic lattice with fixed layers (matrix-free block LOBPCG unless
+/// --route says otherwise).
 void run_tcrit_3d(const TcritArgs& a) {
   if (a.method_given && a.method != "lobpcg")
     throw std::invalid_argument("tcrit: --dim 3 has one route, --method lobpcg (got '" + a.method + "')");
@@ -258,38 +241,18 @@ void run_tcrit_3d(const TcritArgs& a) {
         "definiteness)");
   const int n = parse_positive_int(a.n, "--n");
   if (n < 2) throw std::invalid_argument("tcrit: --dim 3 needs --n >= 2 (got " + a.n + ")");
-  const auto [kind, material, kernels, forms, hs] = parse_elastic_sweep(a);
-  for (KernelType kt : kernels)
-    for (double h : hs) require_tcrit_3d_lobpcg_memory(n, Kernel<3>(kt).support_radius(h));
-  const LoadDirection sign = a.compression ? LoadDirection::Compression : LoadDirection::Tension;
-  const double nan = CriticalLoad::nan;
-  std::string out = kCriticalPrestrainHeader;
-  SweepProgress progress(static_cast<long>(kernels.size() * hs.size() * forms.size()));
-  for (KernelType kt : kernels) {
-    const Kernel<3> kernel(kt);
-    for (double h : hs) {
-      auto cubic = [&](int m) {
-        return make_discretisation(
-            make_lattice<3>(LatticeType::Cubic, m, {.spacing = 1.0, .support_radius = kernel.support_radius(h)}),
-            kernel, h);
-      };
-      const auto disc = cubic(n);
-      for (MomentumForm form : forms) {
-        const CriticalLoad r =
-            lobpcg_critical_load(MatrixFreeLinearisation<3>(*disc, material, form, kind), sign, n,
-                                 probe_lattice_size(kernel.support_radius(h)),
-                                 [&](int m) { return MatrixFreeLinearisation<3>(*cubic(m), material, form, kind); });
-        out += csv_line(critical_prestrain_row(kt, form, LatticeType::Cubic, n, false, prestrain_kind_name(kind), sign,
-                                               h, "lobpcg", "matrix-free", "definiteness", r, nan, nan, nan, nan));
-        progress.case_done();
-      }
-    }
-  }
-  std::fputs(out.c_str(), stdout);
+  const ElasticSweep sw = parse_elastic_sweep(a);
+  CriticalLoadRouteOptions opt;
+  opt.route = a.route_given ? tcrit_route(a, false) : CriticalLoadRoute::MatrixFree;
+  run_lattice_sweep<3>(a, sw, {.lattice = LatticeType::Cubic, .n = n}, opt, [&](CriticalLoadRoute route, double h) {
+    const std::string flag = route == CriticalLoadRoute::MatrixFree ? "" : route_flag(a, route);
+    return "tcrit: --dim 3 " + flag + "--n " + std::to_string(n) +
+           " with h/dx = " + num(Kernel<3>(sw.kernels[0]).support_radius(h) / 2);
+  });
 }
 
-/// --dim 2: critical pre-strain e_crit of an n x n lattice (fixed layers: analytic Jacobian, bisection + eigen;
-/// periodic: exact Fourier symbols) with the infinite-lattice limit.
+/// --dim 2: critical pre-strain e_crit of an n x n lattice (fixed layers: analytic Jacobian, bisection + eigen, or
+/// matrix-free; periodic: exact Fourier symbols) with the infinite-lattice limit.
 void run_tcrit_2d(const TcritArgs& a) {
   const LatticeType type = parse_lattice_type(a.lattice_given ? a.lattice : std::string("square"));
   if (type != LatticeType::Square && type != LatticeType::Hexagonal && type != LatticeType::FaceCentred)
@@ -301,79 +264,34 @@ void run_tcrit_2d(const TcritArgs& a) {
   if (a.periodic && n < 2) throw std::invalid_argument("tcrit: --periodic needs --n >= 2");
   if (a.periodic && type != LatticeType::Square && n % 2 != 0)
     throw std::invalid_argument("tcrit: periodic hex/face-centred lattices need an even --n (got " + a.n + ")");
-  const auto [kind, material, kernels, forms, hs] = parse_elastic_sweep(a);
+  const ElasticSweep sw = parse_elastic_sweep(a);
   // lobpcg: the matrix-free preconditioned block LOBPCG (matrix_free_critical_load.hpp, BlockLobpcg), O(N) memory
   const bool lobpcg = a.method == "lobpcg";
-  if (lobpcg && (a.periodic || type != LatticeType::Square))
-    throw std::invalid_argument("tcrit: --method lobpcg needs a square lattice with fixed layers (not --periodic)");
-  if (lobpcg && (a.backend != "auto" || a.criterion != "auto"))
-    throw std::invalid_argument("tcrit: --method lobpcg takes no --backend or --criterion (definiteness, matrix-free)");
-  CriticalLoadOptions opt = CriticalLoadOptions::strain_2d();
-  opt.method = lobpcg ? CriticalLoadMethod::Eigen : parse_critical_load_method(a.method);
-  opt.backend = parse_eigen_backend(a.backend);
-  opt.criterion = parse_criterion(a.criterion);
-  opt.want_mode = true;
-  const LoadDirection sign = a.compression ? LoadDirection::Compression : LoadDirection::Tension;
-  for (double h : hs) {
-    const double support = Kernel<2>(kernels[0]).support_radius(h);
+  CriticalLoadRouteOptions opt;
+  opt.route = tcrit_route(a, lobpcg);
+  if (opt.route == CriticalLoadRoute::MatrixFree) {
+    const std::string flag = lobpcg ? "--method lobpcg" : "--route matrix-free";
+    if (a.periodic || type != LatticeType::Square)
+      throw std::invalid_argument("tcrit: " + flag + " needs a square lattice with fixed layers (not --periodic)");
+    if (a.backend != "auto" || a.criterion != "auto")
+      throw std::invalid_argument("tcrit: " + flag + " takes no --backend or --criterion (definiteness, matrix-free)");
+  }
+  opt.assembled = CriticalLoadOptions::strain_2d();
+  opt.assembled.method = lobpcg ? CriticalLoadMethod::Eigen : parse_critical_load_method(a.method);
+  opt.assembled.backend = parse_eigen_backend(a.backend);
+  opt.assembled.criterion = parse_criterion(a.criterion);
+  opt.assembled.want_mode = true;
+  for (double h : sw.hs) {
+    const double support = Kernel<2>(sw.kernels[0]).support_radius(h);
     if (a.periodic && n * (type == LatticeType::Hexagonal ? std::sqrt(3.0) / 2 : 1.0) < 2 * support)
       throw std::invalid_argument("tcrit: periodic box of --n " + a.n +
                                   " is shorter than twice the support 2h = " + num(support) + " (increase --n)");
-    const bool dense = opt.backend == EigenBackend::Dense || 2.0 * n * n <= opt.spectrum_dense_max;
-    if (lobpcg)
-      require_tcrit_2d_lobpcg_memory(n, support);
-    else if (!a.periodic)
-      require_tcrit_2d_memory(n, support, dense);
   }
-
-  std::string out = kCriticalPrestrainHeader;
-  const std::string prestrain_name = prestrain_kind_name(kind);
-  SweepProgress progress(static_cast<long>(kernels.size() * hs.size() * forms.size()));
-  for (KernelType kt : kernels) {
-    Kernel<2> kernel(kt);
-    for (double h : hs) {
-      std::shared_ptr<const Discretisation<2>> disc;
-      if (!a.periodic) disc = make_discretisation(strain_lattice_2d(type, kernel, h, n), kernel, h);
-      for (MomentumForm form : forms) {
-        const ElasticSymbol2D symbol(type, kernel, h, 1.0, material, form, kind);
-        const SymbolCriticalStrain inf = critical_strain_infinite_2d(symbol, sign);
-        CriticalLoad r;
-        std::string method = a.method, backend, criterion;
-        double tsym = CriticalLoad::nan;
-        if (a.periodic) {
-          const SymbolCriticalStrain p = critical_strain_periodic_symbol_2d(symbol, n, sign);
-          r.load = tsym = p.e;
-          r.mechanism = p.mechanism;
-          r.mode_wavevector.kx_over_pi = p.kx_over_pi;
-          r.mode_wavevector.ky_over_pi = p.ky_over_pi;
-          r.status = std::isnan(p.e) ? Status::NumericalIssue : Status::Successful;  // NaN: no neighbour
-          r.reason = p.reason;
-          method = "symbol";
-          backend = "none";
-          criterion = "spectrum";
-        } else if (lobpcg) {
-          r = lobpcg_critical_load(MatrixFreeLinearisation<2>(*disc, material, form, kind), sign, n,
-                                   probe_lattice_size(kernel.support_radius(h)), [&](int m) {
-                                     return MatrixFreeLinearisation<2>(
-                                         *make_discretisation(strain_lattice_2d(type, kernel, h, m), kernel, h),
-                                         material, form, kind);
-                                   });
-          backend = "matrix-free";
-          criterion = "definiteness";
-        } else {
-          r = critical_load(analytic_jacobian_2d(*disc, material, form, kind), sign, opt);
-          backend = r.eigen_backend.empty() ? "none" : r.eigen_backend;
-          criterion = criterion_name(r.criterion);
-        }
-        const std::vector<std::string> row =
-            critical_prestrain_row(kt, form, type, n, a.periodic, prestrain_name, sign, h, method, backend, criterion,
-                                   r, inf.e, tsym, inf.kx_over_pi, inf.ky_over_pi);
-        out += csv_line(row);
-        progress.case_done();
-      }
-    }
-  }
-  std::fputs(out.c_str(), stdout);
+  run_lattice_sweep<2>(a, sw, {.lattice = type, .n = n, .periodic = a.periodic}, opt,
+                       [&](CriticalLoadRoute route, double h) {
+                         return "tcrit: --dim 2 " + route_flag(a, route) + "--n " + std::to_string(n) +
+                                " with h/dx = " + num(Kernel<2>(sw.kernels[0]).support_radius(h) / 2);
+                       });
 }
 
 void run_tcrit(const TcritArgs& a) {
@@ -383,6 +301,7 @@ void run_tcrit(const TcritArgs& a) {
   if (dim == 2) return run_tcrit_2d(a);
   if (a.prestrain_given || a.lame_given || a.criterion_given)
     throw std::invalid_argument("tcrit: --prestrain, --lambda, --mu and --criterion need --dim 2 or 3");
+  if (a.route_given) throw std::invalid_argument("tcrit: --route needs --dim 2 or 3 (1D: --method and --backend)");
   if (parse_lattice_type(a.lattice) != LatticeType::Line)
     throw std::invalid_argument("tcrit: --lattice '" + a.lattice + "' does not exist in 1D (use line)");
   const Correction correction = parse_correction(a.correction);
@@ -403,122 +322,59 @@ void run_tcrit(const TcritArgs& a) {
   const std::vector<double> hs = parse_h(a.h);
   const CriticalLoadMethod method = parse_critical_load_method(a.method);
   const EigenBackend backend = parse_eigen_backend(a.backend);
-  for (double h : hs) {
-    const double support = Kernel<1>(kernels[0]).support_radius(h);
-    const bool dense = method != CriticalLoadMethod::Bisection &&
-                       (backend == EigenBackend::Dense ||
-                        nfree <= (correction == Correction::None ? CriticalLoadOptions{}.dense_max
-                                                                 : CriticalLoadOptions{}.spectrum_dense_max));
-    require_tcrit_1d_memory(nfree, support, correction == Correction::None ? 1 : kCorrectedLayerSupports, a.periodic,
-                            dense);
-  }
-  auto with_routes = [&](CriticalLoadOptions o) {
-    o.method = method;
-    o.backend = backend;
-    o.want_mode = method != CriticalLoadMethod::Bisection;
-    return o;
-  };
+  SweepProgress progress(static_cast<long>(kernels.size() * hs.size() * forms.size()));
+  const CriticalTensionSweep sweep{.n = nfree,
+                                   .periodic = a.periodic,
+                                   .direction = direction,
+                                   .kernels = kernels,
+                                   .hs = hs,
+                                   .forms = forms,
+                                   .correction = correction,
+                                   .corrected = corrected,
+                                   .method = method,
+                                   .backend = backend,
+                                   .corrected_layer_supports = kCorrectedLayerSupports,
+                                   .memory_label =
+                                       [&](double h) {
+                                         return "tcrit: --n " + std::to_string(nfree) +
+                                                " with h/dx = " + num(Kernel<1>(kernels[0]).support_radius(h) / 2);
+                                       },
+                                   .on_case = [&] { progress.case_done(); }};
+  const std::vector<CriticalTensionCase> cases = critical_tension_sweep(sweep);
 
-  // Rows are collected first so that an error on any row leaves stdout empty (one error line, exit 1).
+  // Rows are collected first so that an error on any row leaves stdout empty (one error line, exit 1). Corrected
+  // routes have no closed-form estimates or symbols (NaN) and fixed layers (periodic 0).
   std::string out =
       "kernel,form,N,periodic,h_over_dx,method,backend,tcrit,tcrit_eig,tcrit_bisect,rel_diff,t_first_minor,"
       "t_second_minor,t_nn,t_nn_minor,t_swegle,tcrit_infinite,tcrit_symbol,mode_k_over_pi,status,reason,criterion\n";
-  auto add_row = [&out](const std::vector<std::string>& row) { out += csv_line(row); };
-  // Corrected routes have no closed-form estimates or symbols: those columns are NaN.
-  auto add_corrected_row = [&](KernelType type, MomentumForm form, double h, const CriticalLoad& r,
-                               const std::string& backend, const std::string& reason, const std::string& criterion) {
-    const std::string nan_cell = num(CriticalLoad::nan);
-    std::vector<std::string> row{kernel_name(type),
-                                 momentum_form_name(form),
-                                 std::to_string(nfree),
-                                 "0",
-                                 num(h),
-                                 a.method,
-                                 backend,
-                                 num(r.load),
-                                 num(r.load_eigen),
-                                 num(r.load_bisection),
-                                 num(r.relative_difference)};
-    row.insert(row.end(), 7, nan_cell);  // t_first_minor ... tcrit_symbol
-    row.insert(row.end(), {num(r.reported_wavenumber().k_projection), status_name(r.status), reason, criterion});
-    add_row(row);
-  };
   const double nan = CriticalLoad::nan;
-  SweepProgress progress(static_cast<long>(kernels.size() * hs.size() * forms.size()));
-  for (KernelType type : kernels) {
-    Kernel<1> kernel(type);
-    for (double h : hs) {
-      if (correction == Correction::None) {
-        // Plain kernel: the analytic Jacobian K - n T L (Powell 3.40) and the closed-form estimates.
-        const ParticleSet<1> set = tension_lattice_1d(kernel, h, nfree, a.periodic);
-        for (MomentumForm form : forms) {
-          const int n = initial_stress_multiplier(form);
-          const CriticalLoad r =
-              critical_tension_1d(set, kernel, h, form, with_routes(CriticalLoadOptions::tension_1d()), direction);
-          const TensionEstimates1D e = tension_estimates_1d(kernel, h, 1.0, n);
-          const SymbolCriticalTension inf = critical_tension_infinite_1d(kernel, h, 1.0, n);
-          const double symbol =
-              a.periodic && !a.compression ? critical_tension_periodic_symbol_1d(kernel, h, 1.0, nfree, n).tcrit : nan;
-          const bool t = !a.compression;  // the estimates are tension formulas
-          add_row({kernel_name(type),
-                   momentum_form_name(form),
-                   std::to_string(nfree),
-                   a.periodic ? "1" : "0",
-                   num(h),
-                   a.method,
-                   r.eigen_backend.empty() ? "none" : r.eigen_backend,
-                   num(r.load),
-                   num(r.load_eigen),
-                   num(r.load_bisection),
-                   num(r.relative_difference),
-                   num(t ? e.first_minor : nan),
-                   num(t ? e.second_minor : nan),
-                   num(t ? e.nearest_neighbour : nan),
-                   num(t ? e.nearest_neighbour_minor : nan),
-                   num(t ? e.swegle : nan),
-                   num(t ? inf.tcrit : nan),
-                   num(symbol),
-                   num(r.mode_wavenumber.k_projection),
-                   status_name(r.status),
-                   a.compression ? "compression: T < 0 searched as K + |T| n L; " + r.reason : r.reason,
-                   criterion_name(r.criterion)});
-          progress.case_done();
-        }
-        continue;
-      }
-      // Corrected kernel: complex-step A(T) = A0 + T A1 of the force function, then the general criteria.
-      if (kernel.support_radius(h) <= 1.0) {
-        // One rule with the plain routes: no neighbour inside the support -> NaN and numerical-issue (a correction
-        // such as NCSPH is not even defined there).
-        CriticalLoad none;
-        none.status = Status::NumericalIssue;
-        for (MomentumForm form : forms)
-          add_corrected_row(type, form, h, none, "none",
-                            "no neighbour inside the kernel support (2h = " + num(kernel.support_radius(h)) +
-                                " <= dx): every operator is diagonal",
-                            "none");
-        continue;
-      }
-      const ParticleSet<1> set = tension_lattice_1d(kernel, h, nfree, false, kCorrectedLayerSupports);
-      auto disc = make_discretisation(set, kernel, h);
-      const Eigen::MatrixXd x = disc->free_positions();
-      const auto provider = make_gradient_provider<1>(correction);
-      const CriticalLoadOptions fopt = with_routes(CriticalLoadOptions::force_function());
-      for (MomentumForm form : forms) {
-        WaveForm1D force(disc, form, 0.0, provider, {.corrected = corrected});
-        const ForceCriticalLoad load = force_critical_loads(force, direction, x, fopt);
-        std::string note = "corrected " + force.name().substr(force.name().rfind('/') + 1) + "; fixed layers " +
-                           std::to_string(kCorrectedLayerSupports) + " supports";
-        if (load.residual_relative > 1e-10)
-          note += "; WARNING u = 0 is not an equilibrium (max|a(0)|/max|A0| = " + num(load.residual_relative) + ")";
-        for (const CriticalLoad& r : load.results) {
-          const bool pd = r.criterion != Criterion::Spectrum;
-          const std::string backend = pd ? (r.eigen_backend.empty() ? "none" : r.eigen_backend) : std::string("dgeev");
-          add_corrected_row(type, form, h, r, backend, note + "; " + r.reason, criterion_name(r.criterion));
-        }
-        progress.case_done();
-      }
-    }
+  for (const CriticalTensionCase& c : cases) {
+    const CriticalLoad& r = c.result;
+    TensionEstimates1D e;
+    e.first_minor = e.second_minor = e.nearest_neighbour = e.nearest_neighbour_minor = e.swegle = nan;
+    if (c.estimates) e = *c.estimates;
+    out += csv_line({kernel_name(c.kernel),
+                     momentum_form_name(c.form),
+                     std::to_string(nfree),
+                     a.periodic && correction == Correction::None ? "1" : "0",
+                     num(c.h),
+                     a.method,
+                     c.backend,
+                     num(r.load),
+                     num(r.load_eigen),
+                     num(r.load_bisection),
+                     num(r.relative_difference),
+                     num(e.first_minor),
+                     num(e.second_minor),
+                     num(e.nearest_neighbour),
+                     num(e.nearest_neighbour_minor),
+                     num(e.swegle),
+                     num(c.infinite),
+                     num(c.symbol),
+                     num(c.mode_k_over_pi),
+                     status_name(r.status),
+                     c.reason,
+                     c.criterion});
   }
   std::fputs(out.c_str(), stdout);
 }
@@ -548,6 +404,12 @@ void register_tcrit_command(CLI::App& app) {
                   "eig|bisect|both (default both); --dim 2: also lobpcg, the matrix-free preconditioned block LOBPCG "
                   "for large square blocks (results/critical-strain-large); --dim 3: lobpcg only (the default)")
       ->each([args](const std::string&) { args->method_given = true; });
+  cmd->add_option("--route", args->route,
+                  "--dim 2/3: auto|assembled|matrix-free|symbol|petsc (critical_load_problem.hpp; auto: periodic -> "
+                  "symbol, 3D -> matrix-free, 2D -> assembled unless it exceeds the memory limit, then matrix-free; "
+                  "petsc: the PETSc/SLEPc backend when built with it). Default: --method lobpcg -> matrix-free, "
+                  "--periodic -> symbol, else assembled (2D) or matrix-free (3D)")
+      ->each([args](const std::string&) { args->route_given = true; });
   cmd->add_option("--backend", args->backend, "Eigen route: auto|dense|spectra (auto: dense up to 200 DOF)");
   cmd->add_option("--correction", args->correction,
                   "1D kernel correction: none|minus|shepard|column-shepard|ncsph|local-polish|mean-polish|"

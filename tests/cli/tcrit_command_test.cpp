@@ -297,6 +297,40 @@ TEST(TcritCommand, ThreeDimensionalLobpcgAgreesWithTheUnpreconditionedIteration)
   }
 }
 
+TEST(TcritCommand, RouteNamesTheFrontDoorsRoute) {
+  // --route matrix-free is --method lobpcg; --route assembled is the default route of a block with fixed layers.
+  EXPECT_EQ(run("tcrit --dim 2 --n 14 --h 1.3 --route matrix-free").out,
+            run("tcrit --dim 2 --n 14 --h 1.3 --method lobpcg").out);
+  EXPECT_EQ(run("tcrit --dim 2 --n 10 --h 1.3 --route assembled").out, run("tcrit --dim 2 --n 10 --h 1.3").out);
+  EXPECT_EQ(run("tcrit --dim 2 --n 9 --h 1.3 --periodic --route auto").out,
+            run("tcrit --dim 2 --n 9 --h 1.3 --periodic").out);
+  // auto: a block whose assembled route (~29 MB estimated) does not fit the limit goes matrix-free and says so; the
+  // default (assembled) route refuses instead.
+  CliRun a = run("--max-memory 30M tcrit --dim 2 --n 48 --h 1.3 --route auto");
+  ASSERT_EQ(a.status, 0) << a.out;
+  EXPECT_EQ(column(a.out, "method"), "lobpcg");
+  EXPECT_EQ(column(a.out, "reason").rfind("\"fallback: the assembled route", 0), 0u) << a.out;
+  expect_one_error_line("--max-memory 30M tcrit --dim 2 --n 48 --h 1.3");
+  for (const char* args :
+       {"tcrit --route assembled", "tcrit --dim 2 --method lobpcg --route assembled", "tcrit --dim 2 --route bogus",
+        "tcrit --dim 2 --n 9 --periodic --route assembled", "tcrit --dim 2 --lattice hex --route matrix-free",
+        "tcrit --dim 2 --route symbol", "tcrit --dim 3 --route symbol"})
+    expect_one_error_line(args);
+}
+
+TEST(TcritCommand, PetscRouteAgreesWithTheAssembledEigenRoute) {
+  CliRun p = run("tcrit --dim 2 --n 16 --h 1.3 --route petsc", true);
+  if (p.status == 1 && p.out.find("SPHSTAB_WITH_PETSC") != std::string::npos)
+    GTEST_SKIP() << "sphstab built without PETSc: " << p.out;
+  ASSERT_EQ(p.status, 0) << p.out;
+  CliRun e = run("tcrit --dim 2 --n 16 --h 1.3 --method eig");
+  EXPECT_EQ(column(p.out, "backend"), "distributed");
+  EXPECT_EQ(column(p.out, "status"), "successful") << p.out;
+  // Shift-invert Krylov-Schur to a residual of 1e-10 (eigenvalue error ~1e-20) against Spectra's 1e-13; the
+  // symmetrised matrices move e_crit by ~1e-11 (petsc_critical_load.hpp): 1e-9.
+  EXPECT_NEAR(std::stod(column(p.out, "ecrit")) / std::stod(column(e.out, "ecrit")), 1.0, 1e-9);
+}
+
 TEST(TcritCommand, TwoDimensionalBadInput) {
   for (const char* args :
        {"tcrit --dim 2 --lattice line", "tcrit --dim 2 --prestrain shear", "tcrit --dim 2 --mu -1",
