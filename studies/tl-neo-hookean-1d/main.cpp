@@ -2,7 +2,7 @@
 // total-Lagrangian SPH form (forms/finite_strain_total_lagrangian.hpp, 1D strain: P = mu (F - 1/F) + lambda ln F / F,
 // algorithm 5.1).
 //   1. static: the homogeneous stretch u = (lambda - 1) X on every particle; SPH T11 against the analytic table
-//      (reference_t11_table.csv = seed notes §7.3);
+//      (reference_t11_table.csv: T11/mu tabulated for this project from [Ismail2009, (5.5)]);
 //   2. quasi-static run: both ends' fixed layers carry u = (lambda(t) - 1) X, lambda(t) ramped smoothly 1 -> 6 over
 //      --ramp transit times L / c_L, leap-frog from rest; the centre particle's T11 against the analytic curve;
 //   3. loss of hyperbolicity at nu = 0.49: the root of the material tangent dP/dF (bisection on the model) and the
@@ -266,7 +266,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   fs::create_directories(out);
   const auto t0 = study::Clock::now();
-  const fs::path here = fs::path(__FILE__).parent_path();
+  const fs::path here = SPHSTAB_STUDY_DIR;
   const std::vector<TableRow> table = read_table((here / "reference_t11_table.csv").string());
   const std::vector<double> stretches{1.5, 2, 3, 4, 6};
   study::Summary summary;

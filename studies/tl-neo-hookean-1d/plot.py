@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Plots of the 1D Neo-Hookean TL-SPH study (Ismail 2009 §5.3): the centre particle's Cauchy stress T11 during the
-quasi-static stretch to 6 against the analytic curve and the seed notes' table (nu = 0.3, 0.49), the spread of F over
+quasi-static stretch to 6 against the analytic curve and the reference table (nu = 0.3, 0.49), the spread of F over
 the particles for ramps of 30-1000 transit times at nu = 0.49, and the material tangent dP/dF with the smallest
 eigenvalue of the linearised TL Jacobian, which cross zero together.
 Usage: plot.py RESULTS_DIR (reads table.csv, ramps.csv, history_nu*_ramp*.csv, hyperbolicity.csv, summary.json)."""
@@ -31,7 +31,7 @@ def main(out):
                 label=f"SPH centre particle, ramp {main_ramp:g} L/c_L")
         rows = [r for r in table if abs(num(r["nu"]) - float(nu)) < 1e-9]
         ax.plot([num(r["lambda1"]) for r in rows], [num(r["t11_thesis_over_mu"]) for r in rows], "ko", mfc="none",
-                ms=9, label="seed notes §7.3 table")
+                ms=9, label="reference table [Ismail2009, (5.5)]")
         ax.plot([num(r["lambda1"]) for r in rows], [num(r["t11_static_sph_over_mu"]) for r in rows], "x",
                 color=colour, ms=8, label="SPH, homogeneous stretch (static)")
         if nu == "0.49":

@@ -16,6 +16,7 @@
 #include <memory>
 #include <numbers>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -126,10 +127,12 @@ int main(int argc, char** argv) {
       {3, "lambda_1 1 -> 6 with lambda_2 1 -> 2",
        [](double s) { return Eigen::Vector2d(1 + 5 * ramp(s), 1 + ramp(s)); }}};
   const std::vector<double> stretches{1.5, 2, 3, 4, 6};
-  // the notes' table (nu = 0.3 only): (lambda2, lambda1) -> T11 / mu
+  // the reference table (nu = 0.3 only): (lambda2, lambda1) -> T11 / mu
   std::map<std::pair<double, double>, double> notes;
   {
-    std::ifstream f((fs::path(__FILE__).parent_path() / "reference_t11_table.csv").string());
+    const std::string table_path = (fs::path(SPHSTAB_STUDY_DIR) / "reference_t11_table.csv").string();
+    std::ifstream f(table_path);
+    if (!f) throw std::runtime_error("cannot read " + table_path);
     std::string line;
     bool header = true;
     while (std::getline(f, line)) {

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Plot of the 2D Neo-Hookean TL-SPH study (Ismail 2009 §5.4.3, Figs. 5.10-5.12): the centre particles' Cauchy stress
 T11 against the imposed stretch lambda_1 for the three stretch paths, with the analytic (5.5) along each path and
-the seed notes' table. Usage: plot.py RESULTS_DIR (reads history_case{1,2,3}.csv, table.csv)."""
+the reference table. Usage: plot.py RESULTS_DIR (reads history_case{1,2,3}.csv, table.csv)."""
 import os
 import sys
 
@@ -22,7 +22,7 @@ def main(out):
         rows = [r for r in table if r["case"] == str(case)]
         notes = [(num(r["lambda1"]), num(r["t11_notes_over_mu"])) for r in rows if r["t11_notes_over_mu"] != "nan"]
         if notes:
-            ax.plot(*zip(*notes), "ko", mfc="none", ms=9, label="seed notes §7.3 table")
+            ax.plot(*zip(*notes), "ko", mfc="none", ms=9, label="reference table [Ismail2009, (5.5)]")
         ax.set_xlabel("imposed stretch lambda_1")
         ax.set_ylabel("T11 / mu")
         ax.set_title(TITLES[case])
