@@ -40,6 +40,12 @@ TIMING_FIELDS = ["study", "wall_s", "jobs", "load_before", "date", "commit", "so
 DEFAULT_ESTIMATE_S = 60.0  # a study never timed (new): assumed one minute, and the plan says so
 
 
+def rel(path):
+    """A path as the commands see it: relative to the repository (their working directory), so that what the studies
+    record about their own invocation (summary.json, summary.md) names no path outside the repository."""
+    return os.path.relpath(path, ROOT)
+
+
 def load_index():
     with open(os.path.join(ROOT, "studies", "index.toml"), "rb") as f:
         index = tomllib.load(f)
@@ -114,9 +120,9 @@ class Task:
         if os.path.exists(self.script):
             if self.quick:
                 raise SystemExit(f"run_studies: {self.name} is a run.sh study and has no --quick case")
-            return ["bash", self.script, self.bin_dir, self.out]
+            return ["bash", self.script, rel(self.bin_dir), rel(self.out)]
         if os.path.exists(self.exe):
-            return [self.exe, "--out", self.out] + (["--quick"] if self.quick else [])
+            return [rel(self.exe), "--out", rel(self.out)] + (["--quick"] if self.quick else [])
         raise SystemExit(f"run_studies: {self.name}: neither {self.exe} (build it) nor {self.script} exists")
 
     def run(self):
@@ -124,7 +130,7 @@ class Task:
         os.makedirs(os.path.dirname(self.log), exist_ok=True)
         steps = [self.command()]
         if os.path.exists(self.plot):
-            steps.append([PYTHON, self.plot, self.out])
+            steps.append([PYTHON, rel(self.plot), rel(self.out)])
         with open(self.log, "w", encoding="utf-8") as log:
             for cmd in steps:
                 log.write("$ " + " ".join(cmd) + "\n")
@@ -135,8 +141,8 @@ class Task:
             if os.path.exists(self.template):
                 summary = os.path.join(self.out, "summary.md")
                 with open(summary + ".tmp", "w", encoding="utf-8") as md:
-                    rc = subprocess.run([PYTHON, os.path.join(ROOT, "scripts", "render_summary.py"), self.template,
-                                         os.path.join(self.out, "summary.json")], cwd=ROOT, stdout=md,
+                    rc = subprocess.run([PYTHON, "scripts/render_summary.py", rel(self.template),
+                                         rel(os.path.join(self.out, "summary.json"))], cwd=ROOT, stdout=md,
                                         stderr=log).returncode
                 if rc != 0:
                     return f"render_summary.py exited with {rc}"
