@@ -1,5 +1,6 @@
 #include "rate_form_args.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "parse.hpp"
@@ -124,5 +125,15 @@ template std::shared_ptr<const Discretisation<1>> make_rate_form_discretisation<
                                                                                    double);
 template std::shared_ptr<const Discretisation<2>> make_rate_form_discretisation<2>(const RateFormSetup&, KernelType,
                                                                                    double);
+
+void require_run_length(double t_end, double dt, long particles, const std::string& who) {
+  const double steps = std::ceil(t_end / dt - 1e-9);
+  const double work = steps * static_cast<double>(particles);
+  if (!(work <= kMaxParticleSteps))
+    throw std::invalid_argument(who + ": t_end / dt = " + format_number(steps, 3) + " steps of " +
+                                std::to_string(particles) + " particles (" + format_number(work, 3) +
+                                " particle-steps, more than " + format_number(kMaxParticleSteps, 3) +
+                                ", about a day at 1 us each); shorten --t-end or raise the time step");
+}
 
 }  // namespace sphstab::cli

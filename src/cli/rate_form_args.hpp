@@ -62,4 +62,12 @@ template <int Dim>
 std::shared_ptr<const Discretisation<Dim>> make_rate_form_discretisation(const RateFormSetup& setup, KernelType kernel,
                                                                          double h_over_dx);
 
+/// Particle-steps above which a run is refused before it starts: 1e11, about a day at the scheme's ~1 µs per
+/// particle-step on one core (results/gms-speed), so a --t-end or --dt that cannot finish is an error, not a hang.
+inline constexpr double kMaxParticleSteps = 1e11;
+
+/// Refuses (one-line std::invalid_argument prefixed `who`) a run of ceil(t_end / dt) steps over `particles` particles
+/// beyond kMaxParticleSteps, naming the step count and the work; t_end and dt are finite and > 0.
+void require_run_length(double t_end, double dt, long particles, const std::string& who);
+
 }  // namespace sphstab::cli

@@ -362,6 +362,7 @@ void run_scheme(const RunSetup& r) {
   Eigen::VectorXd y = scheme.uniform_state();
   const double dt_asked = std::isnan(r.dt) ? default_time_step(scheme, y, r) : r.dt;
   const double t_end = std::isnan(r.t_end) ? 1000 * dt_asked : r.t_end;
+  require_run_length(t_end, dt_asked, scheme.discretisation().particles.size(), "run");
   // rate_form_run.hpp: "dt is reduced to t_end / ceil(t_end / dt)"; the dt column is that step (the tests compare it
   // with RateFormRunResult::dt).
   const long nsteps =

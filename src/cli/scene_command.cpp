@@ -21,6 +21,7 @@
 
 #include "commands.hpp"
 #include "parse.hpp"
+#include "rate_form_args.hpp"
 #include "sphstab/analysis/fragments.hpp"
 #include "sphstab/analysis/neck.hpp"
 #include "sphstab/core/format.hpp"
@@ -161,6 +162,7 @@ void run_scene(const SceneArgs& a) {
   const double skin = positive(a.skin, "--skin") * sc.dp;
   const double dt = positive(a.cfl, "--cfl") * scheme.discretisation().h / scheme.material().p_wave_speed();
   const int every = static_cast<int>(parse_integer(a.record_every, 1, 1'000'000'000, "scene: --record-every"));
+  require_run_length(t_end, dt, scheme.discretisation().particles.size(), "scene");
   std::vector<std::pair<double, std::string>> frames;
   if (!a.out.empty()) std::filesystem::create_directories(a.out);
   const double bond = 1.5 * sc.dp;

@@ -158,6 +158,22 @@ TEST(CliFuzz, EmptyValuesAreOneLineErrors) {
   for (size_t k = 0; k < cases.size(); ++k) expect_contract(cases[k], "empty" + std::to_string(k), 1);
 }
 
+TEST(CliFuzz, RunsThatCannotFinishAreRefusedBeforeTheyStart) {
+  // Issue 36: step counts that cannot finish ran until killed. Each is one error line with exit 1, in well under the
+  // harness's time limit (the refusal comes before the first step).
+  const std::vector<std::vector<std::string>> cases = {
+      {"run", "--n", "5", "--t-end", "1e12", "--record-every", "1000000000"},
+      {"run", "--n", "5", "--dt", "1e-9", "--t-end", "1e6"},
+      {"scene", "plate", "--t-end", "1e12", "--record-every", "1000000000"},
+      {"scene", "rings", "--t-end", "1e9"}};
+  for (size_t k = 0; k < cases.size(); ++k) {
+    const test::CliOutcome r = test::run_cli_in_child(cases[k], scratch("long" + std::to_string(k)), kMemoryLimit,
+                                                      kTimeLimit);
+    EXPECT_EQ(r.exit_code, 1) << test::join_args(cases[k]) << "\nstderr: " << r.err;
+    EXPECT_NE(r.err.find("particle-steps"), std::string::npos) << test::join_args(cases[k]) << "\nstderr: " << r.err;
+  }
+}
+
 TEST(CliFuzz, NoNeighbourInsideTheSupportIsNanAndNumericalIssueOnEveryRoute) {
   for (const std::string c :
        {"tcrit --h 0.3", "tcrit --h 0.3 --form minus", "tcrit --h 0.3 --form plus --compression",
