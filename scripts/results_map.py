@@ -19,12 +19,9 @@ import math
 import os
 import re
 import sys
-import tomllib
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-INDEX = os.path.join(ROOT, "studies", "index.toml")
 RESULTS = os.path.join(ROOT, "results")
-TIMINGS = os.path.join(RESULTS, "timings.csv")
 OUT = os.path.join(RESULTS, "README.md")
 FAMILIES = ["stability analysis", "Swegle", "GMS scenes", "finite strain", "non-reflecting boundaries", "scale",
             "speed"]
@@ -497,18 +494,9 @@ EXTRACTORS = {f.__name__: f for f in (
 
 
 # --------------------------------------------------------------------------------------------------------- the map
-def load_index():
-    with open(INDEX, "rb") as f:
-        return tomllib.load(f)
-
-
-def load_timings():
-    timings = {}
-    if os.path.exists(TIMINGS):
-        with open(TIMINGS, newline="", encoding="utf-8") as f:
-            for row in csv.DictReader(f):
-                timings[row["study"]] = row
-    return timings
+# One reader of studies/index.toml (validated) and of results/timings.csv: the main job's engine.
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from run_studies import load_index, load_timings  # noqa: E402
 
 
 def headline(name, entry):
