@@ -14,10 +14,5 @@ if [ ! -x "$py" ]; then bash scripts/install-deps.sh; fi
 targets=$("$py" scripts/run_studies.py --targets "$@")
 for a in "$@"; do [ "$a" = "--list" ] && exec "$py" scripts/run_studies.py "$@"; done
 bash scripts/install-deps.sh
-if [ "$targets" = "all" ]; then
-  bash scripts/build.sh
-else
-  # shellcheck disable=SC2086
-  SPHSTAB_TARGETS="$targets" bash scripts/build.sh
-fi
+SPHSTAB_TARGETS="$targets" bash scripts/build.sh
 exec "$py" scripts/run_studies.py "$@"

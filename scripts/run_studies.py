@@ -212,7 +212,7 @@ def main():
     tasks = [Task(n, index[n], q, bin_dir, build_dir) for n, q in chosen]
     if args.targets:
         if any(os.path.exists(t.script) for t in tasks):
-            print("all")  # run.sh studies drive benchmark programs and the CLI
+            print("sphstab_cli sphstab_studies sphstab_benchmarks")  # run.sh studies drive benchmarks and the CLI
         else:
             print(" ".join(["sphstab_cli"] + [os.path.basename(t.exe) for t in tasks]))
         return 0

@@ -272,14 +272,14 @@ TEST(TcritCommand, LobpcgInCompressionFallsBackToNoPreconditioner) {
 TEST(TcritCommand, ThreeDimensionalLobpcgAgreesWithTheUnpreconditionedIteration) {
   // --dim 3: cubic lattice, sine-preconditioned block LOBPCG; the reference is the same linearisation solved
   // in-process without a preconditioner and from a random start (another iteration path).
-  CliRun a = run("tcrit --dim 3 --n 8 --kernel cubic --form conservative --h 1.3");
+  CliRun a = run("tcrit --dim 3 --n 6 --kernel cubic --form conservative --h 1.3");
   ASSERT_EQ(a.status, 0) << a.out;
   EXPECT_EQ(column(a.out, "lattice"), "cubic");
   EXPECT_EQ(column(a.out, "method"), "lobpcg");
   EXPECT_EQ(column(a.out, "status"), "successful") << a.out;
   const Kernel<3> k(KernelType::CubicSpline);
   const auto disc =
-      make_discretisation(make_lattice<3>(LatticeType::Cubic, 8, {.support_radius = k.support_radius(1.3)}), k, 1.3);
+      make_discretisation(make_lattice<3>(LatticeType::Cubic, 6, {.support_radius = k.support_radius(1.3)}), k, 1.3);
   const MatrixFreeLinearisation<3> lin(*disc, {.lambda = 1.2115384615384615, .mu = 0.80769230769230769, .rho = 1},
                                        MomentumForm::Conservative, PreStrainKind::Isotropic);
   const MatrixFreeCriticalLoad ref = matrix_free_critical_load(lin, LoadDirection::Tension,
