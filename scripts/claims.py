@@ -121,6 +121,10 @@ class Results:
         self._csv = {}
         self._summary = None
 
+    def other(self, name):
+        """The committed results of another study (a claim about a mechanism another study computes)."""
+        return Results(name, self.root)
+
     def path(self, file):
         return os.path.join(self.dir, file)
 
@@ -204,6 +208,22 @@ def summary_md_is_rendered(r):
     check(expected == r.md, f"{r.rel('summary.md')} is not summary.md.in rendered with summary.json "
                             f"(rerun scripts/render_summary.py)")
     return f"summary.md = render(summary.md.in, summary.json), {len(r.summary)} keys"
+
+
+def md_table(text, header=False):
+    """The rows of a Markdown table as lists of stripped cells: the body only (the row above the |---| rule is the
+    header, returned first when header=True)."""
+    rows, head = [], None
+    for line in text.strip().splitlines():
+        line = line.strip()
+        if not line.startswith("|"):
+            continue
+        if re.fullmatch(r"\|[\s|:-]*\|", line):
+            if rows and head is None:
+                head = rows.pop()
+            continue
+        rows.append([c.strip() for c in line.strip("|").split("|")])
+    return ([head] if header and head else []) + rows
 
 
 def claims_of(module):
