@@ -187,9 +187,10 @@ class Results:
         return self.text("README.md", study=True)
 
     def stated(self, pattern, text=None, where="summary.md", group=1, convert=True):
-        """The value a regular expression captures in summary.md (or `text`): the number or word the prose states.
-        A ClaimError when the sentence is not there (the text changed: the claim must be revisited)."""
-        source = self.md if text is None else text
+        """The value a regular expression captures in summary.md (or `text`), whitespace runs read as one space: the
+        number or word the prose states. A ClaimError when the sentence is not there (the text changed: the claim
+        must be revisited)."""
+        source = re.sub(r"\s+", " ", self.md if text is None else text)  # a sentence may wrap across lines
         m = re.search(pattern, source)
         check(m is not None, f"{self.rel(where) if where == 'summary.md' else where}: no sentence matching /{pattern}/")
         return number(m.group(group)) if convert else m.group(group)
