@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """studies/index.toml lists every study exactly once: every folder under studies/ (except common/) and every
 results/<name>/ folder has one [name] table, and every table names an existing studies/<name>/ and results/<name>/.
-Every main = "full" study has headline claims (studies/<name>/claims.py). Its fields are the ones scripts/run_studies.py accepts. Run by ctest (label results); Python 3.11 stdlib only."""
+Every main = "full" study has headline claims (studies/<name>/claims.py with a claim_* function; docs/claims.md).
+Its fields are the ones scripts/run_studies.py accepts. Run by ctest (label results); Python 3.11 stdlib only."""
 import os
 import re
 import sys
