@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """studies/index.toml lists every study exactly once: every folder under studies/ (except common/) and every
 results/<name>/ folder has one [name] table, and every table names an existing studies/<name>/ and results/<name>/.
+Every main = "full" study has headline claims (studies/<name>/claims.py with a claim_* function; docs/claims.md).
 Its fields are the ones scripts/run_studies.py accepts. Run by ctest (label results); Python 3.11 stdlib only."""
 import os
 import re
@@ -45,6 +46,19 @@ class StudyIndexTest(unittest.TestCase):
     def test_run_studies_accepts_the_index(self):
         import run_studies
         self.assertEqual(list(run_studies.load_index()), list(self.index))
+
+    def test_full_studies_have_claims(self):
+        # Every study of the default main job keeps its headline statements as checks on its committed CSVs
+        # (studies/<name>/claims.py, run by tests/scripts/claims_test.py; docs/claims.md).
+        import claims
+        lacking = []
+        for name, entry in self.index.items():
+            if entry.get("main") != "full":
+                continue
+            module = claims.load_claims(name, ROOT)
+            if module is None or not claims.claims_of(module):
+                lacking.append(name)
+        self.assertEqual(lacking, [], 'main = "full" studies without a studies/<name>/claims.py with a claim_*')
 
     def test_map_fields_present(self):
         for name, entry in self.index.items():
