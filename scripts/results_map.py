@@ -103,27 +103,31 @@ UNIT_SECONDS = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
 # of further placeholder values. Named in studies/index.toml (field `extract`).
 
 def swegle_verdicts(study, data, table_key="stability_table", xi_key="xi_list"):
-    """Per formulation, the ξ at which the Swegle verdict table says U: in compression (ξ < 1), at rest (ξ = 1)
-    and in tension (ξ > 1)."""
+    """Per formulation, the ξ at which the Swegle verdict table's class (the first word of a cell,
+    growth/stability_verdict.hpp) is semi-discrete growth, U or B: in compression (ξ < 1), at rest (ξ = 1) and in
+    tension (ξ > 1); the formulations with an integrator-only (I) cell; those S at every ξ."""
     xis = [float(x) for x in need(study, data, xi_key).split(",")]
-    comp, rest, tens, stable = [], [], [], []
+    comp, rest, tens, integrator, stable = [], [], [], [], []
     for row in md_rows(need(study, data, table_key)):
         form = row[0].replace("**", "")
         cells = row[1:]
         if len(cells) != len(xis):
             raise MapError(f"study '{study}': {table_key} row '{form}' has {len(cells)} verdicts for "
                            f"{len(xis)} values of xi")
-        unstable = [xi for xi, c in zip(xis, cells) if "U" in c.replace("**", "").split()[:1]]
+        classes = [c.replace("**", "").split()[0] if c.strip() else "" for c in cells]
+        unstable = [xi for xi, c in zip(xis, classes) if c in ("U", "B")]
         if any(xi < 1 for xi in unstable):
             comp.append(form)
         if any(xi == 1 for xi in unstable):
             rest.append(form)
         if any(xi > 1 for xi in unstable):
             tens.append(form)
-        if not unstable:
+        if "I" in classes:
+            integrator.append(form)
+        if all(c == "S" for c in classes):
             stable.append(form)
     return {"unstable_compression": names(comp), "unstable_at_rest": names(rest),
-            "unstable_tension": names(tens), "stable_everywhere": names(stable)}
+            "unstable_tension": names(tens), "integrator_only": names(integrator), "stable_everywhere": names(stable)}
 
 
 def threshold(x):

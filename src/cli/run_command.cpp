@@ -371,6 +371,9 @@ void run_scheme(const RunSetup& r) {
   require_memory(16.0 * (static_cast<double>(nsteps) / r.record_every + 2) + 64.0 * scheme.size(),
                  "run: " + std::to_string(nsteps) + " steps recorded every " + std::to_string(r.record_every));
   kick(scheme, r.kick, s.periodic, y);
+  if (!std::isfinite(scheme.kinetic_energy(y)))  // e.g. --kick 1e200: m v0^2 / 2 overflows before the first step
+    throw std::invalid_argument("run: --kick " + format_number(r.kick) +
+                                ": the initial kinetic energy m v0^2 / 2 overflows a double; use a smaller kick");
 
   std::optional<Snapshots<Dim>> snapshots;
   if (!r.out.empty()) snapshots.emplace(scheme, r.out);

@@ -176,7 +176,7 @@ void register_spectrum_command(CLI::App& app) {
   cmd->add_option("--integrator", va->integrator,
                   "pc | pc1 | leapfrog: add the stability verdict of a run with this integrator (needs --dt and "
                   "--t-end): map_growth = ln rho(M) / dt of the one-step map, floor = ln(--energy-ratio) / (2 t_end), "
-                  "verdict S | U | I | B (growth/stability_verdict.hpp; dense in the whole state)");
+                  "verdict S | U | I | B (growth/stability_verdict.hpp; at rest with pc or a viscosity-free leapfrog reduced exactly, otherwise dense in the whole state)");
   cmd->add_option("--dt", va->dt, "the verdict's time step > 0 (reduced to t_end / ceil(t_end / dt) as in `run`)");
   cmd->add_option("--t-end", va->t_end, "the verdict's run length > 0");
   cmd->add_option("--energy-ratio", va->energy_ratio,

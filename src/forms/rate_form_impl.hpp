@@ -466,6 +466,22 @@ Eigen::VectorXd RateFormScheme<Dim>::uniform_state() const {
 }
 
 template <int Dim>
+Eigen::VectorXd RateFormScheme<Dim>::variable_scale() const {
+  Eigen::VectorXd s = Eigen::VectorXd::Ones(m_size);
+  for (int i = 0; i < m_disc->size(); ++i) {
+    if (m_x_off[i] >= 0) {
+      s.segment(m_x_off[i], Dim).setConstant(m_disc->h);
+      s.segment(m_x_off[i] + Dim, Dim).setConstant(m_material.p_wave_speed());
+    }
+    if (m_rho_off[i] >= 0) {
+      s[m_rho_off[i]] = m_material.density;
+      s.segment(m_rho_off[i] + 1, kStress).setConstant(m_material.bulk_modulus);
+    }
+  }
+  return s;
+}
+
+template <int Dim>
 double RateFormScheme<Dim>::kinetic_energy(const Eigen::VectorXd& y) const {
   if (y.size() != m_size) throw std::invalid_argument("RateFormScheme::kinetic_energy: state has the wrong size");
   double e = 0;

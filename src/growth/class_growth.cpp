@@ -1,3 +1,4 @@
+#include <cmath>
 #include "sphstab/growth/class_growth.hpp"
 
 #include <algorithm>
@@ -26,9 +27,11 @@ ClassGrowth class_growth(const SparseMatrix<>& As, const MirrorClasses& c, const
   if (As.cols() != n || n != 2 * c.symmetry.size())
     throw std::invalid_argument("class_growth: A must be " + std::to_string(2 * c.symmetry.size()) + " x " +
                                 std::to_string(2 * c.symmetry.size()));
-  const bool map = smoothing.size() > 0;
-  if (map && (smoothing.rows() != n || smoothing.cols() != n || !(dt > 0)))
+  if (smoothing.size() > 0 && (smoothing.rows() != n || smoothing.cols() != n || !(dt > 0)))
     throw std::invalid_argument("class_growth: the smoothing must be dofs x dofs and dt > 0");
+  if (!(dt >= 0) || !std::isfinite(dt)) throw std::invalid_argument("class_growth: dt must be finite and >= 0");
+  const bool map = dt > 0;  // the leap-frog map: with the smoothing as its velocity hook, or plain (S = I)
+  const Eigen::MatrixXd S = smoothing.size() > 0 ? smoothing : Eigen::MatrixXd(Eigen::MatrixXd::Identity(n, n));
   ClassGrowth g;
   g.commutation = commutation_error(c.symmetry, As);
   const Eigen::MatrixXd A(As);
@@ -50,7 +53,7 @@ ClassGrowth class_growth(const SparseMatrix<>& As, const MirrorClasses& c, const
         g.mu_excited = lg.mu;
         g.mode = Q * lg.mode;
         if (map) {
-          const Eigen::MatrixXd Sk = Q.transpose() * smoothing * Q;
+          const Eigen::MatrixXd Sk = Q.transpose() * S * Q;
           g.gamma_map = leapfrog_map_growth(Ak, dt, Sk, VelocityHookMode::Replace).gamma;
         }
       }
@@ -61,7 +64,7 @@ ClassGrowth class_growth(const SparseMatrix<>& As, const MirrorClasses& c, const
     g.mu_all = g.mu_excited = lg.mu;
     g.lambda_max = lg.lambda_max;
     g.mode = lg.mode;
-    if (map) g.gamma_map = leapfrog_map_growth(A, dt, smoothing, VelocityHookMode::Replace).gamma;
+    if (map) g.gamma_map = leapfrog_map_growth(A, dt, S, VelocityHookMode::Replace).gamma;
   }
   return g;
 }

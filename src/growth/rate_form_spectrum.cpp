@@ -28,6 +28,30 @@ Eigen::MatrixXd block(const SparseMatrix<>& J, const std::vector<int>& rows, con
   return b;
 }
 
+/// The predictor-corrector's one-step map on (s, r), v = Q s, p = Q W r (rate_form_spectrum.hpp), from the blocks
+/// already restricted to the class: X, Jvx, K = Jvq Jqv, Jvv (m x m) and W (m x r, orthonormal).
+Eigen::MatrixXd reduced_predictor_corrector_map(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Jvx,
+                                                const Eigen::MatrixXd& K, const Eigen::MatrixXd& Jvv,
+                                                const Eigen::MatrixXd& W, double dt, PositionUpdate positions) {
+  const Eigen::Index m = X.rows(), r = W.cols();
+  // Each quantity as a matrix acting on z = (s, r).
+  Eigen::MatrixXd sel = Eigen::MatrixXd::Zero(m, m + r);  // v
+  sel.leftCols(m).setIdentity();
+  Eigen::MatrixXd p = Eigen::MatrixXd::Zero(m, m + r);  // p
+  p.rightCols(r) = W;
+  const Eigen::MatrixXd B = Jvx * X + K;
+  const Eigen::MatrixXd a0 = p + Jvv * sel;
+  const Eigen::MatrixXd vp = sel + dt * a0;
+  const Eigen::MatrixXd pp = p + dt * B * sel;  // p at the predictor without its dt^2/2 Jvx a0 part (added below)
+  const Eigen::MatrixXd a1 = pp + 0.5 * dt * dt * Jvx * a0 + Jvv * vp;
+  const Eigen::MatrixXd C = positions == PositionUpdate::Gms ? Eigen::MatrixXd(Jvx) : Eigen::MatrixXd(Jvx * X);
+  const Eigen::MatrixXd p1 = pp + 0.5 * dt * dt * (C + K) * a0;
+  Eigen::MatrixXd M(m + r, m + r);
+  M.topRows(m) = vp + 0.5 * dt * (a1 - a0);
+  M.bottomRows(r) = W.transpose() * p1;  // p1 lies in the range of W: the map is closed on (s, r)
+  return M;
+}
+
 }  // namespace
 
 template <int Dim>
@@ -49,12 +73,16 @@ RateFormSpectrum rate_form_spectrum(const RateFormScheme<Dim>& scheme, const Eig
     for (int c = 0; c < 1 + RateFormScheme<Dim>::kStress && scheme.density_offset(i) >= 0; ++c)
       iq.push_back(scheme.density_offset(i) + c);
   }
+  if (!(options.map_dt >= 0) || !std::isfinite(options.map_dt))
+    throw std::invalid_argument("rate_form_spectrum: map_dt must be finite and >= 0 (got " +
+                                format_number(options.map_dt) + ")");
   const long nv = static_cast<long>(iv.size());
   require_dense_memory(nv, 8, "rate_form_spectrum");
   RateFormSpectrum out;
   out.states = scheme.size();
-  const SparseMatrix<> J = jacobian(scheme, y);
-  if (!J.coeffs().allFinite()) {
+  ComplexStepJacobian jac(scheme);
+  const SparseMatrix<> J = jac.compute(y);
+  if (jac.info() != Status::Successful || !J.coeffs().allFinite()) {
     out.status = Status::NumericalIssue;
     out.reason = "non-finite Jacobian";
     return out;
@@ -72,13 +100,58 @@ RateFormSpectrum rate_form_spectrum(const RateFormScheme<Dim>& scheme, const Eig
   }
   const Eigen::MatrixXd Xv = block(J, ix, iv), Jvx = block(J, iv, ix);
   Eigen::MatrixXd Jvv = block(J, iv, iv);
-  Eigen::MatrixXd B = Jvx * Xv;
-  if (!iq.empty()) B += block(J, iv, iq) * block(J, iq, iv);
+  const Eigen::MatrixXd Jvq = iq.empty() ? Eigen::MatrixXd(nv, 0) : block(J, iv, iq);
+  const Eigen::MatrixXd K =
+      iq.empty() ? Eigen::MatrixXd(Eigen::MatrixXd::Zero(nv, nv)) : Eigen::MatrixXd(Jvq * block(J, iq, iv));
+  Eigen::MatrixXd B = Jvx * Xv + K;
+  const double rate = scheme.material().p_wave_speed() / scheme.discretisation().h;  // c_P / h: the scale of lambda
+  if (B.cwiseAbs().maxCoeff() <= 1e-10 * rate * rate && Jvv.cwiseAbs().maxCoeff() <= 1e-10 * rate) {
+    // Every particle's motion is decoupled from every other's and from its own displacement: no pair lies inside
+    // the kernel support (2h <= the spacing; at 2h = dx exactly, the rounding of the lattice positions leaves
+    // couplings ~1e-30 of c_P^2/h^2, while a real neighbour at 0.98 of the support already gives ~1e-3), so the
+    // "spectrum" is zeros for no physical reason (the same rule as the critical-load routes: NaN, numerical-issue).
+    out.status = Status::NumericalIssue;
+    out.lambda = {std::nan(""), std::nan("")};
+    out.reason = "no particle interacts with another: no neighbour inside the kernel support (2h = " +
+                 format_number(scheme.discretisation().kernel.support_radius(scheme.discretisation().h)) + ")";
+    return out;
+  }
   const Eigen::MatrixXd& Q = options.basis;
+  if (Q.size() && Q.rows() != nv)
+    throw std::invalid_argument("rate_form_spectrum: basis has " + std::to_string(Q.rows()) + " rows, expected " +
+                                std::to_string(nv) + " (free velocity DOFs)");
+  const bool leapfrog_map = options.map_dt > 0 && options.map_integrator == RateFormIntegrator::Leapfrog;
+  if (options.map_dt > 0 && !leapfrog_map) {  // the predictor-corrector's map, before B and Jvv are restricted below
+    const auto restrict = [&](const Eigen::MatrixXd& A) { return Q.size() ? Eigen::MatrixXd(Q.transpose() * A * Q) : A; };
+    Eigen::MatrixXd P(nv, Jvx.cols() + Jvq.cols());  // p = [Jvx Jvq] (x, q)
+    P << Jvx, Jvq;
+    if (Q.size()) P = Q.transpose() * P;
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(P);
+    qr.setThreshold(1e-12);
+    const Eigen::MatrixXd W = Eigen::MatrixXd(qr.householderQ()).leftCols(qr.rank());
+    const Eigen::MatrixXd Mr = reduced_predictor_corrector_map(restrict(Xv), restrict(Jvx), restrict(K),
+                                                               restrict(Jvv), W, options.map_dt, options.map_positions);
+    out.map_reduced = static_cast<int>(Mr.rows());
+    DenseGeneralEigen me = general_eigen(Mr, true);
+    if (me.status != Status::Successful) {
+      out.status = me.status;
+      out.reason = "dgeev failed on the reduced one-step map (info " + std::to_string(me.lapack_info) + ")";
+      return out;
+    }
+    Eigen::Index k = 0;
+    me.values.cwiseAbs().maxCoeff(&k);
+    out.map_spectral_radius = 1;  // the fixed directions (v = 0, p = 0)
+    out.map_eigenvalue = 1;
+    if (std::abs(me.values[k]) > 1) {
+      out.map_spectral_radius = std::abs(me.values[k]);
+      out.map_eigenvalue = me.values[k];
+      Eigen::VectorXcd v = me.vectors.col(k).head(Q.size() ? Q.cols() : nv);
+      if (Q.size()) v = Q.cast<std::complex<double>>() * v;
+      out.map_mode = real_mode_shape(v);
+    }
+    out.map_growth = std::log(out.map_spectral_radius) / options.map_dt;
+  }
   if (Q.size()) {  // restrict to the invariant subspace
-    if (Q.rows() != nv)
-      throw std::invalid_argument("rate_form_spectrum: basis has " + std::to_string(Q.rows()) + " rows, expected " +
-                                  std::to_string(nv) + " (free velocity DOFs)");
     const Eigen::MatrixXd BQ = B * Q, Bc = Q.transpose() * BQ;
     const double norm = std::max(B.norm(), 1e-300);
     out.invariance_residual = (BQ - Q * Bc).norm() / norm;
@@ -86,7 +159,9 @@ RateFormSpectrum rate_form_spectrum(const RateFormScheme<Dim>& scheme, const Eig
     Jvv = Q.transpose() * Jvv * Q;
   }
   const long m = B.rows();
-  const bool damped = Jvv.cwiseAbs().maxCoeff() > 0;
+  const bool damped = Jvv.size() > 0 && Jvv.cwiseAbs().maxCoeff() > 0;
+  if (leapfrog_map && damped)
+    out.map_reason = "the leap-frog map is reduced only without velocity-dependent rates at rest (Jvv = 0)";
   Eigen::MatrixXd M;
   if (damped) {
     M = Eigen::MatrixXd::Zero(2 * m, 2 * m);
@@ -97,7 +172,7 @@ RateFormSpectrum rate_form_spectrum(const RateFormScheme<Dim>& scheme, const Eig
     M = B;
   }
   out.reduced = static_cast<int>(M.rows());
-  const DenseGeneralEigen e = general_eigen(M, want_mode || options.mode_targets.size() > 0);
+  const DenseGeneralEigen e = general_eigen(M, want_mode || options.mode_targets.size() > 0 || leapfrog_map);
   if (e.status != Status::Successful) {
     out.status = e.status;
     out.reason = "dgeev failed (info " + std::to_string(e.lapack_info) + ")";
@@ -112,6 +187,24 @@ RateFormSpectrum rate_form_spectrum(const RateFormScheme<Dim>& scheme, const Eig
       const std::complex<double> s = std::sqrt(e.values[k]);
       out.eigenvalues[2 * k] = s;
       out.eigenvalues[2 * k + 1] = -s;
+    }
+  }
+  if (leapfrog_map && !damped) {  // z^2 - (2 + dt^2 mu) z + 1 = 0 for each mu in eig(B): the larger root
+    const double dt = options.map_dt;
+    out.map_spectral_radius = 1;
+    out.map_eigenvalue = 1;
+    out.map_reduced = static_cast<int>(m);
+    long arg = -1;
+    for (long k = 0; k < m; ++k) {
+      const std::complex<double> b = 2.0 + dt * dt * e.values[k], d = std::sqrt(b * b - 4.0);
+      for (const std::complex<double> z : {(b + d) / 2.0, (b - d) / 2.0})
+        if (std::abs(z) > out.map_spectral_radius) out.map_spectral_radius = std::abs(z), out.map_eigenvalue = z, arg = k;
+    }
+    out.map_growth = std::log(out.map_spectral_radius) / dt;
+    if (arg >= 0) {
+      Eigen::VectorXcd v = e.vectors.size() ? Eigen::VectorXcd(e.vectors.col(arg)) : Eigen::VectorXcd();
+      if (v.size() && Q.size()) v = Q.cast<std::complex<double>>() * v;
+      if (v.size()) out.map_mode = real_mode_shape(v);
     }
   }
   long best = 0;

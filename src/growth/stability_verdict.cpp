@@ -220,6 +220,49 @@ StabilityVerdict stability_verdict(const RateFormScheme<Dim>& scheme, const Eige
     throw std::invalid_argument(who + ": needs an elastic run on the scheme's own list (no yield stress, no skin)");
   const StateLayout layout = state_layout(scheme);
   const bool stepper = options.stepper_map || run.leapfrog_xsph > 0 || run.absorbing_half_step;
+  if (!(run.dt > 0) || !std::isfinite(run.dt))
+    throw std::invalid_argument(who + ": dt must be finite and > 0 (got " + format_number(run.dt) + ")");
+  bool at_rest = true;
+  for (int k : layout.velocity) at_rest = at_rest && y[k] == 0;
+  const bool reduced = at_rest && !stepper && !run.reuse_corrector_rate;
+  const std::string needs = ": a class basis needs the reduced route (a state at rest, the two-rate "
+                            "predictor-corrector or the leap-frog, no stepper-only option)";
+  if (options.basis.size() && !reduced) throw std::invalid_argument(who + needs);
+  RateFormSpectrum s;
+  if (reduced)
+    s = rate_form_spectrum(scheme, y,
+                           {.want_mode = true,
+                            .basis = options.basis,
+                            .map_dt = run.dt,
+                            .map_positions = run.positions,
+                            .map_integrator = run.integrator});
+  if (!s.map_reason.empty() && options.basis.size()) throw std::invalid_argument(who + needs + " (" + s.map_reason + ")");
+  if (reduced && s.map_reason.empty()) {
+    StabilityVerdict v;
+    v.integrator = rate_form_integrator_name(run);
+    v.dt = run.dt;
+    v.floor = options.floor;
+    v.map_route = "reduced";
+    if (s.status != Status::Successful) {
+      v.status = Status::NumericalIssue;
+      append_reason(v.reason, "rate_form_spectrum: " + s.reason);
+      return v;
+    }
+    v.semi_discrete_growth = s.growth_rate;
+    v.lambda = s.lambda;
+    v.lambda_max = s.eigenvalues.size() ? s.eigenvalues.cwiseAbs().maxCoeff() : 0.0;
+    if (s.growth_rate > v.floor) v.semi_discrete_mode.shape = s.mode;
+    v.map_spectral_radius = s.map_spectral_radius;
+    v.map_eigenvalue = s.map_eigenvalue;
+    v.map_growth = s.map_growth;
+    v.map_size = s.map_reduced;
+    if (v.map_growth > v.floor) v.map_mode.shape = s.map_mode;
+    finish(v);
+    const Discretisation<Dim>& d = scheme.discretisation();
+    locate(v.semi_discrete_mode, d, options.lattice);
+    locate(v.map_mode, d, options.lattice);
+    return v;
+  }
   const Eigen::Index nv = static_cast<Eigen::Index>(layout.velocity.size());
   const Eigen::Index nmap = run.integrator == RateFormIntegrator::Leapfrog ? y.size() + 2 * nv
                             : run.reuse_corrector_rate                     ? 2 * y.size()
@@ -231,8 +274,6 @@ StabilityVerdict stability_verdict(const RateFormScheme<Dim>& scheme, const Eige
   v.dt = run.dt;
   v.floor = options.floor;
   v.map_route = stepper ? "stepper" : "closed-form";
-  if (!(run.dt > 0) || !std::isfinite(run.dt))
-    throw std::invalid_argument(who + ": dt must be finite and > 0 (got " + format_number(run.dt) + ")");
   Eigen::MatrixXd M;
   ComplexStepJacobian jac(scheme);
   const Eigen::MatrixXd J(jac.compute(y));
@@ -243,18 +284,16 @@ StabilityVerdict stability_verdict(const RateFormScheme<Dim>& scheme, const Eige
   }
   M = stepper ? rate_form_step_matrix(scheme, y, run.dt, run, options.delta) : linear_step_map(J, layout, run);
 
-  bool at_rest = true;
-  for (int k : layout.velocity) at_rest = at_rest && y[k] == 0;
   if (at_rest) {  // the exact reduction: no Jordan blocks of the slaved density and stress (rate_form_spectrum.hpp)
-    const RateFormSpectrum s = rate_form_spectrum(scheme, y, {.want_mode = true});
-    if (s.status != Status::Successful) {
+    const RateFormSpectrum r = reduced ? s : rate_form_spectrum(scheme, y, {.want_mode = true});
+    if (r.status != Status::Successful) {
       v.status = Status::NumericalIssue;
-      append_reason(v.reason, "rate_form_spectrum: " + s.reason);
+      append_reason(v.reason, "rate_form_spectrum: " + r.reason);
     } else {
-      v.semi_discrete_growth = s.growth_rate;
-      v.lambda = s.lambda;
-      v.lambda_max = s.eigenvalues.size() ? s.eigenvalues.cwiseAbs().maxCoeff() : 0.0;
-      if (s.growth_rate > v.floor) v.semi_discrete_mode.shape = s.mode;
+      v.semi_discrete_growth = r.growth_rate;
+      v.lambda = r.lambda;
+      v.lambda_max = r.eigenvalues.size() ? r.eigenvalues.cwiseAbs().maxCoeff() : 0.0;
+      if (r.growth_rate > v.floor) v.semi_discrete_mode.shape = r.mode;
     }
   } else {
     dense_semi_discrete(v, J, layout);

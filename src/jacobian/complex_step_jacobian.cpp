@@ -1,5 +1,6 @@
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -8,16 +9,31 @@
 
 namespace sphstab {
 
+double complex_step_size(double step, double scale) {
+  if (!(scale > 0) || !std::isfinite(scale))
+    throw std::invalid_argument("complex_step_size: the variable scale must be finite and > 0 (got " +
+                                std::to_string(scale) + ")");
+  const double band = std::clamp(scale, 1e-12, 1e12);
+  return band == scale ? step : step * (scale / band);  // exactly `step` inside the band
+}
+
 ComplexStepJacobian::ComplexStepJacobian(const ForceFunction& force, ColouringStrategy strategy, double step)
     : m_force(&force), m_step(step) {
   m_pattern = force.dof_pattern();
   analyse(strategy, force.dofs(), "force");
+  m_column_step = Eigen::VectorXd::Constant(force.dofs(), m_step);
 }
 
 ComplexStepJacobian::ComplexStepJacobian(const SemiDiscreteSystem& system, ColouringStrategy strategy, double step)
     : m_system(&system), m_step(step) {
   m_pattern = system.pattern();
   analyse(strategy, system.size(), "system");
+  const Eigen::VectorXd scale = system.variable_scale();
+  if (scale.size() != system.size())
+    throw std::invalid_argument("ComplexStepJacobian: variable_scale() of " + system.name() + " has " +
+                                std::to_string(scale.size()) + " entries, expected " + std::to_string(system.size()));
+  m_column_step.resize(scale.size());
+  for (Eigen::Index k = 0; k < scale.size(); ++k) m_column_step[k] = complex_step_size(m_step, scale[k]);
 }
 
 void ComplexStepJacobian::analyse(ColouringStrategy strategy, int size, const char* who) {
@@ -66,10 +82,9 @@ SparseMatrix<> ComplexStepJacobian::compute(const Eigen::VectorXd& u, const Forc
 
   bool finite = true;
   const double sign = f ? -1.0 : 1.0;
-  const std::complex<double> ih(0.0, m_step);
   Eigen::VectorXcd uc = u.cast<std::complex<double>>(), a;
   for (const std::vector<int>& columns : m_columns_of_colour) {
-    for (int k : columns) uc[k] += ih;
+    for (int k : columns) uc[k] += std::complex<double>(0.0, m_column_step[k]);
     if (f)
       f->acceleration(uc, a);
     else
@@ -79,7 +94,7 @@ SparseMatrix<> ComplexStepJacobian::compute(const Eigen::VectorXd& u, const Forc
       for (long e = m_transpose.offsets[k]; e < m_transpose.offsets[k + 1]; ++e) {
         const std::complex<double> v = a[m_transpose.indices[e]];
         if (!std::isfinite(v.real()) || !std::isfinite(v.imag())) finite = false;
-        values[m_transpose_position[e]] = sign * v.imag() / m_step;  // A = -da/du, J = dF/dy
+        values[m_transpose_position[e]] = sign * v.imag() / m_column_step[k];  // A = -da/du, J = dF/dy
       }
     }
   }

@@ -18,6 +18,7 @@
 #include <limits>
 #include <mutex>
 #include <stdexcept>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -72,6 +73,7 @@ struct RingRun {
   std::string status;
   // Series, one entry per record (times in GMS units, velocities over c0, lengths over the length unit).
   std::vector<double> t, ke, dmin, vx0, vx1, sxx_max;
+  std::vector<double> dbody;  ///< closest distance between the rings' bodies (largest fragments)
   std::vector<int> frag_all, frag0, frag1, lost0, lost1;
   Eigen::VectorXd y_end;  ///< the state at the end
 };
@@ -82,20 +84,30 @@ RateFormMaterial si_material() { return RateFormMaterial::from_youngs(1e7, 0.397
 /// Smallest distance between a particle of ring 0 (indices [0, n)) and one of ring 1 ([n, 2n)), exact when below
 /// `band`; otherwise some value >= band (the candidates are the particles within `band` in x of the other ring's
 /// extent).
-double ring_distance(const Eigen::Matrix2Xd& x, int n, double band) {
+double ring_distance(const Eigen::Matrix2Xd& x, const std::vector<int>& left, const std::vector<int>& right,
+                     double band) {
   double max0 = -kInf, min1 = kInf;
-  for (int i = 0; i < n; ++i) max0 = std::max(max0, x(0, i));
-  for (int i = n; i < 2 * n; ++i) min1 = std::min(min1, x(0, i));
+  for (int i : left) max0 = std::max(max0, x(0, i));
+  for (int i : right) min1 = std::min(min1, x(0, i));
   std::vector<int> a, b;
-  for (int i = 0; i < n; ++i)
+  for (int i : left)
     if (x(0, i) >= min1 - band) a.push_back(i);
-  for (int i = n; i < 2 * n; ++i)
+  for (int i : right)
     if (x(0, i) <= max0 + band) b.push_back(i);
   if (a.empty() || b.empty()) return std::max(band, min1 - max0);
   double d2 = kInf;
   for (int i : a)
     for (int j : b) d2 = std::min(d2, (x.col(i) - x.col(j)).squaredNorm());
   return std::sqrt(d2);
+}
+
+/// The particles of a ring's largest fragment (its body: torn-off particles excluded), offset by `first`.
+std::vector<int> body(const Fragments& f, int first) {
+  const int big = static_cast<int>(std::max_element(f.sizes.begin(), f.sizes.end()) - f.sizes.begin());
+  std::vector<int> idx;
+  for (int i = 0; i < static_cast<int>(f.label.size()); ++i)
+    if (f.label[i] == big) idx.push_back(first + i);
+  return idx;
 }
 
 RingRun run_rings(const RingCase& c, const std::string& out) {
@@ -145,7 +157,11 @@ RingRun run_rings(const RingCase& c, const std::string& out) {
     }
     r.t.push_back(t / r.u.time());
     r.ke.push_back(scheme.kinetic_energy(y));
-    r.dmin.push_back(ring_distance(x, n, 2 * support) / r.u.length);
+    std::vector<int> ring0(n), ring1(n);
+    std::iota(ring0.begin(), ring0.end(), 0);
+    std::iota(ring1.begin(), ring1.end(), n);
+    r.dmin.push_back(ring_distance(x, ring0, ring1, 2 * support) / r.u.length);
+    r.dbody.push_back(ring_distance(x, body(f0, 0), body(f1, n), 2 * support) / r.u.length);
     r.vx0.push_back(v0 / r.u.speed);
     r.vx1.push_back(v1 / r.u.speed);
     r.sxx_max.push_back(smax / (mat.density * r.u.speed * r.u.speed));
@@ -168,10 +184,11 @@ RingRun run_rings(const RingCase& c, const std::string& out) {
   if (!frames.empty()) write_pvd(vtk_dir + "/" + c.tag + ".pvd", frames);
 
   std::ofstream csv(out + "/series/" + c.tag + ".csv");
-  csv << "t,kinetic,ring_distance,com_vx0,com_vx1,sigma_xx_max,fragments,fragments_ring0,fragments_ring1,"
-         "lost_ring0,lost_ring1\n";
+  csv << "t,kinetic,ring_distance,body_distance,com_vx0,com_vx1,sigma_xx_max,fragments,fragments_ring0,"
+         "fragments_ring1,lost_ring0,lost_ring1\n";
   for (std::size_t k = 0; k < r.t.size(); ++k)
     csv << csv_line({format_number(r.t[k], 8), format_number(r.ke[k], 8), format_number(r.dmin[k], 8),
+                     format_number(r.dbody[k], 8),
                      format_number(r.vx0[k], 8), format_number(r.vx1[k], 8), format_number(r.sxx_max[k], 8),
                      std::to_string(r.frag_all[k]), std::to_string(r.frag0[k]), std::to_string(r.frag1[k]),
                      std::to_string(r.lost0[k]), std::to_string(r.lost1[k])});
@@ -196,11 +213,17 @@ std::vector<RingRun> run_all(const std::vector<RingCase>& cases, const std::stri
   return runs;
 }
 
+/// A ring "breaks" when more of its particles than this share of the ring leave its largest fragment at some record;
+/// fewer are torn-off particles ("sheds"), not a fracture. 1 %: a torn-off particle or two at the contact (the
+/// reference integrator at dt/2 loses 2 of 2196 at eps = 0.3) stays below it, a fracture through the ring wall
+/// (eps = 0: more than 1000) is far above it. summary.md shows the counts, so the reader can apply any other line.
+constexpr double kBreakShare = 0.01;
+
 /// What a run measured, from its series.
 struct RingMeasures {
   double contact_first = kNaN, contact_last = kNaN;  ///< records with ring distance < 2h
   double touch_first = kNaN, touch_last = kNaN;      ///< records with ring distance < dp
-  bool separated = false;                            ///< the last record is out of contact (distance >= 2h)
+  bool separated = false;  ///< the last record has the rings' bodies out of contact (body distance >= 2h)
   double vx0_after = kNaN, vx1_after = kNaN, restitution = kNaN;
   int frag_all_end = 0, frag_all_max = 0, frag_ring_end = 0, frag_ring_max = 0, lost_end = 0, lost_max = 0;
   double ring_break_time = kNaN;  ///< first record with a ring in more than one fragment
@@ -226,7 +249,12 @@ RingMeasures measure(const RingRun& r) {
     m.lost_max = std::max(m.lost_max, std::max(r.lost0[k], r.lost1[k]));
   }
   if (r.t.empty()) return m;
-  m.separated = r.dmin.back() >= two_h && !std::isnan(m.contact_last);
+  // Separated: out of each other's support at the end. For intact rings (at most kBreakShare torn off) the distance
+  // of their bodies, the largest fragments, so that a torn-off particle left between them does not hold them
+  // together; for a broken ring every particle counts (its largest fragment is only part of it, the rest may be
+  // fused with the other ring).
+  const bool broken = m.lost_max > kBreakShare * r.per_ring;
+  m.separated = (broken ? r.dmin.back() : r.dbody.back()) >= two_h && !std::isnan(m.contact_last);
   if (m.separated) {  // no force between the rings after the last contact: the COM velocities are constant
     m.vx0_after = r.vx0.back();
     m.vx1_after = r.vx1.back();
@@ -240,10 +268,14 @@ RingMeasures measure(const RingRun& r) {
   return m;
 }
 
-/// The outcome in a few words (a table cell): a ring breaks, or intact and separated or not.
-std::string outcome(const RingMeasures& m) {
-  if (m.frag_ring_max > 1) return "a ring breaks (" + std::to_string(m.lost_end) + " particles lost)";
-  return m.separated ? "intact, separated" : "intact, not separated by t_end";
+bool breaks(const RingMeasures& m, int per_ring) { return m.lost_max > kBreakShare * per_ring; }
+
+/// The outcome in a few words (a table cell): a ring breaks, or intact (shedding a few particles or not) and
+/// separated or not.
+std::string outcome(const RingMeasures& m, int per_ring) {
+  if (breaks(m, per_ring)) return "a ring breaks (" + std::to_string(m.lost_end) + " particles lost)";
+  const std::string shed = m.lost_max > 0 ? " (sheds " + std::to_string(m.lost_max) + ")" : "";
+  return (m.separated ? "intact" + shed + ", separated" : "intact" + shed + ", not separated by t_end");
 }
 
 /// The in-plane n = 2 (ovalling) period of a thin ring of mean radius R and thickness t, plane strain:
@@ -443,7 +475,7 @@ int main(int argc, char** argv) try {
         s.set(k + "_restitution", m.restitution, 3);
         s.set(k + "_ke_end", m.ke_end_over_ke0, 3);
         s.set(k + "_sxx_max", m.sxx_max, 3);
-        s.set(k + "_outcome", outcome(m));
+        s.set(k + "_outcome", outcome(m, n_ring));
       }
       continue;
     }
@@ -492,19 +524,22 @@ int main(int argc, char** argv) try {
     s.set(k + "_cpu", r.cost.cpu, 3);
     s.set(k + "_steps", r.cost.steps);
     s.set(k + "_status", r.status);
-    s.set(k + "_outcome", outcome(m));
+    s.set(k + "_outcome", outcome(m, n_ring));
     s.set(k + "_vx_end", r.vx1.back(), 3);
     if (k == "eps0")
-      s.set("eps0_verdict", m.frag_ring_end > 1
+      s.set("eps0_verdict", breaks(m, n_ring)
                                 ? "**Reproduced**: the rings break (" + std::to_string(m.frag_ring_end) +
                                       " fragments in the more broken ring at the end, " + std::to_string(m.lost_end) +
                                       " of its " + std::to_string(n_ring) + " particles outside its largest fragment)"
-                                : "**Not reproduced**: no ring is in more than one fragment at the end");
+                                : "**Not reproduced**: no ring loses more than " + study::sig(100 * kBreakShare) +
+                                      " % of its particles");
     else
-      s.set("eps03_verdict", m.frag_ring_max == 1 && m.separated
-                                 ? "**Reproduced**: each ring stays in one fragment throughout, and the rings separate"
-                                 : std::string("**Not reproduced**: ") +
-                                       (m.frag_ring_max > 1 ? "a ring breaks" : "the rings do not separate by t_end"));
+      s.set("eps03_verdict",
+            !breaks(m, n_ring) && m.separated
+                ? "**Reproduced**: no ring loses more than " + study::sig(100 * kBreakShare) +
+                      " % of its particles (at most " + std::to_string(m.lost_max) + " torn off), and the rings separate"
+                : std::string("**Not reproduced**: ") +
+                      (breaks(m, n_ring) ? "a ring breaks" : "the rings do not separate by t_end"));
   }
   const RingRun& g = runs.front();
   const RingRun& si_run = run_of(true, 0.3, PairLoop::Rows);
@@ -533,6 +568,8 @@ int main(int argc, char** argv) try {
   s.set("cost_table", cost_table);
   s.set("particles", g.particles);
   s.set("per_ring", g.per_ring);
+  s.set("break_share_pct", 100 * kBreakShare, 3);
+  s.set("break_particles", static_cast<int>(kBreakShare * g.per_ring));
   s.set("dp", dp, 3);
   s.set("h", g.h, 3);
   s.set("gap", gap, 3);

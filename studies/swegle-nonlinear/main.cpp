@@ -2,7 +2,10 @@
 // (formulation, xi) the full-state linear growth rate (growth/rate_form_spectrum.hpp) is compared with the fitted
 // kinetic-energy growth of runs kicked at four amplitudes v0, with the GMS predictor-corrector and with Powell's
 // leap-frog (integrate/rate_form_run.hpp), and, for the predictor-corrector at the smallest kick, at dt and dt/2
-// (integrator-made growth falls as dt^3). See README.md; the prose of the summary is summary.md.in.
+// (integrator-made growth falls as dt^3). Each (formulation, xi, integrator, dt) gets its stability verdict
+// (growth/stability_verdict.hpp, in the mirror class the kick excites): S, U, I or B from the semi-discrete growth,
+// the integrator's one-step map growth and the run's detection floor. See README.md; the prose of the summary is
+// summary.md.in.
 //
 // Writes to --out DIR: runs.csv, summary.json. Units g, cm, us (stress in Mbar).
 #include <CLI/CLI.hpp>
@@ -11,6 +14,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -19,6 +23,7 @@
 #include "sphstab/growth/growth_fit.hpp"
 #include "sphstab/growth/mirror_symmetry.hpp"
 #include "sphstab/growth/rate_form_spectrum.hpp"
+#include "sphstab/growth/stability_verdict.hpp"
 #include "sphstab/integrate/rate_form_run.hpp"
 #include "sphstab/integrate/time_step.hpp"
 #include "sphstab/io/csv.hpp"
@@ -135,10 +140,18 @@ int main(int argc, char** argv) {
 
   std::ofstream runs_csv(out + "/runs.csv");
   runs_csv << "formulation,xi,v0,integrator,dt,gamma_linear,gamma_measured,grew,status,t_stop,ke_max_over_ke0,"
-              "gamma_linear_class,heun_excess,ratio,fit_r2,fit_t_begin,fit_t_end,gamma_bound,gamma_presaturation,"
-              "presaturation_t_end,wall\n";
+              "gamma_linear_class,gamma_map_class,verdict,floor,ratio,fit_r2,fit_t_begin,fit_t_end,gamma_bound,"
+              "gamma_presaturation,presaturation_t_end,wall\n";
+  const double floor = detection_floor(t_end, onset);  // the slowest growth the fit can see in t_end
+  const auto verdict = [&](const RateFormScheme<2>& scheme, RateFormIntegrator integrator, double step) {
+    const StabilityVerdict v = stability_verdict(scheme, scheme.uniform_state(), {.dt = step, .integrator = integrator},
+                                                 {.floor = floor, .basis = excited});
+    if (v.status != Status::Successful) throw std::runtime_error("verdict: " + v.reason);
+    return v;
+  };
   const auto write_row = [&](const std::string& form, double xi, double v0, RateFormIntegrator integrator,
-                             const RateFormSpectrum& all, const RateFormSpectrum& cls, const Measured& m) {
+                             const RateFormSpectrum& all, const RateFormSpectrum& cls, const StabilityVerdict& v,
+                             const Measured& m) {
     runs_csv << csv_line({form,
                           format_number(xi),
                           format_number(v0),
@@ -151,10 +164,9 @@ int main(int argc, char** argv) {
                           format_number(m.run.time, 6),
                           format_number(m.ke_max, 6),
                           format_number(cls.growth_rate, 8),
-                          format_number(integrator == RateFormIntegrator::PredictorCorrector
-                                            ? heun_excess_growth_rate(all.eigenvalues, m.run.dt)
-                                            : 0.0,
-                                        6),
+                          format_number(v.map_growth, 8),
+                          v.letter(),
+                          format_number(floor, 6),
                           format_number(m.fit.grew ? m.fit.gamma / all.growth_rate : NAN, 6),
                           format_number(m.fit.fit.r2, 8),
                           format_number(m.fit.fit.t_begin, 6),
@@ -166,7 +178,7 @@ int main(int argc, char** argv) {
     runs_csv.flush();
   };
 
-  std::string table, dt_table;
+  std::string table, dt_table, semi_list, integrator_list, stable_list, amplitude_list, low_r2;
   double wall_linear = 0, wall_runs = 0;
   for (const Formulation& form : formulations()) {
     for (double xi : xis) {
@@ -175,37 +187,74 @@ int main(int argc, char** argv) {
       auto tl = study::Clock::now();
       const RateFormSpectrum all = rate_form_spectrum(scheme, y_rest);
       const RateFormSpectrum cls = rate_form_spectrum(scheme, y_rest, {.basis = excited});
+      // The verdicts of the three (integrator, dt) the runs use, in the excited class.
+      const StabilityVerdict vpc = verdict(scheme, RateFormIntegrator::PredictorCorrector, dt);
+      const StabilityVerdict vlf = verdict(scheme, RateFormIntegrator::Leapfrog, dt);
+      const StabilityVerdict vhalf = verdict(scheme, RateFormIntegrator::PredictorCorrector, 0.5 * dt);
       wall_linear += study::seconds_since(tl);
-      std::vector<std::string> row{"**" + form.name + "**", study::fixed(xi, 2), study::sig(all.growth_rate, 4)};
-      double pc_small = NAN;
+      std::vector<std::string> row{"**" + form.name + "**", study::fixed(xi, 2), study::sig(all.growth_rate, 4),
+                                   vpc.letter() + " / " + vlf.letter()};
+      const std::string label = "`" + form.name + "` ξ = " + study::fixed(xi, 2);
+      std::map<RateFormIntegrator, std::map<double, Measured>> runs;
       for (RateFormIntegrator integrator : integrators)
         for (double v0 : v0s) {
           const Measured m = measure(scheme, v0, integrator, dt);
           wall_runs += m.wall;
-          write_row(form.name, xi, v0, integrator, all, cls, m);
-          if (integrator == RateFormIntegrator::PredictorCorrector && v0 == v0s.front()) pc_small = m.fit.gamma;
+          const StabilityVerdict& v = integrator == RateFormIntegrator::Leapfrog ? vlf : vpc;
+          write_row(form.name, xi, v0, integrator, all, cls, v, m);
           std::string cell = m.fit.grew ? study::sig(m.fit.gamma, 4) : "S";
           if (m.early.grew && (!m.fit.grew || std::abs(m.early.gamma / m.fit.gamma - 1) > 0.05))
             cell += " [" + study::sig(m.early.gamma, 4) + "]";
           if (m.status != "completed") cell += " (" + m.status + ")";
           row.push_back(cell);
+          if (m.fit.grew && m.fit.fit.r2 < 0.5)
+            low_r2 += "- " + label + ", " + integrator_name(integrator) + ", v0 = " + study::sig(v0, 1) + ": γ " +
+                      study::sig(m.fit.gamma, 3) + ", r² " + study::sig(m.fit.fit.r2, 2) + "\n";
           std::printf(
-              "%-12s xi %.2f %-19s v0 %.0e: gamma linear %.5g (class %.5g), measured %.5g (%s), pre-saturation %.5g, "
-              "%s t %.3g "
-              "(%.1f s)\n",
-              form.name.c_str(), xi, integrator_name(integrator).c_str(), v0, all.growth_rate, cls.growth_rate,
-              m.fit.gamma, m.fit.grew ? "grew" : "bounded", m.early.gamma, m.status.c_str(), m.run.time, m.wall);
+              "%-12s xi %.2f %-19s v0 %.0e: %s, gamma linear %.5g (class %.5g, map %.5g), measured %.5g (%s), "
+              "pre-saturation %.5g, %s t %.3g (%.1f s)\n",
+              form.name.c_str(), xi, integrator_name(integrator).c_str(), v0, v.letter().c_str(), all.growth_rate,
+              cls.growth_rate, v.map_growth, m.fit.gamma, m.fit.grew ? "grew" : "bounded", m.early.gamma,
+              m.status.c_str(), m.run.time, m.wall);
           std::fflush(stdout);
+          runs[integrator][v0] = m;
         }
       study::md_row(table, row);
       // dt dependence, predictor-corrector at the smallest kick: dt/2.
       const Measured half = measure(scheme, v0s.front(), RateFormIntegrator::PredictorCorrector, 0.5 * dt);
       wall_runs += half.wall;
-      write_row(form.name, xi, v0s.front(), RateFormIntegrator::PredictorCorrector, all, cls, half);
+      write_row(form.name, xi, v0s.front(), RateFormIntegrator::PredictorCorrector, all, cls, vhalf, half);
+      const Measured& pc = runs[RateFormIntegrator::PredictorCorrector][v0s.front()];
+      const Measured& lf = runs[RateFormIntegrator::Leapfrog][v0s.front()];
+      const auto measured = [](const Measured& m) {
+        return m.fit.grew ? study::sig(m.fit.gamma, 3) : "– (KE max " + study::sig(m.ke_max, 2) + " KE0)";
+      };
       study::md_row(dt_table, {"**" + form.name + "**", study::fixed(xi, 2), study::sig(all.growth_rate, 4),
-                               study::sig(pc_small, 4), study::sig(half.fit.gamma, 4),
-                               study::sig(heun_excess_growth_rate(all.eigenvalues, dt), 3),
-                               study::sig(heun_excess_growth_rate(all.eigenvalues, 0.5 * dt), 3)});
+                               study::sig(pc.fit.gamma, 4), study::sig(half.fit.gamma, 4),
+                               study::sig(vpc.map_growth, 3) + " " + vpc.letter(),
+                               study::sig(vhalf.map_growth, 3) + " " + vhalf.letter()});
+      // The verdict lists of the summary, from the classes and the smallest kick's runs.
+      const std::string runs_text = "measured PC " + measured(pc) + ", LF " + measured(lf) + ", PC at dt/2 " +
+                                    measured(half);
+      if (vpc.verdict == VerdictClass::SemiDiscrete || vpc.verdict == VerdictClass::Both)
+        semi_list += "- " + label + ": " + vpc.letter() + " (LF " + vlf.letter() + ", dt/2 " + vhalf.letter() +
+                     "), γ_J = " + study::sig(vpc.semi_discrete_growth, 4) + "; " + runs_text + "\n";
+      else if (vpc.verdict == VerdictClass::Integrator)
+        integrator_list += "- " + label + ": I at dt (γ_M = " + study::sig(vpc.map_growth, 3) + "), " +
+                           vhalf.letter() + " at dt/2 (γ_M = " + study::sig(vhalf.map_growth, 3) + "), LF " +
+                           vlf.letter() + "; " + runs_text + "\n";
+      else
+        stable_list += "- " + label + ": S (LF " + vlf.letter() + "); " + runs_text + "\n";
+      // Growth the verdict does not predict at the largest kick: amplitude-dependent.
+      for (RateFormIntegrator integrator : integrators) {
+        const Measured& big = runs[integrator][v0s.back()];
+        const StabilityVerdict& v = integrator == RateFormIntegrator::Leapfrog ? vlf : vpc;
+        if (big.fit.grew && !(v.map_growth > floor))
+          amplitude_list += "- " + label + ", " + integrator_name(integrator) + ", v0 = " +
+                            study::sig(v0s.back(), 1) + ": grew at " + study::sig(big.fit.gamma, 3) + " /µs (r² " +
+                            study::sig(big.fit.fit.r2, 2) + "), the map predicts " + v.letter() + "; " + big.status +
+                            " at t = " + study::sig(big.run.time, 3) + " µs\n";
+      }
       std::printf("%-12s xi %.2f dt/2: measured %.5g (%s)\n", form.name.c_str(), xi, half.fit.gamma,
                   half.fit.grew ? "grew" : "bounded");
     }
@@ -217,10 +266,11 @@ int main(int argc, char** argv) {
   std::ofstream size_csv(out + "/block_size.csv");
   size_csv << "formulation,xi,n,gamma_linear,lambda_imag\n";
   const std::vector<int> sizes = {9, 11, 13, 15, 17, 21};
-  std::string size_table;
+  std::string size_table, size_onsets;
   for (const Formulation& form : formulations())
     for (double xi : xis) {
       std::vector<std::string> row{"**" + form.name + "**", study::fixed(xi, 2)};
+      int last_neutral = 0, first_growing = 0, growing = 0;
       for (int m : sizes) {
         SwegleOptions sm = so;
         sm.n = m;
@@ -234,7 +284,25 @@ int main(int argc, char** argv) {
         size_csv << csv_line({form.name, format_number(xi), std::to_string(m), format_number(all.growth_rate, 8),
                               format_number(std::abs(all.lambda.imag()), 8)});
         row.push_back(grows ? study::sig(all.growth_rate, 3) : "0");
+        if (grows) {
+          ++growing;
+          if (!first_growing) first_growing = m;
+        } else {
+          last_neutral = m;
+        }
       }
+      const std::string who = "`" + form.name + "` ξ = " + study::fixed(xi, 2) + ": ";
+      const auto side = [](int m) { return std::to_string(m) + " × " + std::to_string(m); };
+      if (growing == static_cast<int>(sizes.size()))
+        size_onsets += "- " + who + "unstable at every size\n";
+      else if (growing == 0)
+        size_onsets += "- " + who + "neutral at every size\n";
+      else if (last_neutral < first_growing)
+        size_onsets += "- " + who + "neutral up to " + side(last_neutral) + ", unstable from " + side(first_growing) +
+                       "\n";
+      else
+        size_onsets += "- " + who + "neutral and unstable sizes interleave (" + std::to_string(growing) + " of " +
+                       std::to_string(sizes.size()) + " unstable)\n";
       study::md_row(size_table, row);
       std::printf("%-12s xi %.2f block sizes done (%.0f s)\n", form.name.c_str(), xi, study::seconds_since(t0));
       std::fflush(stdout);
@@ -242,6 +310,7 @@ int main(int argc, char** argv) {
 
   study::Summary s;
   s.set("size_table", size_table);
+  s.set("size_onsets", size_onsets);
   s.set("n", n);
   s.set("particles", disc->size());
   s.set("c_P", cp, 4);
@@ -251,6 +320,13 @@ int main(int argc, char** argv) {
   s.set("stop_growth", stop_growth, 3);
   s.set("table", table);
   s.set("dt_table", dt_table);
+  s.set("floor", floor, 3);
+  const auto list = [](const std::string& l) { return l.empty() ? std::string("- none\n") : l; };
+  s.set("semi_list", list(semi_list));
+  s.set("integrator_list", list(integrator_list));
+  s.set("stable_list", list(stable_list));
+  s.set("amplitude_list", list(amplitude_list));
+  s.set("low_r2_list", list(low_r2));
   s.set("wall_linear", wall_linear, 3);
   s.set("wall_runs", wall_runs, 3);
   s.set("wall_total", study::seconds_since(t0), 3);

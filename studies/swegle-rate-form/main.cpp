@@ -1,7 +1,9 @@
 // Study: the Swegle test as Powell ran it, with the rate-form scheme (forms/rate_form.hpp: continuity, equation of
 // state, Jaumann rate) instead of the additive pre-stress of the §3.3 model (studies/swegle). Each (formulation, xi)
 // gets its full-state linear growth rate (growth/rate_form_spectrum.hpp, in the mirror class the kick excites and
-// over all classes) and a nonlinear run (GMS predictor-corrector, integrate/rate_form_run.hpp) whose kinetic-energy
+// over all classes), its stability verdict (growth/stability_verdict.hpp: the semi-discrete growth of J and the
+// predictor-corrector's one-step map growth at the run's dt, in the excited class, against the run's detection floor:
+// S, U, I or B) and a nonlinear run (GMS predictor-corrector, integrate/rate_form_run.hpp) whose kinetic-energy
 // growth is fitted. See README.md; the prose of the summary is summary.md.in.
 //
 // Writes to --out DIR: runs.csv, ke.csv, summary.json. Units g, cm, us (stress in Mbar).
@@ -11,6 +13,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -18,6 +22,7 @@
 #include "sphstab/growth/growth_fit.hpp"
 #include "sphstab/growth/mirror_symmetry.hpp"
 #include "sphstab/growth/rate_form_spectrum.hpp"
+#include "sphstab/growth/stability_verdict.hpp"
 #include "sphstab/integrate/rate_form_run.hpp"
 #include "sphstab/integrate/time_step.hpp"
 #include "sphstab/io/csv.hpp"
@@ -73,7 +78,12 @@ std::vector<Formulation> formulations() {
        3}};
 }
 
-std::string verdict(bool unstable) { return unstable ? "U" : "S"; }
+/// One (formulation, xi) of the table: its verdict and its run.
+struct Cell {
+  std::string letter;
+  double gamma_j = NAN, gamma_m = NAN, measured = NAN;
+  bool grew = false;
+};
 
 }  // namespace
 
@@ -121,12 +131,15 @@ int main(int argc, char** argv) {
   runs_csv << "formulation,xi,density,pressure,gamma_linear_class,lambda_imag_class,gamma_linear_all,gamma_map_class,"
               "invariance_residual,structure_residual,equilibrium_residual,gamma_measured,grew,fit_t_begin,fit_t_end,"
               "fit_r2,ratio,"
-              "linear_verdict,measured_verdict,status,steps,t_stop,ke_max_over_ke0,wall_linear,wall_run,layer_supports,"
-              "particles\n";
+              "verdict,floor,integrator_excess,map_predicts_growth,status,steps,t_stop,ke_max_over_ke0,wall_linear,"
+              "wall_run,layer_supports,particles\n";
   ke_csv << "formulation,xi,t,kinetic\n";
   std::string table, ratios_table;
   double ratio_min = 1e300, ratio_max = -1e300, smooth_min = 1e300, smooth_max = -1e300, wall_linear = 0, wall_runs = 0;
   int agree = 0, cases = 0, comparable = 0;
+  std::map<std::string, int> classes;  // verdict letter -> count
+  std::map<std::string, std::map<double, Cell>> cells;  // formulation -> xi -> verdict and run
+  std::string disagreements;  // runs whose growth the map does not predict (or the reverse)
   double eq_res_max = 0;  // largest equilibrium residual over the kick's acceleration scale
   for (const Formulation& form : formulations()) {
     std::vector<std::string> row{"**" + form.name + "**"};
@@ -139,7 +152,7 @@ int main(int argc, char** argv) {
       auto tl = study::Clock::now();
       const RateFormSpectrum all = rate_form_spectrum(scheme, y);
       const RateFormSpectrum cls = rate_form_spectrum(scheme, y, {.basis = sc.excited});
-      const double w_lin = study::seconds_since(tl);
+      double w_lin = study::seconds_since(tl);
       wall_linear += w_lin;
       // Residual of the unkicked state against the accelerations the kick produces, v0 c_P / h (the kick changes
       // only the rates of x, rho and S at first, so its own immediate change of the accelerations is 0 at rest):
@@ -167,11 +180,25 @@ int main(int argc, char** argv) {
           fit_exponential_growth(run.times, run.kinetic_energy, ke0, run.times.back(), {.onset_factor = onset});
       double ke_max = 0;
       for (double e : run.kinetic_energy) ke_max = std::max(ke_max, e / ke0);
+      // The verdict at the run's dt (run_rate_form rounds dt to t_end / steps), in the excited class, at rest.
+      tl = study::Clock::now();
+      const StabilityVerdict v = stability_verdict(scheme, scheme.uniform_state(), {.dt = run.dt},
+                                                   {.floor = detect, .basis = sc.excited});
+      if (v.status != Status::Successful) throw std::runtime_error(form.name + ": verdict: " + v.reason);
+      w_lin += study::seconds_since(tl);
+      wall_linear += study::seconds_since(tl);
+      ++classes[v.letter()];
       const bool lin_unstable = cls.growth_rate > detect;
+      const bool map_unstable = v.map_growth > detect;  // what the run at this dt amplifies
       const bool measured_unstable = fit.grew;
       const double ratio = fit.grew && lin_unstable ? fit.gamma / cls.growth_rate : NAN;
       ++cases;
-      agree += lin_unstable == measured_unstable;
+      agree += map_unstable == measured_unstable;
+      cells[form.name][xi] = {v.letter(), v.semi_discrete_growth, v.map_growth, fit.gamma, fit.grew};
+      if (map_unstable != measured_unstable)
+        disagreements += "- `" + form.name + "`, ξ = " + study::sig(xi) + ": " + v.letter() + ", γ_J " +
+                         study::sig(v.semi_discrete_growth, 3) + ", γ_M " + study::sig(v.map_growth, 3) + " /µs; run " +
+                         (fit.grew ? "grew at " + study::sig(fit.gamma, 3) + " /µs" : "stayed below the window") + "\n";
       if (std::isfinite(ratio)) {
         ++comparable;
         ratio_min = std::min(ratio_min, ratio);
@@ -188,7 +215,7 @@ int main(int argc, char** argv) {
                             format_number(cls.growth_rate, 8),
                             format_number(std::abs(cls.lambda.imag()), 8),
                             format_number(all.growth_rate, 8),
-                            format_number(heun_growth_rate(cls.eigenvalues, dt), 8),
+                            format_number(v.map_growth, 8),
                             format_number(cls.invariance_residual, 3),
                             format_number(all.structure_residual, 3),
                             format_number(eq_res / kick_acc, 3),
@@ -198,8 +225,10 @@ int main(int argc, char** argv) {
                             format_number(fit.fit.t_end, 6),
                             format_number(fit.fit.r2, 8),
                             format_number(ratio, 6),
-                            verdict(lin_unstable),
-                            verdict(measured_unstable),
+                            v.letter(),
+                            format_number(detect, 6),
+                            format_number(v.integrator_excess, 6),
+                            map_unstable ? "1" : "0",
                             run_status_name(run.status),
                             std::to_string(run.steps),
                             format_number(run.time, 6),
@@ -208,10 +237,14 @@ int main(int argc, char** argv) {
                             format_number(w_run, 3),
                             std::to_string(form.layer_supports),
                             std::to_string(fdisc->size())});
-      row.push_back(measured_unstable ? "**U** " + study::sig(fit.gamma) : "S");
-      std::printf("%-9s xi %.2f: gamma linear %.4g (all %.4g), measured %.4g (%s), ratio %.3f, %s (%.1f + %.1f s)\n",
-                  form.name.c_str(), xi, cls.growth_rate, all.growth_rate, fit.gamma, fit.grew ? "grew" : "bounded",
-                  ratio, run.message.c_str(), w_lin, w_run);
+      // Class, then gamma_J / gamma_M, then the run's measured rate (or "-" when it stayed below the window).
+      const std::string letter = v.verdict == VerdictClass::Stable ? "S" : "**" + v.letter() + "**";
+      row.push_back(letter + " " + study::sig(std::max(v.semi_discrete_growth, 0.0), 2) + " / " +
+                    study::sig(std::max(v.map_growth, 0.0), 2) + " · " + (fit.grew ? study::sig(fit.gamma, 2) : "–"));
+      std::printf("%-9s xi %.2f: %s (J %.4g, map %.4g), all classes %.4g, measured %.4g (%s), ratio %.3f, %s "
+                  "(%.1f + %.1f s)\n",
+                  form.name.c_str(), xi, v.letter().c_str(), cls.growth_rate, v.map_growth, all.growth_rate, fit.gamma,
+                  fit.grew ? "grew" : "bounded", ratio, run.message.c_str(), w_lin, w_run);
       std::fflush(stdout);
       study::md_row(ratios_table, {form.name, study::fixed(xi, 2), study::sig(cls.growth_rate, 4),
                                    study::sig(all.growth_rate, 4), study::sig(fit.gamma, 4), study::fixed(ratio, 3)});
@@ -220,14 +253,14 @@ int main(int argc, char** argv) {
   }
 
   // Is the growth at xi = 1 (linearly neutral) made by the time integrator? Measured gamma versus dt, GMS positions
-  // and corrected (Heun) positions, against the Heun map's rate: an integrator-made growth falls as dt^3.
+  // and corrected (trapezoid) positions, against the one-step map's rate: an integrator-made growth falls as dt^3.
   std::ofstream dt_csv(out + "/dt_study.csv");
-  dt_csv << "formulation,xi,positions,dt,gamma_measured,gamma_map_class,grew\n";
+  dt_csv << "formulation,xi,positions,dt,t_end,gamma_measured,gamma_map_class,verdict,grew\n";
   std::string dt_table;
-  for (double scale : {1.0, 0.5}) {  // dt/2 grows 8x slower: run 4x longer to see it
+  std::map<std::string, double> dt_ratio;  // measured / map at the study's dt, per position update
+  for (double scale : {1.0, 0.5}) {  // the same t_end: at dt/2 the map grows 8x slower
     const RateFormScheme<2> scheme(disc, steel, {}, so.density);
     Eigen::VectorXd y = scheme.uniform_state();
-    const RateFormSpectrum cls = rate_form_spectrum(scheme, y, {.basis = excited});
     scheme.set_velocity(y, scene.centre, scene.v0.segment<2>(2 * disc->free_slot[scene.centre]));
     for (PositionUpdate pu : {PositionUpdate::Gms, PositionUpdate::Trapezoid}) {
       const RateFormRunResult run = run_rate_form(
@@ -235,17 +268,25 @@ int main(int argc, char** argv) {
           {.dt = scale * dt, .positions = pu, .t_end = t_end, .record_every = 10, .energy_growth = stop_growth});
       const ExponentialGrowthFit fit = fit_exponential_growth(run.times, run.kinetic_energy, run.kinetic_energy.front(),
                                                               run.times.back(), {.onset_factor = onset});
-      const double map = heun_growth_rate(cls.eigenvalues, run.dt);
+      // The exact one-step map of this position update (stability_verdict's reduced route), in the excited class.
+      const StabilityVerdict mv = stability_verdict(scheme, scheme.uniform_state(), {.dt = run.dt, .positions = pu},
+                                                    {.floor = detect, .basis = excited});
+      const double map = mv.map_growth;
+      if (scale == 1.0) dt_ratio[pu == PositionUpdate::Gms ? "gms" : "trapezoid"] = fit.grew ? fit.gamma / map : NAN;
       const std::string name = pu == PositionUpdate::Gms ? "gms" : "trapezoid";
-      dt_csv << csv_line({"sph", "1", name, format_number(run.dt, 8), format_number(fit.gamma, 8),
-                          format_number(map, 8), fit.grew ? "1" : "0"});
-      study::md_row(dt_table, {name, study::sig(run.dt, 4), study::sig(fit.gamma, 4), study::sig(map, 4)});
-      std::printf("dt study: %s dt %.4g: measured %.4g, Heun map %.4g\n", name.c_str(), run.dt, fit.gamma, map);
+      dt_csv << csv_line({"sph", "1", name, format_number(run.dt, 8), format_number(t_end, 6),
+                          format_number(fit.gamma, 8), format_number(map, 8), mv.letter(), fit.grew ? "1" : "0"});
+      study::md_row(dt_table, {name, study::sig(run.dt, 4), fit.grew ? study::sig(fit.gamma, 4) : "– (below the window)",
+                               study::sig(map, 4), mv.letter()});
+      std::printf("dt study: %s dt %.4g: measured %.4g, map %.4g (%s)\n", name.c_str(), run.dt, fit.gamma, map,
+                  mv.letter().c_str());
     }
   }
 
   study::Summary s;
   s.set("dt_table", dt_table);
+  s.set("dt_ratio_gms", dt_ratio["gms"], 3);
+  s.set("dt_ratio_trapezoid", dt_ratio["trapezoid"], 3);
   s.set("n", n);
   s.set("particles", disc->size());
   s.set("states", RateFormScheme<2>(disc, steel).size());
@@ -263,6 +304,52 @@ int main(int argc, char** argv) {
   s.set("stability_table", table);
   s.set("ratios_table", ratios_table);
   s.set("cases", cases);
+  s.set("disagreements", disagreements.empty() ? "- none" : disagreements);
+  // Per formulation, the class at each xi of one side of 1 (the rows of the statement table below).
+  const auto classes_of = [&](const std::string& name, int side) {
+    std::string t;
+    for (const auto& [xi, c] : cells.at(name))
+      if ((side > 0 && xi > 1) || (side < 0 && xi < 1))
+        t += (t.empty() ? "" : ", ") + study::sig(xi) + " " + c.letter;
+      else if (side == 0 && xi == 1)
+        t = c.letter;
+    return t;
+  };
+  for (const char* name : {"sph", "ncsph", "ncsph-xsph", "ncsph-anti", "cij", "ssph", "ssph-printed", "sph-xsph"}) {
+    s.set(std::string("tension_") + name, classes_of(name, 1));
+    s.set(std::string("compression_") + name, classes_of(name, -1));
+  }
+  for (const char* name : {"sph", "ncsph", "cij", "ssph", "sph-as", "sph-all"})
+    s.set(std::string("neutral_") + name, classes_of(name, 0));
+  // "lo–hi" at 2 significant digits, one value when both round alike, "–" for none.
+  const auto range = [](double lo, double hi) {
+    if (lo > hi) return std::string("–");
+    return study::sig(lo, 2) == study::sig(hi, 2) ? study::sig(lo, 2) : study::sig(lo, 2) + "–" + study::sig(hi, 2);
+  };
+  // The ratio of basic SPH's rate to the formulation's over the xi where both grow on one side of 1: gamma_J of
+  // both (linear), or the runs' measured rates (for the viscosity, whose switch the linearisation takes as off).
+  const auto cut = [&](const std::string& name, int side, bool measured) {
+    double lo = 1e300, hi = -1e300;
+    for (const auto& [xi, c] : cells.at(name)) {
+      const Cell& b = cells.at("sph").at(xi);
+      if ((side > 0) != (xi > 1) || xi == 1) continue;
+      const bool both = measured ? c.grew && b.grew : c.gamma_j > detect && b.gamma_j > detect;
+      if (!both) continue;
+      const double r = measured ? b.measured / c.measured : b.gamma_j / c.gamma_j;
+      lo = std::min(lo, r), hi = std::max(hi, r);
+    }
+    return range(lo, hi);
+  };
+  s.set("ssph_tension_cut", cut("ssph", 1, false));
+  s.set("xsph_tension_cut", cut("sph-xsph", 1, false));
+  s.set("xsph_compression_cut", cut("sph-xsph", -1, false));
+  s.set("visc_compression_cut", cut("sph-visc", -1, true));
+  double map_lo = 1e300, map_hi = -1e300;  // the integrator's rate where it alone grows
+  for (const auto& [name, row] : cells)
+    for (const auto& [xi, c] : row)
+      if (c.letter == "I") map_lo = std::min(map_lo, c.gamma_m), map_hi = std::max(map_hi, c.gamma_m);
+  s.set("integrator_rate_range", range(map_lo, map_hi));
+  for (const char* c : {"S", "U", "I", "B"}) s.set(std::string("class_") + c, classes[c]);
   s.set("agree", agree);
   s.set("comparable", comparable);
   s.set("ratio_min", comparable ? ratio_min : NAN, 3);

@@ -12,8 +12,16 @@ def unstable(row):
     return row["run_verdict"] != "bounded"
 
 
+def _class(gamma_j, gamma_m, floor):
+    """The rules of growth/stability_verdict.hpp (classify_verdict), written again here: S, U, I, B."""
+    if not gamma_j > floor:
+        return "I" if gamma_m > floor else "S"
+    return "B" if gamma_m - max(gamma_j, 0.0) > floor else "U"
+
+
 def claim_stability_table_is_runs_csv(r):
-    """Every S/U cell of the stability table is the run_verdict of the matching runs.csv row (11 x 7 runs)."""
+    """Every cell of the stability table is its runs.csv row (11 x 7 runs): the verdict class, then after '·' the
+    run: '–' exactly when the KE stayed bounded."""
     runs = r.csv("runs.csv")
     xis = [float(x) for x in r.key("xi_list").split(",")]
     table = md_table(r.key("stability_table"))
@@ -22,10 +30,30 @@ def claim_stability_table_is_runs_csv(r):
     for row in table:
         for xi, cell in zip(xis, row[1:]):
             run = one(runs, formulation=row[0], xi=xi)
-            said = cell.replace("**", "").split()[0]
-            check(said == ("U" if unstable(run) else "S"),
+            words = cell.replace("**", "").split()
+            check(words[0] == run["verdict"], f"{run.where()}: {row[0]} xi={xi} verdict {run['verdict']}, table {cell}")
+            shown = cell.split("·")[1].split()[0]
+            check((shown == "–") == (not unstable(run)) and (shown == "blow-up") == (
+                run["run_verdict"] == "blow-up" and run["grew"] == 0),
                   f"{run.where()}: {row[0]} xi={xi} run_verdict {run['run_verdict']}, table says {cell}")
-    return f"{len(runs)} verdicts match runs.csv"
+    return f"{len(runs)} cells match runs.csv"
+
+
+def claim_verdicts_follow_the_rules(r):
+    """Issue 31 part 1: each verdict is the class of its two rates against the floor (the detection limit of the
+    run); the switching surface has none. Leap-frog is symplectic, so no class I where the map is below its limit."""
+    floor = r.num("detect")
+    counts = {}
+    for x in r.csv("runs.csv"):
+        if x["verdict"] == "n/a":
+            check(x["linear_verdict"] == "switching surface" or not isinstance(x["verdict_gamma_m"], float)
+                  or math.isnan(x["verdict_gamma_m"]),
+                  f"{x.where()}: verdict n/a without a reason")
+            continue
+        want = _class(x["verdict_gamma_j"], x["verdict_gamma_m"], floor)
+        check(x["verdict"] == want, f"{x.where()}: verdict {x['verdict']}, the rules give {want}")
+        counts[want] = counts.get(want, 0) + 1
+    return ", ".join(f"{c} {n}" for c, n in sorted(counts.items()))
 
 
 def claim_verdict_classes(r):

@@ -29,6 +29,7 @@
 #include "sphstab/growth/growth_run.hpp"
 #include "sphstab/growth/linear_growth.hpp"
 #include "sphstab/growth/mirror_symmetry.hpp"
+#include "sphstab/growth/stability_verdict.hpp"
 #include "sphstab/growth/swegle_run.hpp"
 #include "sphstab/io/csv.hpp"
 #include "sphstab/io/run_output.hpp"
@@ -153,6 +154,7 @@ Linear analyse(const ForceFunction& f, const Eigen::VectorXd& u, const Classes& 
   L.colours = jac.colours();
   if (jac.info() != Status::Successful) return L;
   L.asymmetry = relative_asymmetry(As);
+  // gamma_map: the leap-frog's one-step map at dt, with XSPH as its velocity hook when the formulation smooths.
   const ClassGrowth g = class_growth(As, c.mirror, xsph ? c.S_dof : Eigen::MatrixXd(), dt);
   L.commutation = g.commutation;
   L.gamma_all = g.gamma_all;
@@ -182,6 +184,10 @@ struct Row {
   double ustar = kNaN;  ///< max |u*| / dx of the Newton equilibrium (out-of-equilibrium formulations)
   Linear lin, lin_star;
   double gamma_pred = kNaN;
+  /// The verdict (growth/stability_verdict.hpp's classes) in the excited class at the run's state: gamma_J of
+  /// u'' = a(u), gamma_M of the leap-frog map (with XSPH when the formulation smooths), against the floor.
+  std::string verdict = "n/a";
+  double gamma_j = kNaN, gamma_m = kNaN;
   GrowthRun run;
   double ratio = kNaN;
   std::string lin_verdict, run_verdict, agreement;
@@ -251,7 +257,7 @@ Row run_2d_case(const Formulation& f, double xi, const Config& c, const Classes&
     double ga = kNaN, gm = kNaN, ge = kNaN;
     if (eq.status == Status::Successful) {
       r.ustar = eq.u.cwiseAbs().maxCoeff() / dx;
-      r.lin_star = analyse(*force, eq.u, classes, true, dt);
+      r.lin_star = analyse(*force, eq.u, classes, f.xsph, dt);
       ge = r.lin_star.gamma_exc;
       gm = r.lin_star.gamma_map;
       ga = r.lin_star.gamma_all;
@@ -260,6 +266,13 @@ Row run_2d_case(const Formulation& f, double xi, const Config& c, const Classes&
       r.gamma_pred = kNaN;
     }
     eq_csv.row({f.name, xi, r.a0, r.newton, eq.iterations, eq.residual, r.ustar, r.lin.gamma_exc, ge, gm, ga});
+  }
+  {
+    const Linear& L = r.equilibrium ? r.lin : r.lin_star;
+    r.gamma_j = L.gamma_exc;
+    r.gamma_m = L.gamma_map;
+    if (std::isfinite(r.gamma_j) && std::isfinite(r.gamma_m) && !(f.switching && r.sigma0 == 0))
+      r.verdict = verdict_letter(classify_verdict(r.gamma_j, r.gamma_m, c.detect));
   }
   SwegleRunOptions ro;
   ro.t_end = c.t_end;
@@ -321,8 +334,9 @@ void write_runs_csv(const std::string& path, const std::vector<Row>& rows) {
   CsvWriter csv(path, {"formulation", "xsph", "xi", "prestrain", "sigma0", "a0_max", "in_equilibrium", "status",
                        "t_stop", "steps", "dt", "t_linear_end", "grew", "gamma_measured", "fit_t_begin", "fit_t_end",
                        "fit_r2", "ke_max_ratio", "gamma_bound", "gamma_late", "late_r2", "late_ratio",
-                       "gamma_linear_all", "gamma_linear_excited", "mu_excited_re", "mu_excited_im", "gamma_map_xsph",
-                       "gamma_predicted", "ratio", "linear_verdict", "run_verdict", "agreement", "commutation_error",
+                       "gamma_linear_all", "gamma_linear_excited", "mu_excited_re", "mu_excited_im", "gamma_map",
+                       "gamma_predicted", "ratio", "linear_verdict", "run_verdict", "agreement", "verdict",
+                       "verdict_gamma_j", "verdict_gamma_m", "commutation_error",
                        "asymmetry", "colours", "mode_kx", "mode_ky", "run_kx", "run_ky", "run_k_peak_fraction",
                        "run_x_share", "max_abs_ustar_over_dx", "wall_seconds"});
   for (const Row& r : rows)
@@ -331,7 +345,8 @@ void write_runs_csv(const std::string& path, const std::vector<Row>& rows) {
              r.run.fit.grew ? 1 : 0, r.run.fit.gamma, r.run.fit.fit.t_begin, r.run.fit.fit.t_end, r.run.fit.fit.r2,
              r.run.fit.max_ratio, r.run.fit.gamma_bound, r.run.fit.gamma_late, r.run.fit.late.r2, r.run.fit.late_ratio,
              r.lin.gamma_all, r.lin.gamma_exc, r.lin.mu_exc.real(), r.lin.mu_exc.imag(), r.lin.gamma_map,
-             r.gamma_pred, r.ratio, r.lin_verdict, r.run_verdict, r.agreement, r.lin.commutation, r.lin.asymmetry,
+             r.gamma_pred, r.ratio, r.lin_verdict, r.run_verdict, r.agreement, r.verdict, r.gamma_j, r.gamma_m,
+             r.lin.commutation, r.lin.asymmetry,
              r.lin.colours, r.k_mode.kx, r.k_mode.ky, r.k_run.kx, r.k_run.ky, r.k_run.peak, r.k_run.x_share, r.ustar,
              r.wall});
   // clang-format on
@@ -539,9 +554,18 @@ void summarise_2d_tables(study::Summary& s, const std::vector<Row>& rows, const 
       std::string cell, lin;
       if (r) {
         const bool late = r->run_verdict == "late growth";
-        cell = r->run_verdict == "bounded" ? "S" : "**U**";
-        if (r->run.fit.grew) cell += " " + sig(r->run.fit.gamma);
-        if (late) cell += " late " + sig(r->run.fit.gamma_late);
+        // Class, gamma_J / gamma_M, then the run: its measured rate, "late" growth, a blow-up without a fitted
+        // window, or "–" (bounded).
+        cell = (r->verdict == "S" || r->verdict == "n/a" ? r->verdict : "**" + r->verdict + "**") + " " +
+               sig(std::max(r->gamma_j, 0.0), 2) + " / " + sig(std::max(r->gamma_m, 0.0), 2) + " · ";
+        if (r->run.fit.grew)
+          cell += sig(r->run.fit.gamma, 2);
+        else if (late)
+          cell += "late " + sig(r->run.fit.gamma_late, 2);
+        else if (r->run.blew_up())
+          cell += "blow-up";
+        else
+          cell += "–";
         if (r->run.blew_up()) cell += " (t " + sig(r->run.t_stop) + ")";
         lin = sig(r->gamma_pred) + " / " + sig(late ? r->run.fit.gamma_late : r->run.fit.gamma) +
               (late ? " late" : "") + " (" + sig(r->ratio) + ")";

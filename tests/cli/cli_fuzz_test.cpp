@@ -174,6 +174,22 @@ TEST(CliFuzz, RunsThatCannotFinishAreRefusedBeforeTheyStart) {
   }
 }
 
+TEST(CliFuzz, KicksWhoseEnergyOverflowsAreRefused) {
+  // Issue 36: --kick 1e200 ran with an infinite kinetic energy from step 0 (exit 0). One error line naming the kick;
+  // a large but representable kick still runs.
+  for (const char* kick : {"1e200", "-1e160", "1e308"}) {
+    const std::vector<std::string> args = {"run", "--n", "5", "--t-end", "0.1", "--kick", kick};
+    const test::CliOutcome r = test::run_cli_in_child(args, scratch("kick"), kMemoryLimit, kTimeLimit);
+    EXPECT_EQ(r.exit_code, 1) << kick << "\nstderr: " << r.err;
+    EXPECT_NE(r.err.find("--kick"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("overflows"), std::string::npos) << r.err;
+  }
+  const test::CliOutcome ok =
+      test::run_cli_in_child({"run", "--n", "5", "--t-end", "0.1", "--kick", "1e100"}, scratch("kick"), kMemoryLimit,
+                             kTimeLimit);
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+}
+
 TEST(CliFuzz, NoNeighbourInsideTheSupportIsNanAndNumericalIssueOnEveryRoute) {
   for (const std::string c :
        {"tcrit --h 0.3", "tcrit --h 0.3 --form minus", "tcrit --h 0.3 --form plus --compression",

@@ -38,6 +38,35 @@ TEST(SpectrumCommand, GrowthRateInGmsUnits) {
   EXPECT_GE(t.numeric_column("mode_kx_over_pi")[0], 0.0);
 }
 
+// Issue 36: with no neighbour inside the support (2h = 0.6 dx, 1.0 dx) every particle is decoupled; the spectrum is
+// not "0, successful" but NaN with numerical-issue and the reason (README), exit 0; at h = 0.8 it is computed.
+// The same lattice at dx = 1e-40 and 1e58 gives the dx = 1 growth rate divided by dx (the complex step scales with
+// the positions, jacobian/complex_step_jacobian.hpp).
+TEST(SpectrumCommand, NoNeighbourIsNanAndScaleIsExact) {
+  const test::CliOutcome r = run({"spectrum", "--periodic", "--n", "6", "--h", "0.3,0.5,0.8"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const CsvTable t = read_csv(r.out_path);
+  ASSERT_EQ(t.rows.size(), 3u);
+  const auto gamma = t.numeric_column("growth_rate");
+  for (int k : {0, 1}) {
+    EXPECT_TRUE(std::isnan(gamma[k])) << k;
+    EXPECT_EQ(t.rows[k][t.column_index("status")], "numerical-issue");
+    EXPECT_NE(t.rows[k][t.column_index("reason")].find("kernel support"), std::string::npos);
+  }
+  EXPECT_EQ(t.rows[2][t.column_index("status")], "successful");
+  EXPECT_TRUE(std::isfinite(gamma[2]));
+  double at_one = 0;
+  for (const char* dx : {"1", "1e-40", "1e58"}) {
+    const test::CliOutcome s = run({"spectrum", "--periodic", "--n", "8", "--xi", "0.9", "--dx", dx});
+    ASSERT_EQ(s.exit_code, 0) << s.err;
+    const CsvTable u = read_csv(s.out_path);
+    const double scaled = u.numeric_column("growth_rate")[0] * std::stod(dx);
+    if (std::string(dx) == "1") at_one = scaled;
+    EXPECT_NEAR(scaled, at_one, 1e-10 * at_one) << "dx " << dx;
+    EXPECT_EQ(u.rows[0][u.column_index("mode_kx_over_pi")], "1") << "dx " << dx;  // the zone corner, as at dx = 1
+  }
+}
+
 TEST(SpectrumCommand, VerdictColumns) {
   // 1D periodic, GMS units (K = 1, mu = 0.3, rho0 = 1, dx = 1). Leap-frog at dt = 0.2 (below its limit): xi = 1 is
   // neutral (S), xi = 1.05 in tension grows (U, the map at the semi-discrete rate). The predictor-corrector at xi = 1:

@@ -2,7 +2,11 @@
 // the one of the initial velocity.
 #include "sphstab/growth/class_growth.hpp"
 
+#include "sphstab/integrate/time_step.hpp"
+
 #include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
 
 #include <cmath>
 #include <memory>
@@ -38,7 +42,7 @@ TEST(ClassGrowth, ClassesTogetherGiveTheWholeSpectrum) {
   EXPECT_LE(g.gamma_excited, g.gamma_all * (1 + 1e-12));
   EXPECT_NEAR(g.mode.norm(), 1.0, 1e-12);
   EXPECT_NEAR(class_share(c.symmetry, -1, 1, g.mode), 1.0, 1e-12);  // the mode lies in the excited class
-  EXPECT_TRUE(std::isnan(g.gamma_map));                             // no smoothing given
+  EXPECT_TRUE(std::isnan(g.gamma_map));                             // no dt given
 
   // With the identity as "smoothing" the leap-frog map of the class is the plain leap-frog map: its growth tends
   // to the excited class's gamma as dt -> 0.
@@ -46,6 +50,17 @@ TEST(ClassGrowth, ClassesTogetherGiveTheWholeSpectrum) {
   const ClassGrowth m = class_growth(A, c, identity, 1e-4 / std::sqrt(g.lambda_max));
   EXPECT_NEAR(m.gamma_map, g.gamma_excited, 1e-3 * g.gamma_excited);
   EXPECT_THROW(class_growth(A, c, identity, 0.0), std::invalid_argument);
+  // Without a smoothing and dt > 0: the plain leap-frog map, the same growth as with the identity hook, and, at a
+  // large dt, the closed form of leapfrog_growth_rate on the whole A's eigenvalues (the excited class holds the
+  // fastest mode here: gamma_excited = gamma_all).
+  const ClassGrowth plain = class_growth(A, c, {}, 1e-4 / std::sqrt(g.lambda_max));
+  EXPECT_NEAR(plain.gamma_map, m.gamma_map, 1e-12 * m.gamma_map);
+  ASSERT_NEAR(g.gamma_excited, g.gamma_all, 1e-12 * g.gamma_all);
+  const double dt = 0.5 / std::sqrt(g.lambda_max);
+  const Eigen::VectorXcd mu = Eigen::MatrixXd(A).eigenvalues();
+  const double closed = leapfrog_growth_rate(mu, dt);
+  EXPECT_NEAR(class_growth(A, c, {}, dt).gamma_map, closed, 1e-9 * closed);
+  EXPECT_THROW(class_growth(A, c, {}, -1.0), std::invalid_argument);
   EXPECT_THROW(class_growth(SparseMatrix<>(3, 3), c), std::invalid_argument);
 }
 

@@ -130,6 +130,23 @@ TEST(RateFormSpectrum, RefusesAMovingState) {
   EXPECT_THROW(rate_form_spectrum(scheme, y), std::invalid_argument);
 }
 
+// No neighbour inside the kernel support (2h = 0.6 dx < dx): every particle is decoupled, so the "spectrum" would be
+// all zeros and "stable"; it is NaN with numerical-issue and the reason, as on the critical-load routes (README).
+// With h = 0.8 (2h = 1.6 dx) the same lattice couples and is computed.
+TEST(RateFormSpectrum, NoNeighbourInsideTheSupportIsANumericalIssue) {
+  for (bool periodic : {true, false}) {
+    const auto disc = test::lattice_discretisation<2>({.n = 6, .h = 0.3, .periodic = periodic});
+    const RateFormScheme<2> scheme(disc, kGms, {}, 1.0 / 1.02);
+    const RateFormSpectrum r = rate_form_spectrum(scheme, scheme.uniform_state());
+    EXPECT_EQ(r.status, Status::NumericalIssue) << periodic;
+    EXPECT_TRUE(std::isnan(r.growth_rate));
+    EXPECT_NE(r.reason.find("kernel support"), std::string::npos) << r.reason;
+  }
+  const auto disc = test::lattice_discretisation<2>({.n = 6, .h = 0.8, .periodic = true});
+  const RateFormScheme<2> scheme(disc, kGms, {}, 1.0 / 1.02);
+  EXPECT_EQ(rate_form_spectrum(scheme, scheme.uniform_state()).status, Status::Successful);
+}
+
 /// Convergence order of the final state at t = 2 (wave packet on a periodic lattice) against a dt/8 reference.
 double observed_order(const RateFormOptions& o, PositionUpdate positions) {
   const auto disc = test::lattice_discretisation<2>({.n = 8, .h = 1.3, .periodic = true});

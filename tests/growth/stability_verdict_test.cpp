@@ -9,7 +9,10 @@
 #include <string>
 
 #include "../forms/forms_fixture.hpp"
+#include "sphstab/growth/mirror_symmetry.hpp"
 #include "sphstab/growth/rate_form_spectrum.hpp"
+#include "sphstab/jacobian/complex_step_jacobian.hpp"
+#include "sphstab/problems/swegle.hpp"
 #include "sphstab/spectral/rate_form_symbol.hpp"
 
 namespace sphstab {
@@ -69,8 +72,8 @@ TEST(StabilityVerdict, NeutralSpectrumUnderThePredictorCorrectorIsIntegratorOnly
     const StabilityVerdict v = stability_verdict(scheme, y, pc(dts[k]), {.floor = floor});
     ASSERT_EQ(v.status, Status::Successful) << v.reason;
     EXPECT_EQ(v.verdict, VerdictClass::Integrator) << v.letter();
-    EXPECT_EQ(v.map_route, "closed-form");
-    EXPECT_EQ(v.map_size, scheme.size());
+    EXPECT_EQ(v.map_route, "reduced");  // at rest, two rates per step
+    EXPECT_LE(v.map_size, 2 * disc->dofs());
     EXPECT_NEAR(v.map_growth, heun_growth(omega, dts[k]), 1e-6 * heun_growth(omega, dts[k]));
     EXPECT_NEAR(v.lambda_max, omega, 1e-12 * omega);
     EXPECT_LE(v.semi_discrete_growth, v.resolution);
@@ -87,6 +90,85 @@ TEST(StabilityVerdict, NeutralSpectrumUnderThePredictorCorrectorIsIntegratorOnly
   const StabilityVerdict w = stability_verdict(scheme, y, pc(dts[1]), {.floor = g[1] / 10, .stepper_map = true});
   EXPECT_EQ(w.map_route, "stepper");
   EXPECT_NEAR(w.map_growth, g[1], 1e-4 * g[1]);
+}
+
+// The reduced route (the map on (v, p) of rate_form_spectrum.hpp, no dense J or M) against the closed-form dense map
+// of the whole J (linear_step_map.hpp, through the J overload): a 5 x 5 Swegle block (one fixed layer) in tension and
+// in compression, with every term that enters J at rest (XSPH, the viscosity's linear part, artificial stress,
+// summation continuity), both position updates. Then the four mirror classes of the block: the largest class rate is
+// the whole block's rate, for both J and M (the classes partition the motion).
+TEST(StabilityVerdict, ReducedRouteEqualsTheDenseMapOfTheWholeJacobian) {
+  SwegleOptions so;
+  so.n = 5;
+  const RateFormMaterial steel = RateFormMaterial::from_youngs(so.youngs_modulus, so.poisson_ratio, so.density);
+  const SwegleScene scene = make_swegle_scene(so);
+  const auto& d = scene.discretisation;
+  Eigen::VectorXd pos(2 * d->free_count());
+  for (int f = 0; f < d->free_count(); ++f) pos.segment<2>(2 * f) = d->particles.x.row(d->free[f]).transpose();
+  const MirrorSymmetry mirror =
+      mirror_symmetry(pos, d->particles.x.row(scene.centre).transpose(), 1e-9 * so.spacing);
+  const double dt = 0.3 * scene.h / steel.p_wave_speed();
+  int compared = 0;
+  for (double xi : {1.03, 0.97})
+    for (const RateFormOptions& o :
+         {RateFormOptions{}, RateFormOptions{.xsph = 0.5, .viscosity = ViscositySwitch::Always, .artificial_stress = 0.3},
+          RateFormOptions{.continuity = ContinuityForm::Divergence, .gradient = RateFormGradient::Ncsph}})
+      for (int integrator = 0; integrator < 3; ++integrator) {  // PC with Gms and trapezoid positions, leap-frog
+        const PositionUpdate positions = integrator == 1 ? PositionUpdate::Trapezoid : PositionUpdate::Gms;
+        const RateFormScheme<2> scheme(d, steel, o, so.density / xi);
+        const Eigen::VectorXd y = scheme.uniform_state();
+        const RateFormRunOptions run{
+            .dt = dt,
+            .positions = positions,
+            .integrator = integrator == 2 ? RateFormIntegrator::Leapfrog : RateFormIntegrator::PredictorCorrector};
+        if (integrator == 2 && o.viscosity == ViscositySwitch::Always) {  // Jvv != 0: the dense map, no class
+          EXPECT_EQ(stability_verdict(scheme, y, run, {.floor = 1e-5 / dt}).map_route, "closed-form");
+          EXPECT_THROW(stability_verdict(scheme, y, run, {.floor = 1, .basis = symmetry_basis(mirror, -1, 1)}),
+                       std::invalid_argument);
+          continue;
+        }
+        const double floor = 1e-5 / dt;
+        const StabilityVerdict red = stability_verdict(scheme, y, run, {.floor = floor});
+        ASSERT_EQ(red.status, Status::Successful) << red.reason;
+        EXPECT_EQ(red.map_route, "reduced");
+        ComplexStepJacobian jac(scheme);
+        const Eigen::MatrixXd J(jac.compute(y));
+        const StabilityVerdict dense = stability_verdict(J, state_layout(scheme), run, floor);
+        ASSERT_EQ(dense.status, Status::Successful) << dense.reason;
+        const std::string what = "xi " + std::to_string(xi) + " xsph " + std::to_string(o.xsph) + " " +
+                                 rate_form_integrator_name(run) +
+                                 (positions == PositionUpdate::Gms ? " gms" : " trapezoid");
+        EXPECT_LT(red.map_size, scheme.size()) << what;
+        // Rates from different eigenproblems: rounding ~1e-13 in rho, i.e. ~1e-13 / dt in the growth.
+        EXPECT_NEAR(red.map_growth, dense.map_growth, 1e-10 / dt + 1e-8 * std::abs(dense.map_growth)) << what;
+        // The reduction's gamma_J is max Re over the non-zero spectrum (rate_form_spectrum.hpp), the dense one's also
+        // sees the slaved density and stress's zero eigenvalues: equal where either grows, both <= 0 otherwise
+        // (the viscosity damps every non-zero mode: -0.31 against +3e-14).
+        EXPECT_NEAR(std::max(red.semi_discrete_growth, 0.0), std::max(dense.semi_discrete_growth, 0.0),
+                    1e-7 * dense.lambda_max)
+            << what;
+        EXPECT_EQ(red.verdict, dense.verdict) << what << ": " << red.letter() << " vs " << dense.letter();
+        double class_map = -1e300, class_semi = -1e300;
+        for (int px : {-1, 1})
+          for (int py : {-1, 1}) {
+            const StabilityVerdict c =
+                stability_verdict(scheme, y, run, {.floor = floor, .basis = symmetry_basis(mirror, px, py)});
+            ASSERT_EQ(c.status, Status::Successful) << c.reason;
+            class_map = std::max(class_map, c.map_growth);
+            class_semi = std::max(class_semi, c.semi_discrete_growth);
+          }
+        EXPECT_NEAR(class_map, red.map_growth, 1e-10 / dt + 1e-8 * std::abs(red.map_growth)) << what;
+        EXPECT_NEAR(std::max(class_semi, 0.0), std::max(red.semi_discrete_growth, 0.0), 1e-7 * red.lambda_max) << what;
+        std::printf("%s: map growth reduced %.9e dense %.9e classes %.9e; J %.4e; %s\n", what.c_str(), red.map_growth,
+                    dense.map_growth, class_map, red.semi_discrete_growth, red.letter().c_str());
+        ++compared;
+      }
+  EXPECT_EQ(compared, 16);
+  // A basis off the reduced route is refused (PC1 carries the rate: its map is not reduced).
+  const RateFormScheme<2> scheme(d, steel, {}, so.density);
+  EXPECT_THROW(stability_verdict(scheme, scheme.uniform_state(), pc1(dt),
+                                 {.floor = 1, .basis = symmetry_basis(mirror, -1, 1)}),
+               std::invalid_argument);
 }
 
 // PC1 carries the rate: the map on (y, F^0) is twice as large and, on an undamped first-order oscillation, its root
@@ -179,7 +261,13 @@ TEST(StabilityVerdict, TensionOnASquareLatticeUnderTheLeapfrog) {
   ASSERT_EQ(v.status, Status::Successful) << v.reason;
   EXPECT_EQ(v.verdict, VerdictClass::SemiDiscrete) << v.letter();
   EXPECT_NEAR(v.semi_discrete_growth, 0.1868, 2e-4);
-  EXPECT_EQ(v.map_size, scheme.size() + 2 * disc->dofs());
+  EXPECT_EQ(v.map_route, "reduced");  // at rest, no viscosity: from the eigenvalues of B
+  EXPECT_EQ(v.map_size, disc->dofs());
+  // The stepper's own map by central differences (size + 2 dofs): the same growth.
+  const StabilityVerdict w =
+      stability_verdict(scheme, y, leapfrog(0.5 / omega), {.floor = 0.01, .stepper_map = true});
+  EXPECT_EQ(w.map_size, scheme.size() + 2 * disc->dofs());
+  EXPECT_NEAR(w.map_growth, v.map_growth, 1e-6 * v.map_growth);
   for (const VerdictMode* m : {&v.semi_discrete_mode, &v.map_mode}) {
     EXPECT_EQ(m->shape.size(), disc->dofs());
     EXPECT_GE(m->kx_over_pi, 0.0);

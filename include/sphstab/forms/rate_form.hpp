@@ -199,6 +199,8 @@ class RateFormScheme final : public SemiDiscreteSystem {
   void rate(const Eigen::VectorXd& y, Eigen::VectorXd& dydt) const override;
   void rate(const Eigen::VectorXcd& y, Eigen::VectorXcd& dydt) const override;
   SparsityPattern pattern() const override;
+  /// Positions: the smoothing length; velocities: c_P; densities: the reference density; stresses: the bulk modulus.
+  Eigen::VectorXd variable_scale() const override;
 
   /// The uniform state: initial positions, v = 0, the initial density and deviator on every particle. At a complete
   /// lattice (fixed layers or periodic) it is an equilibrium: F = 0 to rounding.

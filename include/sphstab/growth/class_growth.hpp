@@ -33,14 +33,15 @@ struct ClassGrowth {
   std::complex<double> mu_all{nan, nan};
   double gamma_excited = nan;  ///< the same in the excited class
   std::complex<double> mu_excited{nan, nan};
-  double gamma_map = nan;    ///< log(spectral radius)/dt of the leap-frog map with the smoothing (excited class)
+  double gamma_map = nan;    ///< log(spectral radius)/dt of the leap-frog map (excited class; dt > 0)
   double lambda_max = nan;   ///< max |mu| over all classes
   double commutation = nan;  ///< commutation_error of A with the reflections
   Eigen::VectorXd mode;      ///< fastest mode of the excited class (full DOFs, unit norm)
 };
 
-/// Class-by-class growth of A (dofs = 2n). With a smoothing S (dofs x dofs, XSPH (x) I_2) and dt > 0, gamma_map is
-/// computed too (Replace mode). If A does not commute with the reflections (error >= 1e-10), the whole spectrum is
+/// Class-by-class growth of A (dofs = 2n). With dt > 0, gamma_map is computed too: the leap-frog map with the
+/// smoothing S (dofs x dofs, XSPH (x) I_2) as its velocity hook (Replace mode), or without one (S = I) when none is
+/// given. If A does not commute with the reflections (error >= 1e-10), the whole spectrum is
 /// used instead and the class information is that of the whole space. Throws std::invalid_argument for size
 /// mismatches.
 ClassGrowth class_growth(const SparseMatrix<>& A, const MirrorClasses& classes, const Eigen::MatrixXd& smoothing = {},

@@ -14,6 +14,23 @@
 /// and stress add one zero eigenvalue per stored component (their perturbations are slaved to the motion), which
 /// the reduction leaves out; a 21 x 21 block (4264 states) becomes an 882 x 882 problem.
 ///
+/// **The predictor-corrector's one-step map, reduced the same way** (map_dt > 0). With a0 = p + Jvv v the
+/// acceleration, p = Jvx x + Jvq q its elastic part and K = Jvq Jqv, the map M of integrate/linear_step_map.hpp
+/// (GMS (6.14)-(6.18): x_p = x + dt X v + dt^2/2 a0, q_p = q + dt Jqv v, v_p = v + dt a0, corrector on v and q; x
+/// not corrected, or by the trapezoid) acts on (v, p) as
+///     v1 = v_p + dt/2 (a1 - a0),   a1 = p + dt B v + dt^2/2 Jvx a0 + Jvv v_p,
+///     p1 = p + dt B v + dt^2/2 (Jvx C + K) a0,   C = I (Gms positions) or X (Trapezoid),
+/// and leaves every direction with v = 0 and p = 0 fixed. p is confined to the range of [Jvx Jvq] (an orthonormal
+/// basis of it, by column-pivoted QR, keeps the reduced map free of directions no state reaches), so
+///     rho(M) = max(1, rho(M_red)),   M_red of size nv + rank([Jvx Jvq]),
+/// exactly: the eigenvalue 1 is that of the fixed directions. 21 x 21 block: 882 + 882 instead of 4264 states.
+/// **The staggered leap-frog's map** (map_integrator = Leapfrog, [Powell2012, algorithm 1.1]): at rest without
+/// velocity-dependent rates (Jvv = 0) it is v^{n+3/2} - 2 v^{n+1/2} + v^{n-1/2} = dt^2 B v^{n+1/2}
+/// (integrate/linear_step_map.hpp), so each eigenvalue mu of B gives the two roots of z^2 - (2 + dt^2 mu) z + 1 = 0 and
+/// rho(M) = max(1, max |z|). With Jvv != 0 (a viscosity that acts at rest) it is not reduced: the map fields stay NaN
+/// and `map_reason` says why (growth/stability_verdict.hpp then takes the dense map).
+/// tests/growth/stability_verdict_test.cpp compares both with the dense maps of the whole J.
+///
 /// Non-smooth terms are linearised as their branch at rest: the viscosity's compression switch (v_ij . r_ij < 0) is
 /// off (complex step takes the branch of the real part), the artificial stress keeps the tensile/compressive split of
 /// the uniform stress (smooth unless a principal stress is 0, i.e. at xi = 1 with S = 0).
@@ -24,6 +41,7 @@
 
 #include "sphstab/core/status.hpp"
 #include "sphstab/forms/rate_form.hpp"
+#include "sphstab/integrate/rate_form_run.hpp"
 
 namespace sphstab {
 
@@ -36,6 +54,12 @@ struct RateFormSpectrumOptions {
   /// Eigenvalues of J to return the modes of (the nearest eigenvalue to each, in `modes`); empty: none. E.g. the
   /// lowest vibration modes of a structure, to identify the one a run excites.
   Eigen::VectorXcd mode_targets = {};
+  /// > 0: also the predictor-corrector's one-step map (two rate evaluations per step) at this dt, reduced as above
+  /// (in the class of `basis` when one is given). 0: not computed.
+  double map_dt = 0;
+  PositionUpdate map_positions = PositionUpdate::Gms;  ///< the corrector's position update (rate_form_run.hpp)
+  /// The integrator of the map: the two-rate predictor-corrector or the staggered leap-frog (not PC1).
+  RateFormIntegrator map_integrator = RateFormIntegrator::PredictorCorrector;
 };
 
 struct RateFormSpectrum {
@@ -50,6 +74,15 @@ struct RateFormSpectrum {
   int reduced = 0;                    ///< size of the reduced eigenproblem
   double structure_residual = nan;    ///< max |zero blocks| / max |J|: the reduction's precondition (~1e-16)
   double invariance_residual = nan;   ///< with a basis: ||B Q - Q Q^T B Q||_F / ||B||_F (~1e-16 for a true class)
+  /// With map_dt > 0: rho(M) = max(1, rho(M_red)), its eigenvalue (1 when the fixed directions attain it), the growth
+  /// ln rho / map_dt, the size of M_red, and the velocity shape of the dominant eigenvector (free DOFs interleaved;
+  /// empty when rho = 1 is attained by the fixed directions).
+  double map_spectral_radius = nan;
+  std::complex<double> map_eigenvalue{nan, nan};
+  double map_growth = nan;
+  int map_reduced = 0;
+  Eigen::VectorXd map_mode;
+  std::string map_reason;  ///< why the map was not reduced (leap-frog with Jvv != 0); empty otherwise
   Status status = Status::NotComputed;
   std::string reason;
   Status info() const { return status; }

@@ -119,16 +119,26 @@ struct StabilityVerdictOptions {
   /// options that act outside F (leapfrog_xsph, absorbing_half_step) always take the stepper.
   bool stepper_map = false;
   double delta = 1e-7;  ///< the stepper's central-difference increment
+  /// Optional orthonormal columns (free velocity DOFs x m) spanning an invariant class of the motion, e.g. the mirror
+  /// class a kick excites (growth/mirror_symmetry.hpp): both rates are then those of the modes in that class. Needs
+  /// the reduced route (below).
+  Eigen::MatrixXd basis = {};
 };
 
 /// The verdict of `scheme` at state y (size scheme.size(); F(y) ~ 0 for the linearisation to describe small
 /// perturbations, as at the uniform_state of a complete lattice) for the integrator `run` selects (integrator,
 /// reuse_corrector_rate, positions, leapfrog_xsph, absorbing_half_step) at dt = run.dt (pass the run's dt:
-/// run_rate_form reduces it to t_end / ceil(t_end / dt)). J by coloured complex step; gamma_J by the exact reduction at
-/// rest (all velocities 0), else dense eigenvalues of J; M dense (see above). Cost: dense eigenvalues of J (or of the
-/// reduction) and of M, size(M) = size, 2 size (pc1) or size + 2 dofs (leap-frog): memory is checked first.
+/// run_rate_form reduces it to t_end / ceil(t_end / dt)). Two routes (map_route):
+///   "reduced"      at rest (all velocities 0) with the two-rate predictor-corrector (either position update), or
+///                  the leap-frog without velocity-dependent rates at rest, and no stepper-only option: both rates
+///                  from the exact reduction of growth/rate_form_spectrum.hpp (PC: rho = max(1, rho(M_red)), M_red of
+///                  size dofs + rank[Jvx Jvq]; leap-frog: from the eigenvalues of B); no dense J or M. A basis
+///                  restricts both to its class. A 21 x 21 Swegle block: eigenproblems of ~900 and ~1800.
+///   "closed-form" / "stepper"  otherwise: J by coloured complex step, gamma_J by the exact reduction at rest, else
+///                  dense eigenvalues of J; M dense (see above), size(M) = size, 2 size (pc1) or size + 2 dofs
+///                  (leap-frog): memory is checked first. A basis is refused here.
 /// Throws std::invalid_argument("stability_verdict: ...") for a state of the wrong size, options run_rate_form
-/// rejects, a yield stress or neighbour skin, or a floor that is not finite and > 0; a non-finite J or M, a failed
+/// rejects, a yield stress or neighbour skin, a floor that is not finite and > 0, or a basis off the reduced route; a non-finite J or M, a failed
 /// eigensolver, or a floor below the resolution is a status (NumericalIssue) with the reason.
 template <int Dim>
 StabilityVerdict stability_verdict(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y,

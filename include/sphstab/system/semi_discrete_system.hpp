@@ -32,6 +32,10 @@ class SemiDiscreteSystem {
   virtual void rate(const Eigen::VectorXcd& y, Eigen::VectorXcd& dydt) const = 0;
   /// A superset of the nonzero pattern of dF/dy (size() x size()).
   virtual SparsityPattern pattern() const = 0;
+  /// Per entry of y, a magnitude it varies on (a position: a length of the discretisation; a density: rho0; ...).
+  /// Derivative steps scale with it (jacobian/complex_step_jacobian.hpp), so that a Jacobian is exact at any length
+  /// scale the toolkit supports (core/length_scale.hpp). Default: 1 for every entry.
+  virtual Eigen::VectorXd variable_scale() const { return Eigen::VectorXd::Ones(size()); }
 };
 
 /// u'' = a(u) of a force function as y = (u, v), F(y) = (v, a(u)); J = [[0, I], [-A, 0]] with A = -da/du, so the
