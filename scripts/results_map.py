@@ -291,7 +291,9 @@ def tl_plate_hole(study, data):
     fin = max(lin, key=lambda r: int(r[0]))
     ism = md_rows(need(study, data, "ismail"))
     top = max(int(r[1]) for r in ism)
-    return {"finest_a": fin[0], "finest_peak": fin[6], "kirsch": fin[9],
+    # Columns of the linear table: a/dx, W/a, particles, Newton, residual, sum f, peak/S, r/a, theta, Kirsch there,
+    # edge/S, Heywood, ...
+    return {"finest_a": fin[0], "finest_peak": fin[6], "finest_r": fin[7], "kirsch": fin[9], "heywood": fin[11],
             **{f"ismail_{r[0].replace('-', '_')}_mpa": r[6] for r in ism if int(r[1]) == top},
             "ismail_a": str(top)}
 
