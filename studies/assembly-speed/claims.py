@@ -30,7 +30,8 @@ def claim_reassembly_linear_in_n(r):
     1 +- 0.05 for both h and both modes; every exponent of the summary table is that fit (3 decimals), and the
     Reading's near-linear / super-linear word follows p <= 1.15."""
     table = {(row[0], row[1], float(row[2])): float(row[6]) for row in md_table(r.md) if len(row) == 8}
-    check(len(table) == len(_groups(r)), f"summary.md table has {len(table)} rows, assembly.csv {len(_groups(r))} groups")
+    check(len(table) == len(_groups(r)),
+          f"summary.md table has {len(table)} rows, assembly.csv {len(_groups(r))} groups")
     re_p = []
     for mode, bench, h in _groups(r):
         rows = _rows(r, mode, bench, h)

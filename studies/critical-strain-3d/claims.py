@@ -108,4 +108,5 @@ def claim_memory_and_timing_spread(r):
            abs_=0.0051)
     check(s / 2 <= max(spread.values()), f"speed-up {s:.3g} beyond 2 x the repeat spread {max(spread.values()):.3g}")
     check(all(a > b for a, b in zip(kbs, kbs[1:])), f"kB per free particle not falling with n: {kbs}")
-    return f"linearisation {kbs[0]:.2f}-{kbs[-1]:.2f} kB per particle; spread {spread[1]:.2f} / {spread[2]:.2f}; speed-up at n = 64 {s:.2f}"
+    return f"linearisation {kbs[0]:.2f}-{kbs[-1]:.2f} kB per particle; spread {spread[1]:.2f} / {spread[2]:.2f}; " \
+           f"speed-up at n = 64 {s:.2f}"

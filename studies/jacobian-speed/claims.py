@@ -10,7 +10,8 @@ from claims import approx, check, select
 
 def _families(r):
     rows = r.csv("jacobian.csv")
-    return {f: sorted(select(rows, family=f), key=lambda x: x["dofs"]) for f in dict.fromkeys(x["family"] for x in rows)}
+    families = dict.fromkeys(x["family"] for x in rows)
+    return {f: sorted(select(rows, family=f), key=lambda x: x["dofs"]) for f in families}
 
 
 def _exponent(xs, ys):

@@ -73,9 +73,9 @@ def claim_fused_faster_than_operator(r):
 
 def claim_library_beats_its_old_algorithm(r):
     """Against the reference copy of its old algorithm with the buffers kept (FusedPrealloc) the library takes
-    0.38-0.50 of the time in every case (2.0-2.6x faster; benchmark.md: 0.38-0.49) without page faults per step; FusedPrealloc is bitwise the
-    library (check 0) and every other route agrees with the library to 1e-14 relative (the limit is 1e-12;
-    benchmark.md states the largest difference)."""
+    0.38-0.50 of the time in every case (2.0-2.6x faster; benchmark.md: 0.38-0.49) without page faults per step;
+    FusedPrealloc is bitwise the library (check 0) and every other route agrees with the library to 1e-14 relative
+    (the limit is 1e-12; benchmark.md states the largest difference)."""
     best, _ = _load(r)
     ratios, worst = [], 0.0
     for n, h in _cases(best):

@@ -31,7 +31,8 @@ def claim_tl_spmv_beats_pair_loop(r):
         check(ratio >= 2, f"{x.where()}: TL SpMV only {ratio:.3g}x the pair loop (target >= 2)")
         ratios[n] = ratio
     nmax = max(ratios)
-    stated = r.stated(rf"At N = {nmax}: TL SpMV [\d.]+ M particle-steps/s, (\d+)× faster than the matrix-free pair loop")
+    stated = r.stated(rf"At N = {nmax}: TL SpMV [\d.]+ M particle-steps/s, (\d+)× faster than the matrix-free "
+                      r"pair loop")
     approx(stated, ratios[nmax], "summary.md 'x faster than the pair loop' at the largest N", rel=0.05)
     table = [row for row in md_table(r.md) if len(row) == 10 and row[0].isdigit()]
     check(sorted(int(row[0]) for row in table) == sorted(ratios), "summary.md table rows differ from the CSV sizes")
