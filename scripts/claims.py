@@ -54,6 +54,15 @@ def number(text):
         return s
 
 
+def verdict_class(gamma_j, gamma_m, floor):
+    """The class of growth/stability_verdict.hpp's classify_verdict, written again independently: S (both rates at
+    or below the floor), U (the semi-discrete growth above it), I (only the one-step map's), B (both, the map by more
+    than the floor)."""
+    if not gamma_j > floor:
+        return "I" if gamma_m > floor else "S"
+    return "B" if gamma_m - max(gamma_j, 0.0) > floor else "U"
+
+
 def check(condition, message):
     if not condition:
         raise ClaimError(message)

@@ -1,16 +1,9 @@
 """Headline claims of swegle-nonlinear (results/swegle-nonlinear/), run by tests/scripts/claims_test.py."""
 import math
 
-from claims import approx, check, md_table, select
+from claims import approx, check, md_table, select, verdict_class
 
 PC, LF = "predictor-corrector", "leapfrog"
-
-
-def _class(gamma_j, gamma_m, floor):
-    """The rules of growth/stability_verdict.hpp (classify_verdict), written again here: S, U, I, B."""
-    if not gamma_j > floor:
-        return "I" if gamma_m > floor else "S"
-    return "B" if gamma_m - max(gamma_j, 0.0) > floor else "U"
 
 
 def _smallest_kick(runs):
@@ -26,7 +19,7 @@ def claim_verdicts_follow_the_rules(r):
     runs = r.csv("runs.csv")
     for x in runs:
         approx(x["floor"], floor, f"{x.where()} floor", rel=1e-5)
-        want = _class(x["gamma_linear_class"], x["gamma_map_class"], x["floor"])
+        want = verdict_class(x["gamma_linear_class"], x["gamma_map_class"], x["floor"])
         check(x["verdict"] == want, f"{x.where()}: verdict {x['verdict']}, the rules give {want}")
     return f"{len(runs)} runs"
 

@@ -1,18 +1,11 @@
 """Headline claims of swegle-rate-form (results/swegle-rate-form/), run by tests/scripts/claims_test.py."""
 import math
 
-from claims import approx, check, md_table, one, select
+from claims import approx, check, md_table, one, select, verdict_class
 
 
 def _finite(x):
     return isinstance(x, float) and math.isfinite(x)
-
-
-def _class(gamma_j, gamma_m, floor):
-    """The rules of growth/stability_verdict.hpp (classify_verdict), written again here: S, U, I, B."""
-    if not gamma_j > floor:
-        return "I" if gamma_m > floor else "S"
-    return "B" if gamma_m - max(gamma_j, 0.0) > floor else "U"
 
 
 def claim_verdicts_follow_the_rules(r):
@@ -26,7 +19,7 @@ def claim_verdicts_follow_the_rules(r):
     counts = {"S": 0, "U": 0, "I": 0, "B": 0}
     for x in runs:
         approx(x["floor"], floor, f"{x.where()} floor", rel=2e-3)
-        want = _class(x["gamma_linear_class"], x["gamma_map_class"], x["floor"])
+        want = verdict_class(x["gamma_linear_class"], x["gamma_map_class"], x["floor"])
         check(x["verdict"] == want, f"{x.where()}: verdict {x['verdict']}, the rules give {want} (gamma_J "
                                     f"{x['gamma_linear_class']}, gamma_M {x['gamma_map_class']}, floor {x['floor']})")
         counts[x["verdict"]] += 1

@@ -1,7 +1,7 @@
 """Headline claims of swegle (results/swegle/), run by tests/scripts/claims_test.py."""
 import math
 
-from claims import approx, check, close, md_table, one, select
+from claims import approx, check, close, md_table, one, select, verdict_class
 
 FORMS = ["sph", "sph-xsph", "ncsph", "tl", "cij", "ssph", "ssph-pp", "ssph-pp-noxsph", "ssph-printed", "sph-gms",
          "conservative"]
@@ -10,13 +10,6 @@ FORMS = ["sph", "sph-xsph", "ncsph", "tl", "cij", "ssph", "ssph-pp", "ssph-pp-no
 def unstable(row):
     """The run's verdict as the stability table shows it: U unless the KE stayed bounded."""
     return row["run_verdict"] != "bounded"
-
-
-def _class(gamma_j, gamma_m, floor):
-    """The rules of growth/stability_verdict.hpp (classify_verdict), written again here: S, U, I, B."""
-    if not gamma_j > floor:
-        return "I" if gamma_m > floor else "S"
-    return "B" if gamma_m - max(gamma_j, 0.0) > floor else "U"
 
 
 def claim_stability_table_is_runs_csv(r):
@@ -50,7 +43,7 @@ def claim_verdicts_follow_the_rules(r):
                   or math.isnan(x["verdict_gamma_m"]),
                   f"{x.where()}: verdict n/a without a reason")
             continue
-        want = _class(x["verdict_gamma_j"], x["verdict_gamma_m"], floor)
+        want = verdict_class(x["verdict_gamma_j"], x["verdict_gamma_m"], floor)
         check(x["verdict"] == want, f"{x.where()}: verdict {x['verdict']}, the rules give {want}")
         counts[want] = counts.get(want, 0) + 1
     return ", ".join(f"{c} {n}" for c, n in sorted(counts.items()))
