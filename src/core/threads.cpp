@@ -11,6 +11,11 @@
 #endif
 
 namespace sphstab {
+
+void FirstException::keep(std::exception_ptr error) noexcept {
+#pragma omp critical(sphstab_first_exception)
+  if (!m_error) m_error = std::move(error);
+}
 namespace {
 // 0: never set, then one thread unless OMP_NUM_THREADS asks for more (threads.hpp: why not every core).
 std::atomic<int> g_threads{0};

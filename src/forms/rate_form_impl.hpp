@@ -644,8 +644,9 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
     sigma.resize(n);
     sigma_rho2.resize(n);
     R.resize(n);
+    FirstException first;  // the artificial stress refuses rho <= 0: a run's result, not an abort in the region
 #pragma omp parallel for schedule(static) num_threads(threads)
-    for (int i = 0; i < n; ++i) {
+    for (int i = 0; i < n; ++i) first.run([&] {
       const Scalar pressure = K * (rho[i] / rho0 - 1.0);
       Mat s;
       if constexpr (Dim == 1) {
@@ -665,7 +666,8 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
           R[i] << r.xx, r.xy, r.xy, r.yy;
         }
       }
-    }
+    });
+    first.rethrow();
   };
 
   // Rates of particle i from its L, drho (summation) and acceleration: every entry of dydt is written here.

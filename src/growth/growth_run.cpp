@@ -55,14 +55,14 @@ GrowthRun run_growth_test(std::shared_ptr<const Discretisation<Dim>> disc, std::
   LeapfrogOptions lo;
   lo.dt = o.dt;
   lo.t_end = o.t_end;
-  lo.diagnostics_every = 0;
+  lo.record_every = 0;
   lo.keep_history = false;
   lo.observe_every = o.record_every;
   lo.observer = [&](const StepView& s) { sample(s.time, s.u, s.v); };
   // The limit applies to u - u0; u0 is small where it is used (a nearby equilibrium), so shift the bound.
   lo.limits.max_displacement = o.displacement_limit + u0.cwiseAbs().maxCoeff();
   lo.observers = o.observers;
-  const RunResult r = run_leapfrog(sys, u0, v0, lo);
+  const LeapfrogResult r = run_leapfrog(sys, u0, v0, lo);
   if (r.status != RunStatus::Completed && r.u.allFinite() && r.v.allFinite() &&
       (run.t.empty() || r.time > run.t.back()))
     sample(r.time, r.u, r.v);

@@ -44,33 +44,9 @@ void LeapfrogStepper::step(double dt) {
   m_v += half * m_a;  // kick
 }
 
-std::string run_status_name(RunStatus s) {
-  switch (s) {
-    case RunStatus::Completed:
-      return "completed";
-    case RunStatus::NonFinite:
-      return "non-finite";
-    case RunStatus::DisplacementLimit:
-      return "displacement-limit";
-    case RunStatus::LeftBox:
-      return "left-box";
-    case RunStatus::EnergyGrowth:
-      return "energy-growth";
-    case RunStatus::NonPositiveDensity:
-      return "non-positive-density";
-  }
-  return "?";
-}
-
 namespace {
 
-std::string at_step(long step, double t) {
-  char buf[96];
-  std::snprintf(buf, sizeof(buf), " at step %ld, t = %.6g", step, t);
-  return buf;
-}
-
-double check_energy(const SecondOrderSystem& s, const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
+double system_energy(const SecondOrderSystem& s, const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
   double e = 0;
   for (long k = 0; k < v.size(); ++k) e += 0.5 * s.dof_mass(k) * v[k] * v[k];
   if (s.strain_energy) e += s.strain_energy(u);
@@ -79,147 +55,95 @@ double check_energy(const SecondOrderSystem& s, const Eigen::VectorXd& u, const 
 
 }  // namespace
 
-RunResult run_leapfrog(const SecondOrderSystem& system, const Eigen::VectorXd& u0, const Eigen::VectorXd& v0,
-                       const LeapfrogOptions& opt) {
-  const char* who = "run_leapfrog";
-  system.validate(u0.size(), who);
-  if (!(opt.dt > 0) || !std::isfinite(opt.dt))
-    throw std::invalid_argument("run_leapfrog: dt must be finite and > 0 (got " + std::to_string(opt.dt) + ")");
-  if (!(opt.t_end > 0) && opt.max_steps < 0)
-    throw std::invalid_argument("run_leapfrog: give t_end > 0 or max_steps >= 0");
-  if (opt.diagnostics_every < 0 || opt.snapshot_every < 0 || opt.observe_every < 0)
-    throw std::invalid_argument("run_leapfrog: output intervals must be >= 0");
-  if (opt.limits.check_every < 1)
-    throw std::invalid_argument("run_leapfrog: limits.check_every must be >= 1 (got " +
-                                std::to_string(opt.limits.check_every) + ")");
-  const int dpp = system.dofs_per_particle;
-  const bool use_box = opt.limits.box_lo.size() || opt.limits.box_hi.size();
+double LeapfrogStepper::energy() const { return system_energy(m_system, m_u, m_v); }
+
+StateFault LeapfrogStepper::check(const BlowUpLimits& limits) const {
+  const int dpp = m_system.dofs_per_particle;
+  const bool use_box = limits.box_lo.size() || limits.box_hi.size();
   if (use_box) {
-    if (opt.limits.box_lo.size() != dpp || opt.limits.box_hi.size() != dpp)
+    if (limits.box_lo.size() != dpp || limits.box_hi.size() != dpp)
       throw std::invalid_argument("run_leapfrog: box_lo and box_hi need dofs_per_particle = " + std::to_string(dpp) +
                                   " entries each");
-    if (system.reference_positions.size() == 0)
+    if (m_system.reference_positions.size() == 0)
       throw std::invalid_argument("run_leapfrog: the box check needs system.reference_positions");
   }
-  for (const RunObserver* o : opt.observers)
-    if (o == nullptr) throw std::invalid_argument("run_leapfrog: null observer");
-  const bool energy_check = std::isfinite(opt.limits.energy_growth);
-  if (energy_check && !(opt.limits.energy_growth > 1))
-    throw std::invalid_argument("run_leapfrog: limits.energy_growth must be > 1 (got " +
-                                std::to_string(opt.limits.energy_growth) + ")");
+  if (!m_u.allFinite() || !m_v.allFinite() || !m_a.allFinite())
+    return {.status = RunStatus::NonFinite, .why = "non-finite state (NaN or inf in u, v or a)"};
+  if (std::isfinite(limits.max_displacement)) {
+    Eigen::Index k = 0;
+    const double m = m_u.cwiseAbs().maxCoeff(&k);
+    if (m > limits.max_displacement) {
+      char buf[160];
+      std::snprintf(buf, sizeof(buf), "displacement |u| = %.4g at particle %ld exceeds the limit %.4g", m,
+                    static_cast<long>(k / dpp), limits.max_displacement);
+      return {.status = RunStatus::DisplacementLimit, .why = buf};
+    }
+  }
+  if (use_box) {
+    for (long k = 0; k < m_u.size(); ++k) {
+      const int a = static_cast<int>(k % dpp);
+      const double x = m_system.reference_positions[k] + m_u[k];
+      if (x < limits.box_lo[a] || x > limits.box_hi[a]) {
+        char buf[160];
+        std::snprintf(buf, sizeof(buf), "particle %ld left the box in axis %d (coordinate %.6g)", k / dpp, a, x);
+        return {.status = RunStatus::LeftBox, .why = buf};
+      }
+    }
+  }
+  return {};
+}
 
-  double dt = opt.dt;
-  long nsteps = opt.max_steps;
-  if (opt.t_end > 0) {
-    nsteps = checked_floor_count(std::ceil(opt.t_end / dt - 1e-9), 1L << 53, "run_leapfrog: steps t_end / dt");
-    if (nsteps < 1) nsteps = 1;
-    if (opt.land_on_t_end) dt = opt.t_end / static_cast<double>(nsteps);
+void LeapfrogStepper::record(long step, const std::vector<RunObserver*>& observers) {
+  if (observers.empty()) return;
+  const Diagnostics d = compute_diagnostics(m_system, m_u, m_v, step, m_t);
+  for (RunObserver* o : observers) o->record(d);
+}
+
+void LeapfrogStepper::snapshot(long step, const std::vector<RunObserver*>& observers) {
+  const StepView view{step, m_t, m_u, m_v, m_a};
+  for (RunObserver* o : observers) o->snapshot(view);
+}
+
+namespace {
+
+/// run_leapfrog's own observer: keeps the Diagnostics history and calls the state callback on its schedule.
+class LeapfrogOutput final : public RunObserver {
+ public:
+  LeapfrogOutput(const LeapfrogStepper& stepper, const LeapfrogOptions& options, std::vector<Diagnostics>& history)
+      : m_st(stepper), m_o(options), m_history(history) {}
+  void record(const Diagnostics& d) override {
+    if (m_o.keep_history) m_history.push_back(d);
+  }
+  void advanced(long n, long nsteps, double /*t*/) override {
+    if (m_o.observe_every > 0 && (n % m_o.observe_every == 0 || n == nsteps)) observe();
+  }
+  void observe() const {
+    if (m_o.observer && m_o.observe_every > 0)
+      m_o.observer(StepView{m_st.steps(), m_st.time(), m_st.u(), m_st.v(), m_st.a()});
   }
 
-  const auto wall0 = std::chrono::steady_clock::now();
-  RunResult res;
-  res.dt = dt;
+ private:
+  const LeapfrogStepper& m_st;
+  const LeapfrogOptions& m_o;
+  std::vector<Diagnostics>& m_history;
+};
+
+}  // namespace
+
+LeapfrogResult run_leapfrog(const SecondOrderSystem& system, const Eigen::VectorXd& u0, const Eigen::VectorXd& v0,
+                            const LeapfrogOptions& opt) {
+  system.validate(u0.size(), "run_leapfrog");
+  if (opt.observe_every < 0) throw std::invalid_argument("run_leapfrog: output intervals must be >= 0");
+  run_steps(opt, "run_leapfrog");  // bad durations before the first force evaluation
   LeapfrogStepper st(system, u0, v0, 0.0);
-
-  auto record = [&](long step) {
-    Diagnostics d = compute_diagnostics(system, st.u(), st.v(), step, st.time());
-    for (RunObserver* o : opt.observers) o->record(d);
-    if (opt.keep_history) res.history.push_back(std::move(d));
-  };
-  auto snapshot = [&](long step) {
-    const StepView view{step, st.time(), st.u(), st.v(), st.a()};
-    for (RunObserver* o : opt.observers) o->snapshot(view);
-  };
-  auto observe = [&]() {
-    if (opt.observer && opt.observe_every > 0) opt.observer(StepView{st.steps(), st.time(), st.u(), st.v(), st.a()});
-  };
-
-  double e_ref = 0;
-  if (energy_check) {
-    e_ref = std::max(std::abs(check_energy(system, st.u(), st.v())), opt.limits.energy_floor);
-    if (!(e_ref > 0))
-      throw std::invalid_argument(
-          "run_leapfrog: the energy-growth check needs a nonzero initial energy or "
-          "limits.energy_floor > 0");
-  }
-
-  // Returns a failure status for the current state (Completed = fine).
-  auto check = [&](std::string& why) -> RunStatus {
-    const Eigen::VectorXd& u = st.u();
-    if (!u.allFinite() || !st.v().allFinite() || !st.a().allFinite()) {
-      why = "non-finite state (NaN or inf in u, v or a)";
-      return RunStatus::NonFinite;
-    }
-    if (std::isfinite(opt.limits.max_displacement)) {
-      Eigen::Index k = 0;
-      const double m = u.cwiseAbs().maxCoeff(&k);
-      if (m > opt.limits.max_displacement) {
-        char buf[160];
-        std::snprintf(buf, sizeof(buf), "displacement |u| = %.4g at particle %ld exceeds the limit %.4g", m,
-                      static_cast<long>(k / dpp), opt.limits.max_displacement);
-        why = buf;
-        return RunStatus::DisplacementLimit;
-      }
-    }
-    if (use_box) {
-      for (long k = 0; k < u.size(); ++k) {
-        const int a = static_cast<int>(k % dpp);
-        const double x = system.reference_positions[k] + u[k];
-        if (x < opt.limits.box_lo[a] || x > opt.limits.box_hi[a]) {
-          char buf[160];
-          std::snprintf(buf, sizeof(buf), "particle %ld left the box in axis %d (coordinate %.6g)", k / dpp, a, x);
-          why = buf;
-          return RunStatus::LeftBox;
-        }
-      }
-    }
-    if (energy_check) {
-      const double e = check_energy(system, u, st.v());
-      if (!(std::abs(e) <= opt.limits.energy_growth * e_ref)) {
-        char buf[160];
-        std::snprintf(buf, sizeof(buf), "energy %.6g exceeds %.4g x the reference %.6g", e, opt.limits.energy_growth,
-                      e_ref);
-        why = buf;
-        return RunStatus::EnergyGrowth;
-      }
-    }
-    return RunStatus::Completed;
-  };
-
-  record(0);
-  if (opt.snapshot_every > 0) snapshot(0);
-  observe();
-  std::string why;
-  RunStatus status = check(why);
-  while (status == RunStatus::Completed && st.steps() < nsteps) {
-    st.step(dt);
-    const long n = st.steps();
-    const bool last = n == nsteps;
-    if (n % opt.limits.check_every == 0 || last) status = check(why);
-    if (status != RunStatus::Completed) break;
-    if (last || (opt.diagnostics_every > 0 && n % opt.diagnostics_every == 0)) record(n);
-    if (opt.snapshot_every > 0 && (n % opt.snapshot_every == 0 || last)) snapshot(n);
-    if (opt.observe_every > 0 && (n % opt.observe_every == 0 || last)) observe();
-    for (RunObserver* o : opt.observers) o->advanced(n, nsteps, st.time());
-  }
-  res.status = status;
-  res.steps = st.steps();
-  res.time = st.time();
+  LeapfrogResult res;
+  LeapfrogOutput output(st, opt, res.history);
+  RunOptions o = opt;
+  o.observers.insert(o.observers.begin(), &output);
+  output.observe();
+  static_cast<RunResult&>(res) = run(st, o, "run_leapfrog");
   res.u = st.u();
   res.v = st.v();
-  res.force_evaluations = st.force_evaluations();
-  if (status == RunStatus::Completed) {
-    char buf[128];
-    std::snprintf(buf, sizeof(buf), "completed %ld steps of dt = %.6g to t = %.6g", res.steps, dt, res.time);
-    res.message = buf;
-  } else {
-    res.message = run_status_name(status) + ": " + why + at_step(res.steps, res.time);
-    // Keep the last (failing) state in the record when it is finite enough to write.
-    record(res.steps);
-    if (opt.snapshot_every > 0 && status != RunStatus::NonFinite) snapshot(res.steps);
-  }
-  res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  for (RunObserver* o : opt.observers) o->finished(res.message);
   return res;
 }
 

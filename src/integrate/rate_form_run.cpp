@@ -44,104 +44,52 @@ void return_to_yield_surface(const RateFormScheme<Dim>& s, const VonMises& model
   }
 }
 
-/// Bookkeeping shared by the integrators: records, stops, the final message, the neighbour rebuilds.
+/// What the integrators share: the options, the step, the state, the neighbour rebuilds and the evaluation count.
 template <int Dim>
 struct RunBook {
   const RateFormScheme<Dim>& base;  // the caller's scheme
   const RateFormRunOptions& o;
-  long nsteps;
-  double dt, ke0;
-  RateFormRunResult r;
+  double dt;
+  Eigen::VectorXd y{};                          // the synchronised state
+  long evaluations = 0, builds = 0;             // rate evaluations; neighbour lists built (the one at y0 included)
   const RateFormScheme<Dim>* scheme = nullptr;  // base, or `own` with a neighbour skin (replaced at every rebuild)
   std::unique_ptr<RateFormScheme<Dim>> own{};
   Eigen::MatrixXd x_build{};  // N x Dim: the positions of the last build (the discretisation's without a skin)
 
   /// Builds the run's own list (radius support + skin) at the positions of y.
-  void build(const Eigen::VectorXd& y) {
+  void build(const Eigen::VectorXd& at) {
     const Discretisation<Dim>& d = base.discretisation();
-    own = std::make_unique<RateFormScheme<Dim>>(base.rebuilt(y, d.kernel.support_radius(d.h) + o.neighbour_skin));
+    own = std::make_unique<RateFormScheme<Dim>>(base.rebuilt(at, d.kernel.support_radius(d.h) + o.neighbour_skin));
     scheme = own.get();
     x_build = d.particles.x;
     for (int i = 0; i < d.size(); ++i)
-      if (base.position_offset(i) >= 0) x_build.row(i) = y.segment(base.position_offset(i), Dim).transpose();
-    ++r.neighbour_builds;
+      if (base.position_offset(i) >= 0) x_build.row(i) = at.segment(base.position_offset(i), Dim).transpose();
+    ++builds;
   }
-  /// Verlet rule: rebuilds at y when a free particle of y has moved more than skin / 2 (Euclidean) since the last
-  /// build. Non-finite positions are left to finish_step.
-  void maybe_rebuild(const Eigen::VectorXd& y) {
+  /// Verlet rule: rebuilds at `at` when a free particle has moved more than skin / 2 (Euclidean) since the last
+  /// build. Non-finite positions are left to the state check.
+  void maybe_rebuild(const Eigen::VectorXd& at) {
     if (!(o.neighbour_skin > 0)) return;
     const double limit2 = 0.25 * o.neighbour_skin * o.neighbour_skin;
     bool move = false;
     for (int i = 0; i < x_build.rows(); ++i) {
       const int xo = base.position_offset(i);
       if (xo < 0) continue;
-      const double d2 = (y.segment(xo, Dim).transpose() - x_build.row(i)).squaredNorm();
+      const double d2 = (at.segment(xo, Dim).transpose() - x_build.row(i)).squaredNorm();
       if (!std::isfinite(d2)) return;
       move = move || d2 > limit2;
     }
-    if (move) build(y);
+    if (move) build(at);
   }
-  /// F(y) on a list valid at y: every rate evaluation of the run goes through here.
-  void rate(const Eigen::VectorXd& y, Eigen::VectorXd& dydt) {
-    maybe_rebuild(y);
-    scheme->rate(y, dydt);
-  }
-
-  void record(long step) {
-    r.times.push_back(step * dt);
-    r.kinetic_energy.push_back(base.kinetic_energy(r.y));
-    if (o.observer) o.observer(step, step * dt, r.y);
-  }
-  void stop(RunStatus status, int particle, long step, const std::string& why) {
-    r.status = status;
-    r.particle = particle;
-    r.steps = step;
-    r.time = step * dt;
-    r.message = run_status_name(status) + ": " + why + " at step " + std::to_string(step) +
-                ", t = " + format_number(r.time) + (particle >= 0 ? ", particle " + std::to_string(particle) : "");
-  }
-  /// After step `step` has put its synchronised state in r.y: checks, records; false when the run ends.
-  bool finish_step(long step) {
-    const auto [status, particle] = check_state(base, r.y);
-    if (status != RunStatus::Completed) {
-      stop(status, particle, step, status == RunStatus::NonFinite ? "non-finite state" : "density <= 0");
-      return false;
-    }
-    if (std::isfinite(o.max_displacement)) {
-      const auto& x0 = x_build;
-      for (int i = 0; i < x_build.rows(); ++i) {
-        const int xo = base.position_offset(i);
-        if (xo < 0) continue;
-        const double d = (r.y.segment(xo, Dim).transpose() - x0.row(i)).cwiseAbs().maxCoeff();
-        if (d > o.max_displacement) {
-          record(step);
-          stop(RunStatus::DisplacementLimit, i, step,
-               "moved " + format_number(d) + " > " + format_number(o.max_displacement) +
-                   (o.neighbour_skin > 0 ? " since the last neighbour build"
-                                         : " (the neighbour list is no longer valid)"));
-          return false;
-        }
-      }
-    }
-    const bool last = step == nsteps;
-    if (step % o.record_every == 0 || last) record(step);
-    if (std::isfinite(o.energy_growth) && base.kinetic_energy(r.y) > o.energy_growth * ke0) {
-      if (step % o.record_every != 0 && !last) record(step);
-      stop(RunStatus::EnergyGrowth, -1, step,
-           "kinetic energy grew by more than " + format_number(o.energy_growth) + "x");
-      return false;
-    }
-    if (last) {
-      r.steps = step;
-      r.time = step * dt;
-      r.message = "completed " + std::to_string(step) + " steps to t = " + format_number(r.time);
-    }
-    return true;
+  /// F(at) on a list valid at `at`: every rate evaluation of the run goes through here.
+  void rate(const Eigen::VectorXd& at, Eigen::VectorXd& dydt) {
+    maybe_rebuild(at);
+    scheme->rate(at, dydt);
   }
 };
 
 /// [GMS2001, (6.14)-(6.18)] (rate_form_run.hpp), one step at a time so that the run and the step matrix
-/// (rate_form_step_matrix) execute the same code. Between steps it holds r.y and, with reuse_corrector_rate, the
+/// (rate_form_step_matrix) execute the same code. Between steps it holds b.y and, with reuse_corrector_rate, the
 /// carried rate f0 (the previous corrector's evaluation F(x, v_p, rho_p, S_p)).
 template <int Dim>
 struct PredictorCorrector {
@@ -149,26 +97,25 @@ struct PredictorCorrector {
   const VonMises* plastic;
   Eigen::VectorXd f0{}, f1{}, yp{}, y{};
 
-  /// From b.r.y to the next step's state in b.r.y. fresh: f0 = F(b.r.y) first (always without reuse_corrector_rate;
+  /// From b.y to the next step's state in b.y. fresh: f0 = F(b.y) first (always without reuse_corrector_rate;
   /// the first step with it); otherwise f0 must hold the carried rate.
   void step(bool fresh) {
     const RateFormRunOptions& o = b.o;
     const double dt = b.dt;
     const int n = b.base.discretisation().size();
-    RateFormRunResult& r = b.r;
     if (fresh) {
-      b.rate(r.y, f0);
-      r.rate_evaluations += 1;
+      b.rate(b.y, f0);
+      b.evaluations += 1;
     }
-    yp = r.y + dt * f0;  // predictor for v, rho, S (and a first-order x, replaced below)
+    yp = b.y + dt * f0;  // predictor for v, rho, S (and a first-order x, replaced below)
     for (int i = 0; i < n; ++i) {
       const int xo = b.base.position_offset(i);
       if (xo >= 0)  // x = x0 + dt vhat0 + dt^2/2 a0, not corrected [GMS2001, (6.15)]
         yp.segment(xo, Dim) =
-            r.y.segment(xo, Dim) + dt * f0.segment(xo, Dim) + 0.5 * dt * dt * f0.segment(xo + Dim, Dim);
+            b.y.segment(xo, Dim) + dt * f0.segment(xo, Dim) + 0.5 * dt * dt * f0.segment(xo + Dim, Dim);
     }
     b.rate(yp, f1);
-    r.rate_evaluations += 1;
+    b.evaluations += 1;
     y = yp + 0.5 * dt * (f1 - f0);
     for (int i = 0; i < n; ++i) {
       const int xo = b.base.position_offset(i);
@@ -176,22 +123,13 @@ struct PredictorCorrector {
       if (o.positions == PositionUpdate::Gms)
         y.segment(xo, Dim) = yp.segment(xo, Dim);
       else
-        y.segment(xo, Dim) = r.y.segment(xo, Dim) + 0.5 * dt * (f0.segment(xo, Dim) + f1.segment(xo, Dim));
+        y.segment(xo, Dim) = b.y.segment(xo, Dim) + 0.5 * dt * (f0.segment(xo, Dim) + f1.segment(xo, Dim));
     }
     if (plastic) return_to_yield_surface(b.base, *plastic, y);
-    r.y.swap(y);
+    b.y.swap(y);
     if (o.reuse_corrector_rate) f0.swap(f1);  // the next step's F^0: F(x, v_p, rho_p, S_p) of this step
   }
 };
-
-template <int Dim>
-void predictor_corrector(RunBook<Dim>& b, const VonMises* plastic) {
-  PredictorCorrector<Dim> pc{.b = b, .plastic = plastic};
-  for (long step = 1; step <= b.nsteps; ++step) {
-    pc.step(!b.o.reuse_corrector_rate || step == 1);
-    if (!b.finish_step(step)) break;
-  }
-}
 
 /// [Powell2012, algorithm 1.1, (1.40)], staggered; the numbered steps are those of rate_form_run.hpp. Between steps
 /// it holds y = (x^n, v*^n, q^n), fe = F(y), vh = v^{n+1/2} and ve = a^n (the acceleration the step uses; with
@@ -223,8 +161,8 @@ struct Leapfrog {
       v.template segment<Dim>(f * Dim) = state.template segment<Dim>(xoff[f] + Dim);
   }
   void attach() {
-    if (attached == b.r.neighbour_builds) return;
-    attached = b.r.neighbour_builds;
+    if (attached == b.builds) return;
+    attached = b.builds;
     d = &b.scheme->discretisation();
     if (b.o.leapfrog_xsph > 0)
       smooth = xsph_hook<Dim>(std::shared_ptr<const Discretisation<Dim>>(d, [](const Discretisation<Dim>*) {}),
@@ -234,12 +172,12 @@ struct Leapfrog {
   void start(const Eigen::VectorXd& y0) {
     y = y0;
     b.rate(y, fe);
-    b.r.rate_evaluations += 1;
+    b.evaluations += 1;
     get_velocities(y, vh);
     get_velocities(fe, ve);  // the velocity slots of F hold a: ve = a^0
     vh += 0.5 * b.dt * ve;
   }
-  /// Steps 1-5: from (y, fe, vh, ve) at n to n + 1; the synchronised y^{n+1} into b.r.y.
+  /// Steps 1-5: from (y, fe, vh, ve) at n to n + 1; the synchronised y^{n+1} into b.y.
   void step() {
     const double dt = b.dt;
     // 1. Powell's XSPH on v^{n+1/2}, at the positions x^n (the list of E_n); driven particles keep their velocity.
@@ -273,7 +211,7 @@ struct Leapfrog {
     // 4. E_{n+1} at v*^{n+1} = v^{n+1/2} + dt/2 a^n.
     set_velocities(y, vh + 0.5 * dt * ve);
     b.rate(y, fe);
-    b.r.rate_evaluations += 2;
+    b.evaluations += 2;
     get_velocities(fe, ve);       // a^{n+1}
     if (b.o.absorbing_half_step)  // Powell's algorithm 2.3: the boundary particles' a from H (forward Euler (2.66))
       for (int i : b.base.absorbing().particles) {
@@ -281,22 +219,12 @@ struct Leapfrog {
         ve.template segment<Dim>(f * Dim) = fh.template segment<Dim>(xoff[f] + Dim);
       }
     // Synchronised record y^{n+1} = (x^{n+1}, v^{n+1/2} + dt/2 a^{n+1}, q^{n+1}).
-    b.r.y = y;
-    set_velocities(b.r.y, vh + 0.5 * dt * ve);
+    b.y = y;
+    set_velocities(b.y, vh + 0.5 * dt * ve);
     // 5. v^{n+3/2} = v^{n+1/2} + dt a^{n+1}.
     vh += dt * ve;
   }
 };
-
-template <int Dim>
-void leapfrog(RunBook<Dim>& b, const VonMises* plastic) {
-  Leapfrog<Dim> lf(b, plastic);
-  lf.start(b.r.y);
-  for (long step = 1; step <= b.nsteps; ++step) {
-    lf.step();
-    if (!b.finish_step(step)) break;
-  }
-}
 
 /// Checks the run options (rate_form_run.hpp) and the state size.
 template <int Dim>
@@ -339,33 +267,139 @@ void check_run_options(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd&
 
 }  // namespace
 
+/// The stepper's state: the shared book and the integrator it drives.
+template <int Dim>
+struct RateFormStepper<Dim>::Impl {
+  RateFormRunOptions o;
+  VonMises plastic;
+  RunBook<Dim> b;
+  PredictorCorrector<Dim> pc;
+  std::unique_ptr<Leapfrog<Dim>> lf{};
+  long steps = 0;
+  bool started = false;
+  std::vector<double> times{}, kinetic_energy{};
+
+  Impl(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y0, const RateFormRunOptions& options)
+      : o(options), plastic(options.yield_stress), b{.base = scheme, .o = o, .dt = 0}, pc{.b = b, .plastic = yield()} {
+    b.y = y0;
+    if (o.neighbour_skin > 0) {
+      b.build(y0);  // RateFormScheme::rebuilt rejects non-finite positions
+    } else {
+      b.scheme = &scheme;
+      b.x_build = scheme.discretisation().particles.x;
+    }
+    if (o.integrator == RateFormIntegrator::Leapfrog) lf = std::make_unique<Leapfrog<Dim>>(b, yield());
+  }
+  const VonMises* yield() const { return std::isfinite(o.yield_stress) ? &plastic : nullptr; }
+};
+
+template <int Dim>
+RateFormStepper<Dim>::RateFormStepper(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y0,
+                                      const RateFormRunOptions& options) {
+  check_run_options(scheme, y0, options, "RateFormStepper");
+  m = std::make_unique<Impl>(scheme, y0, options);
+}
+
+template <int Dim>
+RateFormStepper<Dim>::~RateFormStepper() = default;
+
+template <int Dim>
+void RateFormStepper<Dim>::step(double dt) {
+  Impl& s = *m;
+  s.b.dt = dt;
+  if (s.lf) {
+    if (!s.started) s.lf->start(s.b.y);  // E_0 = F(y0), v^{1/2} = v^0 + dt/2 a^0
+    s.lf->step();
+  } else {
+    s.pc.step(!s.o.reuse_corrector_rate || !s.started);
+  }
+  s.started = true;
+  ++s.steps;
+}
+
+template <int Dim>
+long RateFormStepper<Dim>::steps() const {
+  return m->steps;
+}
+template <int Dim>
+double RateFormStepper<Dim>::time() const {
+  return m->steps * m->b.dt;
+}
+template <int Dim>
+long RateFormStepper<Dim>::evaluations() const {
+  return m->b.evaluations;
+}
+template <int Dim>
+long RateFormStepper<Dim>::neighbour_builds() const {
+  return m->b.builds;
+}
+template <int Dim>
+const Eigen::VectorXd& RateFormStepper<Dim>::state() const {
+  return m->b.y;
+}
+template <int Dim>
+const std::vector<double>& RateFormStepper<Dim>::times() const {
+  return m->times;
+}
+template <int Dim>
+const std::vector<double>& RateFormStepper<Dim>::kinetic_energy() const {
+  return m->kinetic_energy;
+}
+
+template <int Dim>
+StateFault RateFormStepper<Dim>::check(const BlowUpLimits& limits) const {
+  if (limits.box_lo.size() || limits.box_hi.size())
+    throw std::invalid_argument("run_rate_form: no box check (limits.box_lo, box_hi) for the rate form");
+  const RunBook<Dim>& b = m->b;
+  const auto [status, particle] = check_state(b.base, b.y);
+  if (status != RunStatus::Completed)
+    return {.status = status,
+            .particle = particle,
+            .why = status == RunStatus::NonFinite ? "non-finite state" : "density <= 0",
+            .record = false};
+  if (std::isfinite(limits.max_displacement))
+    for (int i = 0; i < b.x_build.rows(); ++i) {
+      const int xo = b.base.position_offset(i);
+      if (xo < 0) continue;
+      const double d = (b.y.segment(xo, Dim).transpose() - b.x_build.row(i)).cwiseAbs().maxCoeff();
+      if (d > limits.max_displacement)
+        return {.status = RunStatus::DisplacementLimit,
+                .particle = i,
+                .why = "moved " + format_number(d) + " > " + format_number(limits.max_displacement) +
+                       (b.o.neighbour_skin > 0 ? " since the last neighbour build"
+                                               : " (the neighbour list is no longer valid)")};
+    }
+  return {};
+}
+
+template <int Dim>
+double RateFormStepper<Dim>::energy() const {
+  return m->b.base.kinetic_energy(m->b.y);
+}
+
+template <int Dim>
+void RateFormStepper<Dim>::record(long step, const std::vector<RunObserver*>& /*observers*/) {
+  Impl& s = *m;
+  s.times.push_back(step * s.b.dt);
+  s.kinetic_energy.push_back(s.b.base.kinetic_energy(s.b.y));
+  if (s.o.observer) s.o.observer(step, step * s.b.dt, s.b.y);
+}
+
 template <int Dim>
 RateFormRunResult run_rate_form(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y0,
                                 const RateFormRunOptions& o) {
   check_run_options(scheme, y0, o, "run_rate_form");
-  const VonMises plastic(o.yield_stress);
-  const auto wall0 = std::chrono::steady_clock::now();
-  const long nsteps =
-      std::max(1L, checked_floor_count(std::ceil(o.t_end / o.dt - 1e-9), 1L << 53, "run_rate_form: steps t_end / dt"));
-  const double dt = o.t_end / static_cast<double>(nsteps);
-
-  RunBook<Dim> b{.base = scheme, .o = o, .nsteps = nsteps, .dt = dt, .ke0 = scheme.kinetic_energy(y0), .r = {}};
-  b.r.dt = dt;
-  b.r.y = y0;
-  if (o.neighbour_skin > 0) {
-    b.build(y0);  // RateFormScheme::rebuilt rejects non-finite positions
-  } else {
-    b.scheme = &scheme;
-    b.x_build = scheme.discretisation().particles.x;
-  }
-  b.record(0);
-  const VonMises* yield = std::isfinite(o.yield_stress) ? &plastic : nullptr;
-  if (o.integrator == RateFormIntegrator::Leapfrog)
-    leapfrog(b, yield);
-  else
-    predictor_corrector(b, yield);
-  b.r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  return std::move(b.r);
+  RateFormStepper<Dim> stepper(scheme, y0, o);
+  RunOptions ro{.dt = o.dt, .t_end = o.t_end, .record_every = o.record_every};
+  ro.limits.max_displacement = o.max_displacement;
+  ro.limits.energy_growth = o.energy_growth;
+  RateFormRunResult r;
+  static_cast<RunResult&>(r) = run(stepper, ro, "run_rate_form");
+  r.times = stepper.times();
+  r.kinetic_energy = stepper.kinetic_energy();
+  r.y = stepper.state();
+  r.neighbour_builds = stepper.neighbour_builds();
+  return r;
 }
 
 namespace {
@@ -383,7 +417,7 @@ Eigen::MatrixXd step_matrix(const RateFormScheme<Dim>& scheme, const Eigen::Vect
         who + ": needs the scheme's own neighbour list and an elastic run (no skin, no yield stress)");
   if (!(delta > 0) || !std::isfinite(delta))
     throw std::invalid_argument(who + ": delta must be finite and > 0 (got " + format_number(delta) + ")");
-  RunBook<Dim> b{.base = scheme, .o = o, .nsteps = 1, .dt = dt, .ke0 = 0, .r = {}};
+  RunBook<Dim> b{.base = scheme, .o = o, .dt = dt};
   b.scheme = &scheme;
   b.x_build = scheme.discretisation().particles.x;
   const Eigen::Index ny = y.size(), nv = scheme.discretisation().dofs();
@@ -414,19 +448,19 @@ Eigen::MatrixXd step_matrix(const RateFormScheme<Dim>& scheme, const Eigen::Vect
     z0.resize(2 * ny);
     z0 << y, f0;
     step = [&](const Eigen::VectorXd& z) {
-      b.r.y = z.head(ny);
+      b.y = z.head(ny);
       pc.f0 = z.tail(ny);
       pc.step(false);
       Eigen::VectorXd out(z.size());
-      out << b.r.y, pc.f0;
+      out << b.y, pc.f0;
       return out;
     };
   } else {
     z0 = y;
     step = [&](const Eigen::VectorXd& z) {
-      b.r.y = z;
+      b.y = z;
       pc.step(true);
-      return Eigen::VectorXd(b.r.y);
+      return Eigen::VectorXd(b.y);
     };
   }
   Eigen::MatrixXd M(z0.size(), z0.size());
@@ -463,6 +497,8 @@ template Eigen::MatrixXd leapfrog_step_matrix<1>(const RateFormScheme<1>&, const
                                                  const RateFormRunOptions&, double);
 template Eigen::MatrixXd leapfrog_step_matrix<2>(const RateFormScheme<2>&, const Eigen::VectorXd&, double,
                                                  const RateFormRunOptions&, double);
+template class RateFormStepper<1>;
+template class RateFormStepper<2>;
 template RateFormRunResult run_rate_form<1>(const RateFormScheme<1>&, const Eigen::VectorXd&,
                                             const RateFormRunOptions&);
 template RateFormRunResult run_rate_form<2>(const RateFormScheme<2>&, const Eigen::VectorXd&,

@@ -23,6 +23,7 @@
 #include "sphstab/integrate/leapfrog.hpp"
 #include "sphstab/integrate/stable_time_step.hpp"
 #include "sphstab/io/csv.hpp"
+#include "sphstab/io/run_output.hpp"
 #include "sphstab/models/st_venant_kirchhoff.hpp"
 #include "sphstab/problems/cantilever_plate.hpp"
 #include "sphstab/problems/turek_hron_csm3.hpp"
@@ -176,36 +177,30 @@ inline Run gravity_run(std::shared_ptr<const ForceFunction> tl, const TurekHronB
   const long energy_every = 20 * every;  // a multiple of 5 every: every energy sample is written
   const double e_scale = C::density * C::thickness * 0.35 * C::gravity * std::abs(C::uy_amplitude);  // ~ m g A
   double e0 = 0;
-  for (long s = 0;; ++s) {
-    const double t = stepper.time();
-    if (s % every == 0 || s == nsteps) {
-      const auto ux = tip(beam, stepper.u(), 0), uy = tip(beam, stepper.u(), 1);
-      double e = NAN;
-      if (s % energy_every == 0 || s == nsteps) {
-        e = total_energy(force, stepper.u(), stepper.v());
-        if (s == 0) e0 = e;
-        r.energy_drift = std::max(r.energy_drift, std::abs(e - e0) / e_scale);
-      }
-      if (s % (5 * every) == 0 || s == nsteps) csv.row({t, ux[0], uy[0], ux[1], uy[1], e});  // CSV every ~5 ms
-      ts.push_back(t);
-      uxs.push_back(ux[0]);
-      uys.push_back(uy[0]);
-      if (on_sample) on_sample(t, stepper.u(), uy[0]);
+  SnapshotFunction sample([&](const StepView& view) {
+    const long s = view.step;
+    const double t = view.time;
+    const auto ux = tip(beam, view.u, 0), uy = tip(beam, view.u, 1);
+    double e = NAN;
+    if (s % energy_every == 0 || s == nsteps) {
+      e = total_energy(force, view.u, view.v);
+      if (s == 0) e0 = e;
+      r.energy_drift = std::max(r.energy_drift, std::abs(e - e0) / e_scale);
     }
-    if (s == nsteps) break;
-    if (s % 20000 == 0)
-      std::cerr << o.name << ": t = " << t << " s of " << o.t_end << " (" << s << "/" << nsteps << " steps)\n";
-    try {
-      stepper.step(r.dt);
-    } catch (const std::invalid_argument& e) {
-      r.status = std::string("stopped: ") + e.what();
-      break;
-    }
-    if (!stepper.u().allFinite()) {
-      r.status = "non-finite";
-      break;
-    }
-  }
+    if (s % (5 * every) == 0 || s == nsteps) csv.row({t, ux[0], uy[0], ux[1], uy[1], e});  // CSV every ~5 ms
+    ts.push_back(t);
+    uxs.push_back(ux[0]);
+    uys.push_back(uy[0]);
+    if (on_sample) on_sample(t, view.u, uy[0]);
+  });
+  ProgressReport progress(o.name, 10.0);
+  sphstab::RunOptions ro{.dt = r.dt, .max_steps = nsteps, .snapshot_every = static_cast<int>(every)};
+  ro.observers = {&sample, &progress};
+  const RunResult result = sphstab::run(stepper, ro);
+  if (result.status == RunStatus::Exception)  // the TL stress refuses J <= 0
+    r.status = "stopped: " + result.reason;
+  else if (!result.completed())
+    r.status = run_status_name(result.status);
   r.steps = stepper.steps();
   r.wall = seconds_since(tr);
   if (r.status == "completed") {

@@ -21,11 +21,23 @@
 #include <vector>
 
 #include "sphstab/core/format.hpp"
+#include "sphstab/integrate/run.hpp"
 #include "sphstab/numerics/random_vector.hpp"
 
 namespace sphstab::study {
 
 using Clock = std::chrono::steady_clock;
+
+/// Steps `stepper` by exactly dt until its clock reaches t_end (the last step passes it), with `probe` seeing the
+/// state at step 0 and after every step: the run loop (integrate/run.hpp) in the shape of a study's measurement loop.
+/// A run that stops (non-finite state, an exception, the probe's own stop rule) is said on stderr and returned.
+inline RunResult run_probed(Stepper& stepper, double dt, double t_end, RunObserver& probe) {
+  RunOptions o{.dt = dt, .t_end = t_end, .land_on_t_end = false, .snapshot_every = 1};
+  o.observers = {&probe};
+  RunResult r = run(stepper, o);
+  if (!r.completed()) std::fprintf(stderr, "run stopped: %s\n", r.message.c_str());
+  return r;
+}
 
 /// Seconds of wall time since t0.
 inline double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }

@@ -185,7 +185,7 @@ int main(int argc, char** argv) {
             opt.t_end = t_end;
             const long nsteps = static_cast<long>(std::ceil(t_end / opt.dt - 1e-9));
             opt.observe_every = static_cast<int>(std::max(1L, nsteps / 60));
-            opt.diagnostics_every = 0;  // first and last only
+            opt.record_every = 0;  // first and last only
             opt.limits.check_every = 10;
             opt.limits.max_displacement = 0.5;  // 50 x the physical displacement scale
             opt.limits.energy_growth = 10.0;
@@ -413,15 +413,16 @@ int main(int argc, char** argv) {
     LeapfrogStepper st(ul.system(), base + 1e-8 * ul.spacing() * saw, Eigen::VectorXd::Zero(n));
     const double dt = cfl_time_step(courant, ul.h(), c);
     double t_a = NAN, t_b = NAN;
-    while (st.time() < 0.9) {
-      const Eigen::VectorXd d = st.u() - base;
+    SnapshotFunction seed([&](const StepView& s) {
+      if (s.time >= 0.9) return;  // the state the last step reached is not part of the record
+      const Eigen::VectorXd d = s.u - base;
       const double amp = std::abs(d.segment(30, 40).dot(saw.segment(30, 40))) / 40.0 / ul.spacing();
-      seed_csv.row({st.time(), amp});
-      if (std::isnan(t_a) && amp > 1e-7) t_a = st.time();
-      if (std::isnan(t_b) && amp > 1e-5) t_b = st.time();
+      seed_csv.row({s.time, amp});
+      if (std::isnan(t_a) && amp > 1e-7) t_a = s.time;
+      if (std::isnan(t_b) && amp > 1e-5) t_b = s.time;
       seeded_saturation = std::max(seeded_saturation, amp);
-      st.step(dt);
-    }
+    });
+    study::run_probed(st, dt, 0.9, seed);
     seeded_rate = std::log(1e-5 / 1e-7) / (t_b - t_a);
   }
 

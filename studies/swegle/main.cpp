@@ -404,10 +404,10 @@ std::vector<EnergyRow> energy_conservation(const Config& c, double dt) {
       LeapfrogOptions o;
       o.dt = h;
       o.t_end = T;
-      o.diagnostics_every = std::max<long>(1, static_cast<long>(std::llround(T / h)) / 1000);
+      o.record_every = std::max<long>(1, static_cast<long>(std::llround(T / h)) / 1000);
       ProgressReport progress("energy " + name);
       o.observers = {&progress};
-      const RunResult rr = run_leapfrog(sys, Eigen::VectorXd::Zero(force->dofs()), es.v0, o);
+      const LeapfrogResult rr = run_leapfrog(sys, Eigen::VectorXd::Zero(force->dofs()), es.v0, o);
       const double e0 = rr.history.front().total;
       double dev = 0, st = 0, se = 0, stt = 0, ste = 0;
       for (const Diagnostics& d : rr.history) {

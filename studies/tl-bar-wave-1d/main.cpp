@@ -341,10 +341,10 @@ int main(int argc, char** argv) {
       }
       std::vector<double> worst(kProbes.size(), 0.0);  // max |sigma_sph - sigma_exact| over time, kPa
       double t_previous = 0;
-      for (;;) {
-        const double t = stepper.time();
+      SnapshotFunction probes([&](const StepView& view) {
+        const double t = view.time;
         set_time(t);
-        const Eigen::MatrixXd P = tl.stresses(stepper.u());
+        const Eigen::MatrixXd P = tl.stresses(view.u);
         std::vector<CsvCell> row{t * 1e6};
         for (std::size_t p = 0; p < kProbes.size(); ++p) {
           const double xp = disc->particles.x(disc->free[probe_slot[p]], 0);
@@ -362,9 +362,8 @@ int main(int argc, char** argv) {
         }
         t_previous = t;
         if (base) pcsv->row(row);
-        if (t >= t_end) break;
-        stepper.step(dt);
-      }
+      });
+      study::run_probed(stepper, dt, t_end, probes);
       if (base && run.fixed_end == FixedEnd::Clamped) summary.set("dt_ns_" + run.name, dt * 1e9, 4);
       std::cout << run.name << ": dt = " << dt * 1e9 << " ns, " << stepper.steps()
                 << " steps, max |sigma - exact| = " << worst[0] << ", " << worst[1] << ", " << worst[2] << " kPa\n";

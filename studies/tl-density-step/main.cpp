@@ -146,19 +146,17 @@ int main(int argc, char** argv) {
         pcsv = std::make_unique<CsvWriter>(
             out + "/probes_ratio" + format_number(ratio) + "_n" + std::to_string(n) + ".csv",
             std::vector<std::string>{"t_us", "sigma_kpa_xr", "v_xr", "sigma_kpa_xt", "v_xt"}, false);
-      for (;;) {
-        const double t = stepper.time();
-        sys.set_time(t);
-        const Eigen::MatrixXd P = tl.stresses(stepper.u());
+      SnapshotFunction probes([&](const StepView& s) {
+        sys.set_time(s.time);
+        const Eigen::MatrixXd P = tl.stresses(s.u);
         const double sr = P(disc->free[fr], 0), st = P(disc->free[ft], 0);
-        const double vr = stepper.v()[fr], vt = stepper.v()[ft];
-        inc.add(t, sr, vr);
-        ref.add(t, sr, vr);
-        tra.add(t, st, vt);
-        if (base) pcsv->row({t * 1e6, sr / 1e3, vr, st / 1e3, vt});
-        if (t >= t_end) break;
-        stepper.step(dt);
-      }
+        const double vr = s.v[fr], vt = s.v[ft];
+        inc.add(s.time, sr, vr);
+        ref.add(s.time, sr, vr);
+        tra.add(s.time, st, vt);
+        if (base) pcsv->row({s.time * 1e6, sr / 1e3, vr, st / 1e3, vt});
+      });
+      study::run_probed(stepper, dt, t_end, probes);
       const double Rs = ref.stress() / inc.stress(), Ts = tra.stress() / inc.stress();
       const double Rv = ref.velocity() / inc.velocity(), Tv = tra.velocity() / inc.velocity();
       ccsv.row({ratio, n, dx, inc.stress() / 1e3, inc.velocity(), Rs, ex.stress_reflection, Ts, ex.stress_transmission,

@@ -423,10 +423,10 @@ int main(int argc, char** argv) {
       std::vector<double> worst(probes.size(), 0.0), arrival(probes.size(), std::nan("")), prev(probes.size(), 0.0);
       double t_prev = 0, plateau_sum = 0;
       long plateau_count = 0;
-      for (long step = 0;; ++step) {
-        const double t = stepper.time();
+      SnapshotFunction probe_run([&](const StepView& view) {
+        const double t = view.time;
         t_now = t;
-        const Eigen::MatrixXd P = tl.stresses(stepper.u());
+        const Eigen::MatrixXd P = tl.stresses(view.u);
         for (std::size_t p = 0; p < probes.size(); ++p) {
           const double xp = disc->particles.x(disc->free[slot[p]], 0);
           const double s = P(disc->free[slot[p]], 0);
@@ -444,13 +444,12 @@ int main(int argc, char** argv) {
               plateau_sum += s - exact;
               ++plateau_count;
             }
-            if (step % 2 == 0) probe_csv.row({chg, t * 1e6, s / 1e3, exact / 1e3});
+            if (view.step % 2 == 0) probe_csv.row({chg, t * 1e6, s / 1e3, exact / 1e3});
           }
         }
         t_prev = t;
-        if (t >= t_end) break;
-        stepper.step(dt);
-      }
+      });
+      study::run_probed(stepper, dt, t_end, probe_run);
       // zigzag content at the end: RMS of the second difference / 4 of u over the free particles, relative to RMS u
       const Eigen::VectorXd& u = stepper.u();
       double z = 0;
@@ -499,18 +498,17 @@ int main(int argc, char** argv) {
         const long steps = static_cast<long>(std::ceil(t_end / dt));
         const double step = t_end / steps;
         double zig_end = 0, zig_max = 0;
-        for (long s = 0; s <= steps; ++s) {
-          if (s % std::max(1L, steps / 200) == 0 || s == steps) {
-            const Eigen::VectorXd& u = stepper.u();
-            // zigzag amplitude: ||u|| sqrt(zigzag fraction) / sqrt(N), the RMS of the second difference / 4
-            const double rms = u.norm() / std::sqrt(double(d->free_count()));
-            const double zig = u.norm() > 0 ? rms * std::sqrt(zigzag_fraction<Dim>(u, g, cfg.n, cfg.periodic)) : 0;
-            noise_csv.row({cfg.name, chg, stepper.time(), zig, rms});
-            zig_end = zig;
-            zig_max = std::max(zig_max, zig);
-          }
-          if (s < steps) stepper.step(step);
-        }
+        SnapshotFunction zigzag([&](const StepView& s) {
+          // zigzag amplitude: ||u|| sqrt(zigzag fraction) / sqrt(N), the RMS of the second difference / 4
+          const double rms = s.u.norm() / std::sqrt(double(d->free_count()));
+          const double zig = s.u.norm() > 0 ? rms * std::sqrt(zigzag_fraction<Dim>(s.u, g, cfg.n, cfg.periodic)) : 0;
+          noise_csv.row({cfg.name, chg, s.time, zig, rms});
+          zig_end = zig;
+          zig_max = std::max(zig_max, zig);
+        });
+        RunOptions ro{.dt = step, .max_steps = steps, .snapshot_every = static_cast<int>(std::max(1L, steps / 200))};
+        ro.observers = {&zigzag};
+        if (const RunResult r = run(stepper, ro); !r.completed()) std::cerr << "noise run: " << r.message << "\n";
         study::md_row(md_noise, {cfg.name, study::sig(chg, 2), study::sig(step, 3), std::to_string(steps),
                                  study::sig(zig_max, 3), study::sig(zig_end, 3)});
         std::cout << "noise " << cfg.name << " c_HG = " << chg << ": zigzag max " << zig_max << "\n";

@@ -213,16 +213,17 @@ QuasiStaticRun quasi_static_run(Bar& bar, double nu, double ramp_transits, const
   r.t11_at.assign(stretches.size(), std::nan(""));
   const long nsteps = static_cast<long>(std::ceil(r.t_load / r.dt));
   const long every = std::max(1L, nsteps / 1500);
-  for (long s = 0; s <= nsteps; ++s) {
-    const Eigen::VectorXd& u = stepper.u();
-    sys.set_time(stepper.time());
+  SnapshotFunction probe([&](const StepView& view) {
+    const long s = view.step;
+    sys.set_time(view.time);
     Eigen::VectorXd F, P;
     try {
-      F = bar.tl->deformation_gradients(u).col(0);
-      P = bar.tl->stresses(u).col(0);
+      F = bar.tl->deformation_gradients(view.u).col(0);
+      P = bar.tl->stresses(view.u).col(0);
     } catch (const std::invalid_argument& e) {
       r.end = "stopped: J <= 0 at lambda = " + format_number(lambda_now, 4);
-      break;
+      probe.stop(r.end);
+      return;
     }
     double fmin = 1e300, fmax = -1e300;
     for (int i : bar.disc->free) fmin = std::min(fmin, F[i]), fmax = std::max(fmax, F[i]);
@@ -232,21 +233,21 @@ QuasiStaticRun quasi_static_run(Bar& bar, double nu, double ramp_transits, const
     if (std::isnan(r.departure) && fmax - fmin > spread_threshold) r.departure = lambda_now;
     if (lambda_now <= r.spread_before_lambda) r.spread_before = fmax - fmin;
     if (s % every == 0 || s == nsteps)
-      csv.row({stepper.time() * 1e6, lambda_now, F[ic], P[ic] / bar.mu(), bar.analytic_t11(lambda_now) / bar.mu(), fmin,
+      csv.row({view.time * 1e6, lambda_now, F[ic], P[ic] / bar.mu(), bar.analytic_t11(lambda_now) / bar.mu(), fmin,
                fmax});
     if (!std::isfinite(F[ic]) || fmax - fmin > 10) {
       r.end = "stopped: F spread > 10 at lambda = " + format_number(lambda_now, 4);
-      break;
+      probe.stop(r.end);
     }
-    if (s == nsteps) break;
-    try {
-      stepper.step(r.dt);
-    } catch (const std::invalid_argument& e) {
-      r.end = "stopped: J <= 0 at lambda = " + format_number(lambda_now, 4);
-      break;
-    }
-    r.steps = s + 1;
-  }
+  });
+  RunOptions o{.dt = r.dt, .max_steps = nsteps, .snapshot_every = 1};
+  o.observers = {&probe};
+  const RunResult result = run(stepper, o);
+  if (result.status == RunStatus::Exception)  // the TL stress refuses J <= 0
+    r.end = "stopped: J <= 0 at lambda = " + format_number(lambda_now, 4);
+  else if (!result.completed() && result.status != RunStatus::Stopped)
+    r.end = "stopped: " + result.message;
+  r.steps = result.steps;
   return r;
 }
 

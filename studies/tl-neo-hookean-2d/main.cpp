@@ -179,10 +179,11 @@ int main(int argc, char** argv) {
     const long every = std::max(1L, nsteps / 1500);
     std::string end = "completed";
     double f11 = 0, f22 = 0, t11 = 0;
-    for (long s = 0; s <= nsteps; ++s) {
-      sys.set_time(stepper.time());
+    SnapshotFunction centre_probe([&](const StepView& view) {
+      const long s = view.step;
+      sys.set_time(view.time);
       try {
-        const Eigen::MatrixXd F = tl.deformation_gradients(stepper.u());
+        const Eigen::MatrixXd F = tl.deformation_gradients(view.u);
         f11 = f22 = t11 = 0;
         for (int f : centre) {
           const int i = disc->free[f];
@@ -194,23 +195,21 @@ int main(int argc, char** argv) {
         }
       } catch (const std::invalid_argument& e) {
         end = std::string("stopped: ") + e.what();
-        break;
+        centre_probe.stop(end);
+        return;
       }
       if (s % every == 0 || s == nsteps)
-        hcsv.row({stepper.time() * 1e6, lam[0], lam[1], f11, f22, t11 / mu, analytic_t11(lam[0], lam[1]) / mu});
+        hcsv.row({view.time * 1e6, lam[0], lam[1], f11, f22, t11 / mu, analytic_t11(lam[0], lam[1]) / mu});
       for (std::size_t k = 0; k < stretches.size(); ++k)
-        if (std::isnan(at[k]) && lam[0] >= stretches[k] - 1e-12 && stepper.time() > 0) {
+        if (std::isnan(at[k]) && lam[0] >= stretches[k] - 1e-12 && view.time > 0) {
           at[k] = t11;
           f22_at[k] = f22;
         }
-      if (s == nsteps) break;
-      try {
-        stepper.step(dt);
-      } catch (const std::invalid_argument& e) {
-        end = std::string("stopped: ") + e.what();
-        break;
-      }
-    }
+    });
+    RunOptions ro{.dt = dt, .max_steps = nsteps, .snapshot_every = 1};
+    ro.observers = {&centre_probe};
+    if (const RunResult result = run(stepper, ro); !result.completed() && result.status != RunStatus::Stopped)
+      end = "stopped: " + result.message;
     std::cout << "case " << c.id << ": " << stepper.steps() << " steps, " << end << "\n";
     for (std::size_t k = 0; k < stretches.size(); ++k) {
       // the imposed lambda_2 when lambda_1 first reached the stretch

@@ -218,11 +218,11 @@ DynamicOutcome dynamic_step(const Run& run, double c_hg, double transits, const 
                 {"t_over_transit", "peak_principal_hole_mpa", "peak_principal_mpa"}, false);
   const long nsteps = static_cast<long>(std::ceil(o.t_end / o.dt));
   const long every = std::max(1L, nsteps / 2000);
-  for (long s = 0; s <= nsteps; ++s) {
-    if (s % every == 0 || s == nsteps) {
+  SnapshotFunction peaks([&](const StepView& view) {
+    {
       double hole = 0, all = 0;
       try {
-        const Eigen::MatrixXd F = tl.deformation_gradients(T * stepper.u());
+        const Eigen::MatrixXd F = tl.deformation_gradients(T * view.u);
         for (int i = 0; i < plate.real_count; ++i) {
           Deformation<double, 2> Fi;
           Fi << F(i, 0), F(i, 1), F(i, 2), F(i, 3);
@@ -233,27 +233,29 @@ DynamicOutcome dynamic_step(const Run& run, double c_hg, double transits, const 
         }
       } catch (const std::exception& e) {
         o.end = std::string("stopped: ") + e.what();
-        break;
+        peaks.stop(o.end);
+        return;
       }
       if (!std::isfinite(all)) {
         o.end = "stopped: non-finite stress";
-        break;
+        peaks.stop(o.end);
+        return;
       }
-      csv.row({stepper.time() * cs / W, hole, all});
+      csv.row({view.time * cs / W, hole, all});
       if (hole > o.peak_hole) {
         o.peak_hole = hole;
-        o.peak_time = stepper.time() * cs / W;
+        o.peak_time = view.time * cs / W;
       }
       o.peak_all = std::max(o.peak_all, all);
     }
-    if (s == nsteps) break;
-    try {
-      stepper.step(o.dt);
-    } catch (const std::exception& e) {
-      o.end = std::string("stopped: ") + e.what();
-      break;
-    }
-  }
+  });
+  sphstab::RunOptions ro{.dt = o.dt, .max_steps = nsteps, .snapshot_every = static_cast<int>(every)};
+  ro.observers = {&peaks};
+  const RunResult result = sphstab::run(stepper, ro);
+  if (result.status == RunStatus::Exception)
+    o.end = "stopped: " + result.reason;
+  else if (!result.completed() && result.status != RunStatus::Stopped)
+    o.end = "stopped: " + result.message;
   o.steps = stepper.steps();
   std::cout << run.tag << " dynamic: " << o.steps << " steps, " << o.end << ", peak near hole " << o.peak_hole
             << " MPa at t = " << o.peak_time << " W/c_s" << std::endl;

@@ -231,10 +231,9 @@ int main(int argc, char** argv) {
     LeapfrogStepper stepper(sys, u0, Eigen::VectorXd::Zero(n));
     double t_pair = std::nan(""), gap_min_all = 1e300, amp_max = 0, amp_at_arrival = std::nan("");
     const double t_arrival = x_rel[centre];  // the perturbation's wave reaches the ends (c = 1): Ismail's run length
-    std::string status = "completed";
-    for (;;) {
-      const double t = stepper.time();
-      const Eigen::VectorXd pos = x_free + stepper.u();
+    SnapshotFunction gaps([&](const StepView& s) {
+      const double t = s.time;
+      const Eigen::VectorXd pos = x_free + s.u;
       double gmin = 1e300, gmax = 0;
       for (int i = 0; i + 1 < n; ++i) {
         const double g = (pos[i + 1] - pos[i]) / spacing;
@@ -247,23 +246,20 @@ int main(int argc, char** argv) {
       amp_max = std::max(amp_max, amp);
       if (std::isnan(amp_at_arrival) && t >= t_arrival) amp_at_arrival = amp;
       if (std::isnan(t_pair) && gmin < 0.5) t_pair = t;
-      if (stepper.steps() % 4 == 0) {
+      if (s.step % 4 == 0) {
         pcsv.row({run, t, gmin, gmax, amp});
         std::vector<CsvCell> row{run, t};
-        for (int k = -3; k <= 3; ++k) row.push_back((stepper.u()[centre + k] - u_eq[centre + k]) / spacing);
+        for (int k = -3; k <= 3; ++k) row.push_back((s.u[centre + k] - u_eq[centre + k]) / spacing);
         tcsv.row(row);
       }
-      if (gmin < 0.05) {
-        status = "particles within 0.05 spacing (stopped)";
-        break;
-      }
-      if (!stepper.u().allFinite()) {
-        status = "non-finite";
-        break;
-      }
-      if (t >= t_end) break;
-      stepper.step(dt);
-    }
+      if (gmin < 0.05) gaps.stop("particles within 0.05 spacing");
+    });
+    RunOptions ro{.dt = dt, .t_end = t_end, .land_on_t_end = false, .snapshot_every = 1};
+    ro.observers = {&gaps};
+    const RunResult result = sphstab::run(stepper, ro);
+    const std::string status = result.completed()                       ? "completed"
+                               : result.status == RunStatus::Stopped ? "particles within 0.05 spacing (stopped)"
+                                                                     : run_status_name(result.status);
     summary.set("t_pair_" + run, std::isnan(t_pair) ? std::string("never") : study::sig(t_pair, 4));
     summary.set("amp_max_" + run, amp_max, 3);
     summary.set("amp_arrival_" + run, amp_at_arrival, 3);

@@ -205,6 +205,23 @@ TEST(RunCommand, BlowUpEndsWithStatusStepTimeAndParticleAndKeepsTheRows) {
   EXPECT_GT(dt.numeric_column("max_displacement").back(), 1e-3 * 0.01);
 }
 
+TEST(RunCommand, AModelThatRefusesTheStateEndsTheRunAsAResult) {
+  // At three times the CFL step the artificial stress meets rho < 0 inside the threaded stress pass (it throws
+  // there): the run loop reports it as status "exception" with the step, keeping every row; it used to abort
+  // (an exception leaving an OpenMP region is std::terminate).
+  const test::CliOutcome r = run(words("run --n 5 --artificial-stress 0.3 --cfl 3 --t-end 20 --record-every 1"),
+                                 "refused");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const CsvTable t = read_csv(r.out_path);
+  ASSERT_GE(t.rows.size(), 3u);
+  const std::vector<std::string> status = t.text_column("status");
+  EXPECT_EQ(status.back(), "exception");
+  for (std::size_t k = 0; k + 1 < status.size(); ++k) EXPECT_EQ(status[k], "running") << k;
+  const long last = static_cast<long>(t.numeric_column("step").back());
+  EXPECT_NE(r.err.find("artificial_stress: density must be finite and > 0"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("at step " + std::to_string(last)), std::string::npos) << r.err;
+}
+
 TEST(RunCommand, SnapshotsFollowTheRows) {
   const std::string out = scratch("vtk").string();
   std::filesystem::remove_all(out);

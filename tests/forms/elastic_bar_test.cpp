@@ -163,7 +163,7 @@ TEST(ElasticBar, SymmetricFormConservesEnergyWithSecondOrderOscillation) {
     LeapfrogOptions opt;
     opt.dt = f * est.dt_limit;
     opt.max_steps = 10000;
-    opt.diagnostics_every = 10;
+    opt.record_every = 10;
     auto r = run_leapfrog(sys, Eigen::VectorXd::Zero(bar.size()), v0, opt);
     ASSERT_TRUE(r.completed());
     const double e0 = r.history.front().total;

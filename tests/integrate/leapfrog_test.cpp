@@ -59,7 +59,7 @@ TEST(Leapfrog, HarmonicOscillatorMatchesTheDiscreteExactSolution) {
     st.step(dt);
     ASSERT_NEAR(st.u()[0], std::cos(wt * n * dt), 1e-11) << "step " << n;  // round-off growth over 2000 steps
   }
-  EXPECT_EQ(st.force_evaluations(), 2001);
+  EXPECT_EQ(st.evaluations(), 2001);
 }
 
 TEST(Leapfrog, OscillatorPeriodErrorIsSecondOrder) {
@@ -145,7 +145,7 @@ double energy_deviation(const SecondOrderSystem& sys, const Eigen::VectorXd& u0,
   LeapfrogOptions opt;
   opt.dt = dt;
   opt.max_steps = steps;
-  opt.diagnostics_every = 1;
+  opt.record_every = 1;
   auto r = run_leapfrog(sys, u0, Eigen::VectorXd::Zero(u0.size()), opt);
   const double e0 = r.history.front().total;
   double dev = 0, first = 0, last = 0;
@@ -200,7 +200,7 @@ TEST(BlowUp, UnstableSystemStopsAtThePredictedStep) {
   LeapfrogOptions opt;
   opt.dt = dt;
   opt.t_end = 100;
-  opt.diagnostics_every = 50;
+  opt.record_every = 50;
   const std::string csv_path = (dir / "diag.csv").string();
   DiagnosticsCsv csv(csv_path, 1);
   opt.observers = {&csv};

@@ -155,7 +155,7 @@ TEST(RateFormLeapfrog, BookkeepingAndBadInput) {
   EXPECT_LT((still.y - rest).lpNorm<Eigen::Infinity>(), 1e-13);
   // One evaluation to start, then two per step (half-step rates of x, rho, S; whole-step acceleration).
   EXPECT_EQ(still.steps, 20);
-  EXPECT_EQ(still.rate_evaluations, 41);
+  EXPECT_EQ(still.evaluations, 41);
   // The recorded kinetic energy is that of the returned, synchronised state.
   const RateFormRunResult r = run_rate_form(s, smooth_wave(s, 0.05), leapfrog(0.3, 3.0));
   EXPECT_EQ(r.kinetic_energy.back(), s.kinetic_energy(r.y));

@@ -38,8 +38,8 @@ TEST(RateFormReuseRate, FirstStepIsThePredictorCorrectorsAndOneEvaluationPerStep
   EXPECT_EQ(a.y, b.y);  // one step: F^0 is F(y0) in both
   const RateFormRunResult c = p.run(0.1, false), d = p.run(0.1, true);
   EXPECT_EQ(c.steps, 20);
-  EXPECT_EQ(c.rate_evaluations, 2 * c.steps);
-  EXPECT_EQ(d.rate_evaluations, d.steps + 1);
+  EXPECT_EQ(c.evaluations, 2 * c.steps);
+  EXPECT_EQ(d.evaluations, d.steps + 1);
   EXPECT_GT((c.y - d.y).norm(), 0.0);  // later steps differ: the option acts
 }
 

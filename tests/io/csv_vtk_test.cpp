@@ -112,7 +112,7 @@ TEST(Vtk, LeapfrogSnapshotsAndCsvMatchTheFinalState) {
   LeapfrogOptions opt;
   opt.dt = 0.01;
   opt.max_steps = 100;
-  opt.diagnostics_every = 10;
+  opt.record_every = 10;
   opt.snapshot_every = 50;
   VtkSeries vtk(dir.file("osc"), s);
   DiagnosticsCsv csv(dir.file("osc.csv"), 2);

@@ -64,8 +64,8 @@ TEST(Swegle, ConservativeFormConservesEnergyWithSecondOrderError) {
     LeapfrogOptions o;
     o.dt = dt;
     o.t_end = T;
-    o.diagnostics_every = 10;
-    const RunResult r = run_leapfrog(sys, Eigen::VectorXd::Zero(force->dofs()), s.v0, o);
+    o.record_every = 10;
+    const LeapfrogResult r = run_leapfrog(sys, Eigen::VectorXd::Zero(force->dofs()), s.v0, o);
     ASSERT_TRUE(r.completed());
     const double e0 = r.history.front().total;
     double dev = 0, st = 0, se = 0, stt = 0, ste = 0;

@@ -13,7 +13,38 @@
 /// the 2-core machine with a compile running: TL SpMV stepping at 1e4 particles 50x slower with 2 threads), and the
 /// rate-form speed-up varied between runs (results/gms-speed/benchmark.md). Without OpenMP every function here
 /// reports one thread.
+#include <exception>
+
 namespace sphstab {
+
+/// The first exception thrown in the body of an OpenMP loop, kept and rethrown after the region: an exception must
+/// not leave a parallel region (std::terminate; a model that refuses a state, e.g. the artificial stress at rho <= 0,
+/// would abort the program instead of stopping the run).
+/// \code{.cpp}
+/// FirstException first;
+/// #pragma omp parallel for
+/// for (int i = 0; i < n; ++i) first.run([&] { row(i); });
+/// first.rethrow();
+/// \endcode
+class FirstException {
+ public:
+  template <class F>
+  void run(F&& f) noexcept {
+    try {
+      f();
+    } catch (...) {
+      keep(std::current_exception());
+    }
+  }
+  /// Rethrows the kept exception, if any.
+  void rethrow() const {
+    if (m_error) std::rethrow_exception(m_error);
+  }
+
+ private:
+  void keep(std::exception_ptr error) noexcept;
+  std::exception_ptr m_error;
+};
 
 /// Threads a parallel loop uses from here on (>= 1).
 int max_threads();

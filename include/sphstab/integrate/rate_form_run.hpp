@@ -74,17 +74,20 @@
 /// scheme. Rates already evaluated are kept across a rebuild. Driven particles (RateFormScheme::set_driven) keep their
 /// prescribed acceleration, and Powell's XSPH (leapfrog_xsph) leaves their velocity alone too.
 ///
-/// An unstable run is a result, not an exception: the run stops at the first non-finite state, non-positive density
-/// or kinetic-energy growth beyond the limit, and reports the step, time and particle (RunStatus, message), keeping
-/// the record written so far.
+/// An unstable run is a result, not an exception: the run loop (integrate/run.hpp) stops at the first non-finite state,
+/// non-positive density, kinetic-energy growth beyond the limit or exception thrown by a rate evaluation (a model
+/// that refuses the state, e.g. the artificial stress at rho <= 0), and reports the step, time and particle
+/// (RunStatus, message), keeping the record written so far.
 #include <Eigen/Core>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "sphstab/forms/rate_form.hpp"
 #include "sphstab/integrate/leapfrog.hpp"
+#include "sphstab/integrate/run.hpp"
 
 namespace sphstab {
 
@@ -134,22 +137,43 @@ struct RateFormRunOptions {
   double neighbour_skin = 0;
 };
 
-struct RateFormRunResult {
-  RunStatus status = RunStatus::Completed;
-  std::string message;
-  long steps = 0;
-  double time = 0, dt = 0;
-  int particle = -1;  ///< the particle that stopped the run (non-finite, non-positive density, displacement), or -1
+struct RateFormRunResult : RunResult {
   std::vector<double> times, kinetic_energy;
   Eigen::VectorXd y;  ///< the last state (the failing one for a stopped run)
-  long rate_evaluations = 0;
   /// Neighbour lists the run built, the one at y0 included (0 without a neighbour_skin: the discretisation's list).
   long neighbour_builds = 0;
-  double wall_seconds = 0;
-  bool completed() const { return status == RunStatus::Completed; }
 };
 
-/// Runs the chosen integrator from y0 (size scheme.size()). Throws std::invalid_argument for dt <= 0, t_end <= 0,
+/// The chosen integrator as a Stepper of the run loop (integrate/run.hpp), holding the synchronised state y^n. Checks
+/// non-finite entries and rho <= 0 (neither recorded) and the displacement limit (max norm, from the positions of
+/// the last neighbour build); watches the kinetic energy; a record appends (t, kinetic energy) and calls
+/// options.observer. Of `options` it uses the integrator's own fields (integrator, positions, reuse_corrector_rate,
+/// leapfrog_xsph, absorbing_half_step, yield_stress, neighbour_skin) and the observer; the run's (dt, t_end,
+/// record_every, energy_growth, max_displacement) are RunOptions'. Throws std::invalid_argument as run_rate_form.
+template <int Dim>
+class RateFormStepper final : public Stepper {
+ public:
+  RateFormStepper(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y0, const RateFormRunOptions& options);
+  ~RateFormStepper() override;
+  void step(double dt) override;
+  long steps() const override;
+  double time() const override;
+  long evaluations() const override;
+  StateFault check(const BlowUpLimits& limits) const override;
+  double energy() const override;
+  void record(long step, const std::vector<RunObserver*>& observers) override;
+
+  const Eigen::VectorXd& state() const;
+  long neighbour_builds() const;
+  const std::vector<double>& times() const;
+  const std::vector<double>& kinetic_energy() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> m;
+};
+
+/// Runs the chosen integrator from y0 (size scheme.size()): the run loop (integrate/run.hpp) over a RateFormStepper. Throws std::invalid_argument for dt <= 0, t_end <= 0,
 /// record_every < 1, a state of the wrong size, leapfrog_xsph < 0 (or > 0 with the predictor-corrector),
 /// yield_stress <= 0, max_displacement <= 0, absorbing_half_step with the predictor-corrector, a negative or non-finite
 /// neighbour_skin, or (with a skin) non-finite positions in y0 or a periodic box shorter than twice the list radius.
