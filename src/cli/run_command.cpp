@@ -178,8 +178,10 @@ Measures measure(const RateFormScheme<Dim>& s, const Eigen::VectorXd& y) {
   m.kinetic = s.kinetic_energy(y);
   for (int i = 0; i < d.size(); ++i) {
     if (const int xo = s.position_offset(i); xo >= 0) {
-      m.max_speed = worst_max(m.max_speed, y.template segment<Dim>(xo + Dim).norm());
-      const double u = (y.template segment<Dim>(xo) - d.particles.x.row(i).transpose()).norm();
+      m.max_speed = worst_max(m.max_speed, y.template segment<Dim>(xo + Dim).stableNorm());
+      // stableNorm: a displacement of 1e300 is reported as such, not as inf (the squared norm would overflow)
+      const Eigen::Matrix<double, Dim, 1> du = y.template segment<Dim>(xo) - d.particles.x.row(i).transpose();
+      const double u = du.stableNorm();
       if (worst_max(m.max_displacement, u) != m.max_displacement) m.moved_most = i;
       m.max_displacement = worst_max(m.max_displacement, u);
     }

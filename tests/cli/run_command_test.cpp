@@ -222,6 +222,16 @@ TEST(RunCommand, AModelThatRefusesTheStateEndsTheRunAsAResult) {
   EXPECT_NE(r.err.find("at step " + std::to_string(last)), std::string::npos) << r.err;
 }
 
+TEST(RunCommand, AHugeButFiniteDisplacementIsReportedAsItIs) {
+  // dt = 1e300 moves the kicked particle by ~1e290 in a step: finite, so the stop is the displacement limit with that
+  // distance (its squared norm would overflow to inf), not "moved inf".
+  const test::CliOutcome r = run(words("run --n 5 --dt 1e300 --t-end 1e301"), "huge");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("displacement-limit"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("moved 1e+"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("moved inf"), std::string::npos) << r.err;
+}
+
 TEST(RunCommand, SnapshotsFollowTheRows) {
   const std::string out = scratch("vtk").string();
   std::filesystem::remove_all(out);
