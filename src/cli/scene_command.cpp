@@ -23,7 +23,6 @@
 #include "parse.hpp"
 #include "rate_form_args.hpp"
 #include "sphstab/analysis/fragments.hpp"
-#include "sphstab/analysis/neck.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/memory_budget.hpp"
 #include "sphstab/forms/rate_form.hpp"
@@ -32,9 +31,7 @@
 #include "sphstab/io/csv.hpp"
 #include "sphstab/io/rate_form_vtk.hpp"
 #include "sphstab/io/vtk.hpp"
-#include "sphstab/problems/cantilever_plate.hpp"
-#include "sphstab/problems/colliding_rings.hpp"
-#include "sphstab/problems/plastic_slab.hpp"
+#include "sphstab/problems/gms_scenes.hpp"
 
 namespace sphstab::cli {
 
@@ -59,16 +56,8 @@ double checked(const std::string& text, const std::string& what, double lo, bool
 }
 double positive(const std::string& text, const std::string& what) { return checked(text, what, 0, true, kInf, true); }
 
-/// A scene ready to run: scheme, initial state, the measure of a record, the defaults that depend on the scene.
-struct Scene {
-  std::unique_ptr<RateFormScheme<2>> scheme;
-  Eigen::VectorXd y0;
-  double dp = 0, t_end = 0, yield = kInf;
-  std::string measure_name;
-  std::function<double(const Eigen::Matrix2Xd&, const Eigen::VectorXd&)> measure;
-};
-
-Scene make_scene(const SceneArgs& a) {
+/// The library's scene (problems/gms_scenes.hpp) with the command's parameters; out-of-range values are one error line.
+Scene<2> make_scene(const SceneArgs& a) {
   const std::string& s = a.scene;
   if (s != "plate" && s != "rings" && s != "slab")
     throw std::invalid_argument("scene: unknown scene '" + s + "' (valid: plate, rings, slab)");
@@ -79,23 +68,10 @@ Scene make_scene(const SceneArgs& a) {
     const double nu = checked(a.nu, "--nu (Poisson's ratio)", -1, true, 0.5, true);
     mu = 3 * (1 - 2 * nu) / (2 * (1 + nu));
   }
-  const double eps = checked(a.eps, "--eps (artificial stress)", 0, false, kInf, true);
-  const RateFormMaterial mat{.density = 1, .bulk_modulus = 1, .shear_modulus = mu};
-  const RateFormOptions options{.continuity = ContinuityForm::Divergence,
-                                .xsph = 0.5,
-                                .viscosity = ViscositySwitch::Compression,
-                                .viscosity_alpha = 1,
-                                .viscosity_beta = 2,
-                                .artificial_stress = eps};
-  const Kernel<2> kernel(KernelType::CubicSpline);
-  Scene sc;
-  auto build = [&](ParticleSet<2> p) {
-    sc.dp = p.spacing;
-    sc.scheme =
-        std::make_unique<RateFormScheme<2>>(make_discretisation(std::move(p), kernel, 1.5 * sc.dp), mat, options);
-    sc.y0 = sc.scheme->uniform_state();
-  };
-  if (!a.yield.empty()) sc.yield = positive(a.yield, "--yield (von Mises yield stress)");
+  const GmsSceneOptions o{.material = {.density = 1, .bulk_modulus = 1, .shear_modulus = mu},
+                          .scheme = gms_scheme_options(checked(a.eps, "--eps (artificial stress)", 0, false, kInf, true))};
+  const double yield = a.yield.empty() ? kInf : positive(a.yield, "--yield (von Mises yield stress)");
+  Scene<2> sc;
   if (s == "plate") {
     if (!a.dp.empty()) throw std::invalid_argument("scene: the plate takes --across (dp = H / across), not --dp");
     const double H = positive(a.thickness, "--thickness H"), L = positive(a.length, "--length L");
@@ -104,75 +80,37 @@ Scene make_scene(const SceneArgs& a) {
     // About 1.5 kB per particle: the set, ~30 neighbour pairs, the scheme's workspace and the state vectors.
     require_memory(1500.0 * (L / (H / across) + 4) * across,
                    "scene: plate of " + a.across + " across and length " + a.length);
-    build(make_cantilever_plate({.length = L, .thickness = H, .across = across}));
-    std::vector<int> tip;
-    const ParticleSet<2>& p = sc.scheme->discretisation().particles;
-    for (int i = 0; i < p.size(); ++i) {
-      if (p.role[i] == Role::Free)
-        sc.scheme->set_velocity(sc.y0, i, Eigen::Vector2d(0, cantilever_mode_velocity(p.x(i, 0), L, vf)));
-      if (p.x(i, 0) > L - sc.dp) tip.push_back(i);
-    }
-    const IsotropicModuli m = isotropic_moduli(1, mu);
-    sc.t_end = 1.25 * thin_plate_period(m.youngs, m.poisson, 1, H, L);
-    sc.measure_name = "tip_deflection";
-    sc.measure = [tip, p0 = p](const Eigen::Matrix2Xd& x, const Eigen::VectorXd&) {
-      double u = 0;
-      for (int i : tip) u += x(1, i) - p0.x(i, 1);
-      return u / static_cast<double>(tip.size());
-    };
+    sc = gms_plate_scene({.length = L, .thickness = H, .across = across}, vf, o);
   } else if (s == "rings") {
     const double dp = a.dp.empty() ? 0.1 : positive(a.dp, "--dp");
-    const double speed = parse_double(a.speed, "scene: --speed");
-    const CollidingRings r = make_colliding_rings({.spacing = dp, .speed = speed});
-    build(r.particles);
-    for (int i = 0; i < r.size(); ++i) sc.scheme->set_velocity(sc.y0, i, r.velocity.col(i));
-    sc.t_end = 100;
-    sc.measure_name = "ring_fragments";
-    const int n = r.per_ring;
-    sc.measure = [n, bond = 1.5 * dp](const Eigen::Matrix2Xd& x, const Eigen::VectorXd&) {
-      return static_cast<double>(
-          std::max(find_fragments(x.leftCols(n), bond).count(), find_fragments(x.rightCols(n), bond).count()));
-    };
+    sc = gms_rings_scene({.spacing = dp, .speed = parse_double(a.speed, "scene: --speed")}, o);
   } else {
     const double dp = a.dp.empty() ? 0.04 : positive(a.dp, "--dp");
-    if (a.yield.empty()) sc.yield = 0.03;  // GMS §7.3
-    const PlasticSlab slab = make_plastic_slab({.spacing = dp});
-    build(slab.particles);
-    std::vector<Eigen::Vector2d> acc;
-    for (Eigen::Index k = 0; k < slab.driven_acceleration.cols(); ++k)
-      acc.emplace_back(slab.driven_acceleration.col(k));
-    sc.scheme->set_driven(slab.driven, acc);
-    sc.t_end = 200;
-    sc.measure_name = "min_width";
-    sc.measure = [slab, dp](const Eigen::Matrix2Xd& x, const Eigen::VectorXd&) {
-      const SlabNeck neck = slab_neck(x, slab.left_end, slab.right_end,
-                                      {.bin_width = 2 * dp, .particle_size = dp, .bond_radius = 1.5 * dp});
-      double w = kInf;
-      for (double v : neck.profile.width) w = std::min(w, v);
-      return w;
-    };
+    sc = gms_slab_scene({.spacing = dp}, a.yield.empty() ? 0.03 : yield, o);  // GMS §7.3: Y = 0.03
   }
+  if (s != "slab") sc.yield_stress = yield;
   return sc;
 }
 
 void run_scene(const SceneArgs& a) {
-  Scene sc = make_scene(a);
+  const Scene<2> sc = make_scene(a);
   const RateFormScheme<2>& scheme = *sc.scheme;
   const double t_end = a.t_end.empty() ? sc.t_end : positive(a.t_end, "--t-end");
-  const double skin = positive(a.skin, "--skin") * sc.dp;
-  const double dt = positive(a.cfl, "--cfl") * scheme.discretisation().h / scheme.material().p_wave_speed();
+  const double skin = positive(a.skin, "--skin") * sc.spacing;
+  const double dt = sc.time_step(positive(a.cfl, "--cfl"));
   const int every = static_cast<int>(parse_integer(a.record_every, 1, 1'000'000'000, "scene: --record-every"));
   require_run_length(t_end, dt, scheme.discretisation().particles.size(), "scene");
   std::vector<std::pair<double, std::string>> frames;
   if (!a.out.empty()) std::filesystem::create_directories(a.out);
-  const double bond = 1.5 * sc.dp;
-  std::printf("%s", csv_line({"step", "t", "kinetic", "fragments", sc.measure_name, "status", "particle"}).c_str());
+  const double bond = 1.5 * sc.spacing;
+  const SceneMeasure<2>& measure = sc.measures.front();
+  std::printf("%s", csv_line({"step", "t", "kinetic", "fragments", measure.name, "status", "particle"}).c_str());
   RateFormRunOptions o{
-      .dt = dt, .t_end = t_end, .record_every = every, .yield_stress = sc.yield, .neighbour_skin = skin};
+      .dt = dt, .t_end = t_end, .record_every = every, .yield_stress = sc.yield_stress, .neighbour_skin = skin};
   o.observer = [&](long step, double t, const Eigen::VectorXd& y) {
     const Eigen::Matrix2Xd x = rate_form_positions(scheme, y);
     std::printf("%s", csv_line({std::to_string(step), num(t), num(scheme.kinetic_energy(y)),
-                                std::to_string(find_fragments(x, bond).count()), num(sc.measure(x, y)), "", ""})
+                                std::to_string(find_fragments(x, bond).count()), num(measure.value(x, y)), "", ""})
                           .c_str());
     std::fflush(stdout);
     if (!a.out.empty()) {

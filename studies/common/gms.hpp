@@ -1,7 +1,8 @@
 #pragma once
 /// \file gms.hpp
-/// What the Gray-Monaghan-Swift studies (gms-plate, gms-rings, gms-slab) share: the scheme's options, the cost of a
-/// run and the frozen-state spectrum of a state along a run.
+/// What the Gray-Monaghan-Swift studies (gms-plate, gms-rings, gms-slab) share beyond the library's scenes
+/// (problems/gms_scenes.hpp: GMS's scheme, the three set-ups): the cost of a run and the frozen-state spectrum of a
+/// state along a run.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -16,21 +17,10 @@
 #include "sphstab/forms/rate_form_state.hpp"
 #include "sphstab/growth/rate_form_spectrum.hpp"
 #include "sphstab/integrate/rate_form_run.hpp"
+#include "sphstab/problems/gms_scenes.hpp"
 #include "sphstab/io/csv.hpp"
 
 namespace sphstab::study {
-
-/// The scheme of [GMS2001, §3-6]: continuity -rho tr L, XSPH eps_x = 1/2, artificial stress eps (n = 4), and
-/// Monaghan's viscosity with the compression switch. GMS give no viscosity coefficients: alpha = 1, beta = 2 are
-/// Monaghan's (gms-plate's summary shows the MCM deck's 0.06 / 1.5 disorders the plate); alpha = beta = 0: off.
-inline RateFormOptions gms_options(double eps, double alpha = 1, double beta = 2) {
-  return {.continuity = ContinuityForm::Divergence,
-          .xsph = 0.5,
-          .viscosity = alpha > 0 || beta > 0 ? ViscositySwitch::Compression : ViscositySwitch::Off,
-          .viscosity_alpha = alpha,
-          .viscosity_beta = beta,
-          .artificial_stress = eps};
-}
 
 /// The cost of a run: wall time (shared cores: depends on the load), the run thread's CPU time, steps, particles.
 struct RunCost {

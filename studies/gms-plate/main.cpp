@@ -112,7 +112,7 @@ PlateScene make_scene(const PlateCase& c) {
   const double dp = s.particles.spacing;
   const Kernel<2> kernel(KernelType::CubicSpline);
   s.disc = make_discretisation(s.particles, kernel, c.h_factor * dp);
-  s.scheme = std::make_unique<RateFormScheme<2>>(s.disc, material_of(c), study::gms_options(c.eps, c.alpha, c.beta));
+  s.scheme = std::make_unique<RateFormScheme<2>>(s.disc, material_of(c), gms_scheme_options(c.eps, c.alpha, c.beta));
   s.y0 = s.scheme->uniform_state();
   const ParticleSet<2>& p = s.particles;
   for (int i = 0; i < p.size(); ++i) {

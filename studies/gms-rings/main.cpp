@@ -117,18 +117,19 @@ RingRun run_rings(const RingCase& c, const std::string& out) {
   r.u = c.si ? Units{.length = 0.01, .speed = mat.sound_speed()} : Units{};
   const double r_in = 3 * r.u.length, r_out = 4 * r.u.length;
   r.speed = 0.059 * mat.sound_speed();
-  const CollidingRings rings = make_colliding_rings(
-      {.inner_radius = r_in, .outer_radius = r_out, .spacing = c.dp, .gap = c.gap, .speed = r.speed});
+  const CollidingRingsOptions geometry{
+      .inner_radius = r_in, .outer_radius = r_out, .spacing = c.dp, .gap = c.gap, .speed = r.speed};
+  const CollidingRings rings = make_colliding_rings(geometry);  // the ring of each particle
   const int n = rings.per_ring;
   r.particles = rings.size();
   r.per_ring = n;
   r.h = 1.5 * c.dp;
   const Kernel<2> kernel(KernelType::CubicSpline);
-  RateFormOptions options = study::gms_options(c.eps);
+  RateFormOptions options = gms_scheme_options(c.eps);
   options.pair_loop = c.loop;
-  const RateFormScheme<2> scheme(make_discretisation(rings.particles, kernel, r.h), mat, options);
-  Eigen::VectorXd y0 = scheme.uniform_state();
-  for (int i = 0; i < r.particles; ++i) scheme.set_velocity(y0, i, rings.velocity.col(i));
+  const Scene<2> scene = gms_rings_scene(geometry, {.material = mat, .scheme = options});
+  const RateFormScheme<2>& scheme = *scene.scheme;
+  const Eigen::VectorXd& y0 = scene.y0;
   const double support = kernel.support_radius(r.h), bond = 1.5 * c.dp;
   r.dt = c.dt_scale * 0.5 * r.h / mat.p_wave_speed();
   const double t_end = c.steps > 0 ? c.steps * r.dt : c.t_end;
@@ -294,18 +295,15 @@ double ring_ovalling_period(double K, double mu, double R, double t) {
 void frozen_spectra(double dp_spectrum, double gap, double skin, const std::vector<double>& times,
                     const std::string& out, study::Summary& sum) {
   const RateFormMaterial mat{.density = 1, .bulk_modulus = 1, .shear_modulus = 0.22};
-  const CollidingRings rings =
-      make_colliding_rings({.inner_radius = 3, .outer_radius = 4, .spacing = dp_spectrum, .gap = gap, .speed = 0.059});
-  const double h = 1.5 * dp_spectrum;
-  const RateFormScheme<2> scheme(make_discretisation(rings.particles, Kernel<2>(KernelType::CubicSpline), h), mat,
-                                 study::gms_options(0));
-  Eigen::VectorXd y0 = scheme.uniform_state();
-  for (int i = 0; i < rings.size(); ++i) scheme.set_velocity(y0, i, rings.velocity.col(i));
-  study::frozen_spectra_along_run(scheme, y0,
+  const Scene<2> scene =
+      gms_rings_scene({.inner_radius = 3, .outer_radius = 4, .spacing = dp_spectrum, .gap = gap, .speed = 0.059},
+                      {.material = mat, .scheme = gms_scheme_options(0)});
+  const double h = scene.scheme->discretisation().h;
+  study::frozen_spectra_along_run(*scene.scheme, scene.y0,
                                   {.dt = 0.5 * h / mat.p_wave_speed(), .neighbour_skin = skin * dp_spectrum}, times,
                                   times.front(), out, sum);
   sum.set("frozen_dp", dp_spectrum, 3);
-  sum.set("frozen_particles", rings.size());
+  sum.set("frozen_particles", scene.scheme->discretisation().size());
 }
 
 }  // namespace

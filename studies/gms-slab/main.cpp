@@ -143,11 +143,10 @@ SlabRun run_slab(const SlabCase& c, const std::string& out, std::vector<FrameInf
   r.h = 1.5 * c.dp;
   const Kernel<2> kernel(KernelType::CubicSpline);
   const RateFormMaterial mat{.density = 1, .bulk_modulus = 1, .shear_modulus = kMu};
-  RateFormScheme<2> scheme(make_discretisation(slab.particles, kernel, r.h), mat, study::gms_options(c.eps));
-  std::vector<Eigen::Vector2d> acc;
-  for (Eigen::Index k = 0; k < slab.driven_acceleration.cols(); ++k) acc.emplace_back(slab.driven_acceleration.col(k));
-  scheme.set_driven(slab.driven, acc);
-  Eigen::VectorXd y = scheme.uniform_state();
+  const Scene<2> scene = gms_slab_scene({.spacing = c.dp, .end_zone = kEndZone, .acceleration = kAcceleration}, kYield,
+                                        {.material = mat, .scheme = gms_scheme_options(c.eps)});
+  const RateFormScheme<2>& scheme = *scene.scheme;
+  Eigen::VectorXd y = scene.y0;
   double right0 = 0;
   for (int i : slab.right_end) right0 += slab.particles.x(i, 0) / slab.right_end.size();
 
@@ -329,21 +328,16 @@ std::string crack_x(const Break& b) {
 /// linearisations: the von Mises return is not part of the rate (the run has it).
 void frozen_spectra(double dp_spectrum, double skin, const std::vector<double>& times, const std::string& out,
                     study::Summary& sum) {
-  const PlasticSlab slab =
-      make_plastic_slab({.spacing = dp_spectrum, .end_zone = kEndZone, .acceleration = kAcceleration});
-  const double h = 1.5 * dp_spectrum;
   const RateFormMaterial mat{.density = 1, .bulk_modulus = 1, .shear_modulus = kMu};
-  RateFormScheme<2> scheme(make_discretisation(slab.particles, Kernel<2>(KernelType::CubicSpline), h), mat,
-                           study::gms_options(0));
-  std::vector<Eigen::Vector2d> acc;
-  for (Eigen::Index k = 0; k < slab.driven_acceleration.cols(); ++k) acc.emplace_back(slab.driven_acceleration.col(k));
-  scheme.set_driven(slab.driven, acc);
+  const Scene<2> scene = gms_slab_scene({.spacing = dp_spectrum, .end_zone = kEndZone, .acceleration = kAcceleration},
+                                        kYield, {.material = mat, .scheme = gms_scheme_options(0)});
+  const double h = scene.scheme->discretisation().h;
   study::frozen_spectra_along_run(
-      scheme, scheme.uniform_state(),
+      *scene.scheme, scene.y0,
       {.dt = 0.5 * h / mat.p_wave_speed(), .yield_stress = kYield, .neighbour_skin = skin * dp_spectrum}, times,
       times.back(), out, sum);
   sum.set("frozen_dp", dp_spectrum, 3);
-  sum.set("frozen_particles", slab.size());
+  sum.set("frozen_particles", scene.scheme->discretisation().size());
 }
 
 }  // namespace
