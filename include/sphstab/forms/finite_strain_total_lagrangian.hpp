@@ -75,6 +75,7 @@
 #include "sphstab/forms/elastic_bar.hpp"
 #include "sphstab/forms/gradient_provider.hpp"
 #include "sphstab/forms/hourglass_control.hpp"
+#include "sphstab/forms/hyperelastic_body.hpp"
 #include "sphstab/models/hyperelastic_model.hpp"
 #include "sphstab/operators/operators.hpp"
 #include "sphstab/system/force_function.hpp"
@@ -96,7 +97,7 @@ struct FiniteStrainOptions {
 };
 
 template <int Dim>
-class FiniteStrainTotalLagrangian final : public ForceFunction {
+class FiniteStrainTotalLagrangian final : public ForceFunction, public HyperelasticBody<Dim> {
  public:
   /// @param[in] discretisation  reference set X, kernel, h, neighbours (shared)
   /// @param[in] material        hyperelastic model (shared)
@@ -113,7 +114,7 @@ class FiniteStrainTotalLagrangian final : public ForceFunction {
       : FiniteStrainTotalLagrangian(std::move(discretisation), std::move(material),
                                     Eigen::VectorXd::Constant(1, density), std::move(options)) {}
 
-  int dofs() const override { return m_disc->dofs(); }
+  int dofs() const override { return this->m_disc->dofs(); }
   int dim() const override { return Dim; }
   std::string name() const override;
   void acceleration(const Eigen::VectorXd& u, Eigen::VectorXd& a) const override { evaluate(u, a); }
@@ -126,65 +127,26 @@ class FiniteStrainTotalLagrangian final : public ForceFunction {
   /// hourglass control.
   bool conservative() const override;
   /// U = sum_{active i} V_i Psi(F_i) (the potential of the conservative configuration).
-  double strain_energy(const Eigen::VectorXd& u) const override { return energy(u); }
-  std::complex<double> strain_energy(const Eigen::VectorXcd& u) const override { return energy(u); }
+  double strain_energy(const Eigen::VectorXd& u) const override { return this->energy(u); }
+  std::complex<double> strain_energy(const Eigen::VectorXcd& u) const override { return this->energy(u); }
   /// rho0_i V_i per DOF.
-  Eigen::VectorXd dof_mass() const override;
-
-  /// Prescribed displacements of the fixed particles, interleaved (Dim per fixed particle, ascending particle
-  /// index; default zero). Throws std::invalid_argument for a wrong size or non-finite entries.
-  void set_fixed_displacement(const Eigen::VectorXd& d);
-  const Eigen::VectorXd& fixed_displacement() const { return m_fixed_u; }
-  /// Deformation gradient F_i (row-major, Dim^2 entries per row) of every particle (N rows; rows of inactive
-  /// particles are NaN).
-  Eigen::MatrixXd deformation_gradients(const Eigen::VectorXd& u) const;
-  /// First Piola-Kirchhoff stress, as deformation_gradients.
-  Eigen::MatrixXd stresses(const Eigen::VectorXd& u) const;
-
-  const HyperelasticModel<Dim>& material() const { return *m_material; }
-  const Discretisation<Dim>& discretisation() const { return *m_disc; }
-  const Eigen::VectorXd& density() const { return m_rho; }
-  /// Particles whose F and P are evaluated: the free ones and their neighbours (ascending).
-  const std::vector<int>& active() const { return m_active; }
+  Eigen::VectorXd dof_mass() const override { return this->lumped_mass(); }
+  // set_fixed_displacement, deformation_gradients, stresses, material, discretisation, density, active: the body's
+  // (forms/hyperelastic_body.hpp).
 
  private:
-  /// evaluate()'s and energy()'s scratch arrays, kept between calls (resized, not reallocated, while N is unchanged).
-  /// Every entry an evaluation reads is written earlier in the same call. Copying a form does not copy them: the
-  /// copy starts empty.
+  using Body = HyperelasticBody<Dim>;
+  using Body::m_active, Body::m_disc, Body::m_hg, Body::m_K, Body::m_material, Body::m_rho;
+  using Body::deformation, Body::energy, Body::workspace;
   template <class Scalar>
-  struct Workspace {
-    Workspace() = default;
-    Workspace(const Workspace&) {}
-    Workspace(Workspace&&) = default;
-    Workspace& operator=(const Workspace&) { return *this; }
-    Workspace& operator=(Workspace&&) = default;
-    Positions<Dim, Scalar> u;                    ///< displacement of every particle, N x Dim
-    std::vector<Deformation<Scalar, Dim>> F, P;  ///< per particle (NaN / zero outside the active set)
-  };
-  template <class Scalar>
-  Workspace<Scalar>& workspace() const;
+  using Workspace = typename Body::template Workspace<Scalar>;
 
-  /// Fills uall (N x Dim, the full displacement) and F (N entries, NaN for inactive particles).
-  template <class Scalar>
-  void deformation(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u, Positions<Dim, Scalar>& uall,
-                   std::vector<Deformation<Scalar, Dim>>& F) const;
   template <class Scalar>
   void evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u, Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& a) const;
-  template <class Scalar>
-  Scalar energy(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u) const;
 
-  std::shared_ptr<const Discretisation<Dim>> m_disc;
-  std::shared_ptr<const HyperelasticModel<Dim>> m_material;
-  Eigen::VectorXd m_rho;  ///< N entries
   FiniteStrainOptions<Dim> m_options;
   bool m_plain_strain = true;                                  ///< K = G
   std::shared_ptr<const std::array<SparseMatrix<>, Dim>> m_G;  ///< reference G^b (divergence), N x N
-  std::shared_ptr<const std::array<SparseMatrix<>, Dim>> m_K;  ///< reference strain gradient K^b, N x N
-  std::vector<int> m_active;
-  Eigen::VectorXd m_fixed_u;
-  HourglassControl<Dim> m_hg;  ///< [Ganzenmueller2015] pair term (forms/hourglass_control.hpp); inactive when off
-  mutable Workspace<double> m_work_real;                   ///< acceleration(VectorXd), strain_energy(VectorXd)
-  mutable Workspace<std::complex<double>> m_work_complex;  ///< the complex overloads (complex-step Jacobians)
 };
 
 extern template class FiniteStrainTotalLagrangian<1>;

@@ -39,6 +39,7 @@
 #include "sphstab/forms/discretisation.hpp"
 #include "sphstab/forms/gradient_provider.hpp"
 #include "sphstab/forms/hourglass_control.hpp"
+#include "sphstab/forms/hyperelastic_body.hpp"
 #include "sphstab/models/hyperelastic_model.hpp"
 #include "sphstab/operators/operators.hpp"
 #include "sphstab/system/force_function.hpp"
@@ -46,7 +47,7 @@
 namespace sphstab {
 
 template <int Dim>
-class VariationalTotalLagrangian final : public ForceFunction {
+class VariationalTotalLagrangian final : public ForceFunction, public HyperelasticBody<Dim> {
  public:
   /// @param[in] discretisation  reference set X, kernel, h, neighbours (shared, not null)
   /// @param[in] material        hyperelastic model (shared, not null)
@@ -66,7 +67,7 @@ class VariationalTotalLagrangian final : public ForceFunction {
       : VariationalTotalLagrangian(std::move(discretisation), std::move(material),
                                    Eigen::VectorXd::Constant(1, density), std::move(gradient), hourglass) {}
 
-  int dofs() const override { return m_disc->dofs(); }
+  int dofs() const override { return this->m_disc->dofs(); }
   int dim() const override { return Dim; }
   std::string name() const override;
   void acceleration(const Eigen::VectorXd& u, Eigen::VectorXd& a) const override { evaluate(u, a); }
@@ -76,56 +77,24 @@ class VariationalTotalLagrangian final : public ForceFunction {
   std::unique_ptr<ForceFunction> with_load(double load) const override;
   SparsityPattern dof_pattern() const override;
   /// True unless the hourglass term is on.
-  bool conservative() const override { return !m_hg.active(); }
-  double strain_energy(const Eigen::VectorXd& u) const override { return energy(u); }
-  std::complex<double> strain_energy(const Eigen::VectorXcd& u) const override { return energy(u); }
-  Eigen::VectorXd dof_mass() const override;
-
-  /// Prescribed displacements of the fixed particles, interleaved (Dim per fixed particle, ascending index).
-  /// Throws std::invalid_argument for a wrong size or non-finite entries.
-  void set_fixed_displacement(const Eigen::VectorXd& d);
-  /// F_i (row-major, Dim^2 per row; NaN rows for inactive particles) and P_i, as FiniteStrainTotalLagrangian.
-  Eigen::MatrixXd deformation_gradients(const Eigen::VectorXd& u) const;
-  Eigen::MatrixXd stresses(const Eigen::VectorXd& u) const;
-  const std::vector<int>& active() const { return m_active; }
+  bool conservative() const override { return !this->m_hg.active(); }
+  double strain_energy(const Eigen::VectorXd& u) const override { return this->energy(u); }
+  std::complex<double> strain_energy(const Eigen::VectorXcd& u) const override { return this->energy(u); }
+  Eigen::VectorXd dof_mass() const override { return this->lumped_mass(); }
+  // set_fixed_displacement, deformation_gradients, stresses, active, ...: the body's (forms/hyperelastic_body.hpp).
 
  private:
-  /// evaluate()'s and energy()'s scratch arrays, kept between calls; every entry read is written earlier in the same
-  /// call. Copying a form does not copy them: the copy starts empty.
+  using Body = HyperelasticBody<Dim>;
+  using Body::m_active, Body::m_disc, Body::m_hg, Body::m_K, Body::m_material, Body::m_rho;
+  using Body::deformation, Body::energy, Body::workspace;
   template <class Scalar>
-  struct Workspace {
-    Workspace() = default;
-    Workspace(const Workspace&) {}
-    Workspace(Workspace&&) = default;
-    Workspace& operator=(const Workspace&) { return *this; }
-    Workspace& operator=(Workspace&&) = default;
-    Positions<Dim, Scalar> u;                          ///< displacement of every particle, N x Dim
-    std::vector<Deformation<Scalar, Dim>> F;           ///< per particle (NaN outside the active set)
-    Eigen::Matrix<Scalar, Eigen::Dynamic, Dim> force;  ///< -dU/du per particle, N x Dim
-  };
-  template <class Scalar>
-  Workspace<Scalar>& workspace() const;
+  using Workspace = typename Body::template Workspace<Scalar>;
 
-  /// Fills uall (N x Dim, the full displacement) and F (N entries, NaN for inactive particles).
-  template <class Scalar>
-  void deformation(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u, Positions<Dim, Scalar>& uall,
-                   std::vector<Deformation<Scalar, Dim>>& F) const;
   template <class Scalar>
   void evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u, Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& a) const;
-  template <class Scalar>
-  Scalar energy(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u) const;
 
-  std::shared_ptr<const Discretisation<Dim>> m_disc;
-  std::shared_ptr<const HyperelasticModel<Dim>> m_material;
   std::shared_ptr<const GradientProvider<Dim>> m_gradient;
-  Eigen::VectorXd m_rho;                                       ///< N entries
-  std::shared_ptr<const std::array<SparseMatrix<>, Dim>> m_K;  ///< reference strain gradient, N x N
-  Eigen::Matrix<double, Eigen::Dynamic, Dim> m_rowsum;         ///< sum_j K^b_ij, N x Dim
-  std::vector<int> m_active;
-  Eigen::VectorXd m_fixed_u;
-  HourglassControl<Dim> m_hg;                              ///< inactive unless the hourglass coefficient is > 0
-  mutable Workspace<double> m_work_real;                   ///< acceleration(VectorXd), strain_energy(VectorXd)
-  mutable Workspace<std::complex<double>> m_work_complex;  ///< the complex overloads (complex-step Jacobians)
+  Eigen::Matrix<double, Eigen::Dynamic, Dim> m_rowsum;  ///< sum_j K^b_ij, N x Dim
 };
 
 extern template class VariationalTotalLagrangian<1>;
