@@ -21,7 +21,7 @@ struct RateFormArgs {
   std::string dim = "2", lattice, n = "12", kernel = "cubic", h = "1.3", xi = "1.02", youngs = "2.1", poisson = "0.3",
               density = "7.8", dx = "0.01", xsph = "0", viscosity = "off", alpha = "0.06", beta = "1.5",
               artificial_stress = "0", continuity = "summation", gradient = "plain", momentum = "symmetric",
-              switch_rule = "tension", counting = "actual", pair_loop = "rows";
+              switch_rule = "tension", counting = "actual", pair_loop = "auto";
   bool periodic = false;
 };
 

@@ -35,14 +35,15 @@ test::CliOutcome run(const std::vector<std::string>& args, const std::string& ta
 /// The default scene of `sphstab run --dim 1` built from the library directly: a line of n free particles, dx = 0.01,
 /// cubic spline, h = 1.3 dx, fixed layers out to the support (or periodic), E = 2.1, nu = 0.3, rho0 = 7.8, density
 /// rho0 / xi, plain SPH.
-RateFormScheme<1> bar(int n, double xi, bool periodic) {
+/// The command's scene; `loop`: the command's default (auto) takes the pair loop for the plain symmetric scheme.
+RateFormScheme<1> bar(int n, double xi, bool periodic, PairLoop loop = PairLoop::Pairs) {
   const Kernel<1> kernel(KernelType::CubicSpline);
   const double dx = 0.01, h = 1.3 * dx;
   auto disc = make_discretisation(
       make_lattice<1>(LatticeType::Line, n,
                       {.spacing = dx, .support_radius = kernel.support_radius(h), .periodic = periodic}),
       kernel, h);
-  return RateFormScheme<1>(disc, RateFormMaterial::from_youngs(2.1, 0.3, 7.8), {}, 7.8 / xi);
+  return RateFormScheme<1>(disc, RateFormMaterial::from_youngs(2.1, 0.3, 7.8), {.pair_loop = loop}, 7.8 / xi);
 }
 
 std::vector<std::string> words(const std::string& s) {
@@ -108,8 +109,9 @@ TEST(RunCommand, SeriesIsTheLibrarysRunOfTheSameScene) {
 TEST(RunCommand, PairLoopRunsTheSameSeriesToRounding) {
   // --pair-loop pairs against the library's row loop on the same kicked bar: the rates agree to rounding
   // (rate_form_pair_loop_test), so over 300 predictor-corrector steps the kinetic energy agrees to far below its
-  // scale, and the two are not bitwise equal (the option reaches the scheme).
-  const RateFormScheme<1> scheme = bar(15, 1.01, false);
+  // scale, and the two are not bitwise equal (the option reaches the scheme). The command's default (auto) is the
+  // pair loop here; --pair-loop rows is the library's row loop to the bit.
+  const RateFormScheme<1> scheme = bar(15, 1.01, false, PairLoop::Rows);
   Eigen::VectorXd y = scheme.uniform_state();
   scheme.set_velocity(y, 7, Eigen::Matrix<double, 1, 1>(1e-3));  // a kick far above the positions' rounding
   const RateFormRunResult direct = run_rate_form(
@@ -130,6 +132,14 @@ TEST(RunCommand, PairLoopRunsTheSameSeriesToRounding) {
   EXPECT_GT(ke_max, 0);
   EXPECT_LT(diff, 1e-9 * ke_max);
   EXPECT_GT(diff, 0);
+  std::vector<std::string> rows_args = args, auto_args = args;
+  rows_args[rows_args.size() - 3] = "rows";
+  auto_args.erase(auto_args.end() - 4, auto_args.end() - 2);  // no --pair-loop: the default
+  const test::CliOutcome rows = run(rows_args, "rows"), automatic = run(auto_args, "auto");
+  ASSERT_EQ(rows.exit_code, 0) << rows.err;
+  ASSERT_EQ(automatic.exit_code, 0) << automatic.err;
+  EXPECT_EQ(read_csv(rows.out_path).numeric_column("kinetic_energy"), direct.kinetic_energy);
+  EXPECT_EQ(read_csv(automatic.out_path).numeric_column("kinetic_energy"), ke);  // auto = pairs
 }
 
 TEST(RunCommand, CompressedBarStaysBoundedAndTensionGrowsAtTheSpectralRate) {

@@ -35,7 +35,8 @@ const RateFormOptions kGms{.continuity = ContinuityForm::Divergence,
                            .viscosity = ViscositySwitch::Compression,
                            .viscosity_alpha = 1,
                            .viscosity_beta = 2,
-                           .artificial_stress = 0.3};
+                           .artificial_stress = 0.3,
+                           .pair_loop = PairLoop::Pairs};  // the command's default (auto: pairs for GMS's scheme)
 
 TEST(SceneCommand, PlateSeriesIsTheLibrarysRun) {
   // GMS §7.1 at 4 across (dp = 0.5, h = 0.75), mu = 0.3, V_f = 0.02, dt = 0.5 h / c_P, skin 0.5 dp.
