@@ -157,7 +157,17 @@ void register_scene_command(CLI::App& app) {
                   "auto = pairs (each pair once, about twice as fast; results/gms-speed) | rows (every pair from both "
                   "sides, threaded) (default auto)");
   cmd->add_option("--out", a->out, "also write VTK snapshots DIR/scene_<step>.vtp at every row and DIR/scene.pvd");
-  cmd->callback([a] { run_scene(*a); });
+  cmd->callback([a, cmd] {
+    // An option of another scene is a mistake, not a no-op (issue 36): one line naming where it applies.
+    const std::vector<std::pair<const char*, const char*>> only = {{"--across", "plate"},   {"--thickness", "plate"},
+                                                                   {"--length", "plate"},   {"--tip-speed", "plate"},
+                                                                   {"--speed", "rings"}};
+    for (const auto& [option, scene] : only)
+      if (cmd->count(option) > 0 && a->scene != scene)
+        throw std::invalid_argument(std::string("scene: ") + option + " applies to the " + scene + " only (not to " +
+                                    a->scene + ")");
+    run_scene(*a);
+  });
 }
 
 }  // namespace sphstab::cli

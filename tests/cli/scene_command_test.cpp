@@ -130,6 +130,13 @@ TEST(SceneCommand, BadInputIsOneLine) {
       {{"scene", "rings", "--dp", "0.6"}, "spacing"},
       {{"scene", "plate", "--length", "1e9", "--across", "100"}, "GB"},  // refused before anything is built
       {{"scene", "rings", "--dp", "1e-5"}, "GB"},  // the builder: fewer than two particles across the ring
+      // options of another scene (issue 36: they used to be accepted and ignored)
+      {{"scene", "rings", "--across", "5"}, "--across applies to the plate only"},
+      {{"scene", "slab", "--thickness", "1"}, "--thickness applies to the plate only"},
+      {{"scene", "rings", "--length", "5"}, "--length applies to the plate only"},
+      {{"scene", "rings", "--tip-speed", "0.1"}, "--tip-speed applies to the plate only"},
+      {{"scene", "plate", "--speed", "0.1"}, "--speed applies to the rings only"},
+      {{"scene", "slab", "--speed", "0.1"}, "--speed applies to the rings only"},
   };
   test::expect_one_line_errors(cases, [](const std::vector<std::string>& args) { return run(args, "bad"); });
 }
