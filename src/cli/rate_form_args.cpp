@@ -24,6 +24,7 @@ std::vector<std::string> items(const std::string& text, bool lists, const std::s
 }  // namespace
 
 void add_rate_form_options(CLI::App& cmd, RateFormArgs& a, bool lists) {
+  a.given = [&cmd](const std::string& option) { return cmd.count(option) > 0; };
   const std::string list = lists ? " or comma list" : "", value_list = lists ? ", value or comma list" : "";
   cmd.add_option("--dim", a.dim, "1 or 2 (default " + a.dim + ")");
   cmd.add_option("--lattice", a.lattice, "line (1D); square, hex, face-centred (2D; default square)");
@@ -61,6 +62,17 @@ void add_rate_form_options(CLI::App& cmd, RateFormArgs& a, bool lists) {
                      a.pair_loop + ")");
 }
 
+namespace {
+
+/// An option typed where it does nothing is a mistake, not a no-op (issue 36).
+void refuse_if_idle(const RateFormArgs& a, const std::string& c, const char* option, bool applies,
+                    const std::string& why) {
+  if (!applies && a.given && a.given(option))
+    throw std::invalid_argument(c + option + " has no effect " + why);
+}
+
+}  // namespace
+
 RateFormSetup parse_rate_form_args(const RateFormArgs& a, const std::string& command, bool lists, long min_n,
                                    long max_n_1d, long max_n_2d) {
   const std::string c = command + ": ";
@@ -94,6 +106,13 @@ RateFormSetup parse_rate_form_args(const RateFormArgs& a, const std::string& com
   o.momentum = parse_rate_form_momentum(a.momentum);
   o.switch_rule = parse_switch_rule(a.switch_rule);
   o.counting = parse_neighbour_counting(a.counting);
+  const bool viscous = o.viscosity != ViscositySwitch::Off;
+  refuse_if_idle(a, c, "--alpha", viscous, "with --viscosity off");
+  refuse_if_idle(a, c, "--beta", viscous, "with --viscosity off");
+  refuse_if_idle(a, c, "--switch-rule", o.momentum == RateFormMomentum::StabilisedSph, "without --momentum ssph");
+  refuse_if_idle(a, c, "--counting",
+                 o.momentum == RateFormMomentum::Cij || o.momentum == RateFormMomentum::StabilisedSph,
+                 "without --momentum cij or ssph");
   const bool pairs_apply = o.gradient == RateFormGradient::Plain &&
                            (o.momentum == RateFormMomentum::Symmetric || o.momentum == RateFormMomentum::Antisymmetric);
   // auto: the fastest loop that applies (issue 35: the pair loop agrees with the row loop to rounding).

@@ -4,6 +4,7 @@
 // strict parsing (parse.hpp) into a RateFormSetup. One definition of every option, its help text and its checks, so
 // that the two commands cannot drift apart.
 #include <CLI/CLI.hpp>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,6 +24,9 @@ struct RateFormArgs {
               artificial_stress = "0", continuity = "summation", gradient = "plain", momentum = "symmetric",
               switch_rule = "tension", counting = "actual", pair_loop = "auto";
   bool periodic = false;
+  /// Whether an option was typed (set by add_rate_form_options): an option that does nothing in the combination
+  /// given is refused by parse_rate_form_args.
+  std::function<bool(const std::string&)> given;
 };
 
 /// Registers --dim, --lattice, --n, --periodic, --kernel, --h, --xi, --dx, --youngs, --poisson, --density,

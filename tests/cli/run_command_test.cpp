@@ -304,5 +304,29 @@ TEST(RunCommand, BadInputIsOneErrorLine) {
   }
 }
 
+TEST(RunCommand, OptionsThatDoNothingAreRefused) {
+  // Issue 36: each was accepted and ignored. The message names the option and the combination it does nothing in.
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"run", "--alpha", "1"}, "--alpha has no effect with --viscosity off"},
+      {{"spectrum", "--viscosity", "off", "--beta", "2"}, "--beta has no effect with --viscosity off"},
+      {{"run", "--switch-rule", "never"}, "--switch-rule has no effect without --momentum ssph"},
+      {{"spectrum", "--counting", "boundary-level", "--momentum", "antisymmetric"},
+       "--counting has no effect without --momentum cij or ssph"}};
+  for (const auto& [args, message] : cases) {
+    const test::CliOutcome r = run(args);
+    EXPECT_EQ(r.exit_code, 1) << test::join_args(args);
+    EXPECT_NE(r.err.find(message), std::string::npos) << test::join_args(args) << ": " << r.err;
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;
+  }
+  // Where they do act, they are accepted.
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"run", "--viscosity", "compression", "--alpha", "1", "--t-end", "0.1"},
+        {"run", "--momentum", "ssph", "--switch-rule", "never", "--t-end", "0.1"},
+        {"run", "--momentum", "cij", "--counting", "boundary-level", "--t-end", "0.1"}}) {
+    const test::CliOutcome r = run(args);
+    EXPECT_EQ(r.exit_code, 0) << test::join_args(args) << ": " << r.err;
+  }
+}
+
 }  // namespace
 }  // namespace sphstab
