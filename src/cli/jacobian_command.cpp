@@ -169,7 +169,15 @@ void register_jacobian_command(CLI::App& app) {
   el->add_option("--lambda", e->lambda, "2D: Lame lambda (default: E = 2.1, nu = 0.3, plane strain)");
   el->add_option("--mu", e->mu, "2D: shear modulus mu");
   el->add_option("--prestrain", e->prestrain, "2D: isotropic|uniaxial (default isotropic)");
-  el->callback([e] { run_elastic(*e); });
+  el->callback([e, el] {
+    // The 2D options do nothing in 1D (issue 36): refused with the reason rather than ignored.
+    if (e->dim == "1")
+      for (const char* option : {"--lattice", "--lambda", "--mu", "--prestrain"})
+        if (el->count(option) > 0)
+          throw std::invalid_argument(std::string("jacobian elastic: ") + option +
+                                      " applies to --dim 2 only (1D: a line under pre-tension T)");
+    run_elastic(*e);
+  });
   auto r = std::make_shared<RateFormJacobianArgs>();
   auto* rf =
       cmd->add_subcommand("rate-form", "J.mtx (dF/dy at the uniform state) and state.csv of the rate-form scheme");

@@ -235,10 +235,10 @@ void run_tcrit_3d(const TcritArgs& a) {
     throw std::invalid_argument("tcrit: --dim 3 has one route, --method lobpcg (got '" + a.method + "')");
   if (a.lattice_given && parse_lattice_type(a.lattice) != LatticeType::Cubic)
     throw std::invalid_argument("tcrit: --lattice '" + a.lattice + "' is not available in 3D (use cubic)");
-  if (a.periodic || a.correction != "none" || a.backend != "auto" || a.criterion != "auto")
+  if (a.periodic || a.correction != "none" || a.corrected != "auto" || a.backend != "auto" || a.criterion != "auto")
     throw std::invalid_argument(
-        "tcrit: --dim 3 takes no --periodic, --correction, --backend or --criterion (fixed layers, matrix-free "
-        "definiteness)");
+        "tcrit: --dim 3 takes no --periodic, --correction, --corrected-operator, --backend or --criterion (fixed "
+        "layers, matrix-free definiteness)");
   const int n = parse_positive_int(a.n, "--n");
   if (n < 2) throw std::invalid_argument("tcrit: --dim 3 needs --n >= 2 (got " + a.n + ")");
   const ElasticSweep sw = parse_elastic_sweep(a);
@@ -260,6 +260,8 @@ void run_tcrit_2d(const TcritArgs& a) {
                                 "' does not exist in 2D (use square, hex or face-centred)");
   if (a.correction != "none")
     throw std::invalid_argument("tcrit: --correction '" + a.correction + "' is not available yet (valid: none)");
+  if (a.corrected != "auto")  // issue 36: it was accepted and ignored
+    throw std::invalid_argument("tcrit: --corrected-operator applies only to a 1D --correction (2D: none)");
   const int n = parse_positive_int(a.n, "--n");
   if (a.periodic && n < 2) throw std::invalid_argument("tcrit: --periodic needs --n >= 2");
   if (a.periodic && type != LatticeType::Square && n % 2 != 0)

@@ -137,6 +137,11 @@ TEST(JacobianCommand, BadInputIsOneLine) {
       {{"jacobian", "elastic", "--out", scratch("bad").string(), "--mu", "-1"}, "mu"},
       {{"jacobian", "rate-form", "--out", scratch("bad").string(), "--n", "0"}, "--n"},
       {{"jacobian", "rate-form", "--out", scratch("bad").string(), "--kernel", "box"}, "box"},
+      // 2D options in 1D (issue 36: accepted and ignored before)
+      {{"jacobian", "elastic", "--out", scratch("bad").string(), "--dim", "1", "--lattice", "hex"},
+       "--lattice applies to --dim 2 only"},
+      {{"jacobian", "elastic", "--out", scratch("bad").string(), "--dim", "1", "--lambda", "2"},
+       "--lambda applies to --dim 2 only"},
   };
   test::expect_one_line_errors(cases, [](const std::vector<std::string>& args) { return run(args, "bad"); });
 }

@@ -166,7 +166,8 @@ TEST(TcritCommand, BadInputIsOneErrorLineAndExitOne) {
         "tcrit --h -1", "tcrit --dim 4", "tcrit --method fast", "tcrit --correction bogus", "tcrit --lattice square",
         "tcrit --correction shepard --periodic", "tcrit --corrected-operator strain",
         "tcrit --correction shepard --corrected-operator sideways", "tcrit --bogus 3", "tcrit --n 3 --h 3.0 --periodic",
-        "tcrit --prestrain uniaxial"}) {
+        "tcrit --prestrain uniaxial", "tcrit --dim 2 --corrected-operator strain",
+        "tcrit --dim 3 --n 4 --corrected-operator strain"}) {
     expect_one_error_line(args);
   }
 }
