@@ -30,6 +30,7 @@
 #include "sphstab/integrate/rate_form_run.hpp"
 #include "sphstab/io/csv.hpp"
 #include "sphstab/io/rate_form_vtk.hpp"
+#include "sphstab/io/run_output.hpp"
 #include "sphstab/io/vtk.hpp"
 #include "sphstab/problems/gms_scenes.hpp"
 
@@ -123,6 +124,8 @@ void run_scene(const SceneArgs& a) {
       write_pvd(a.out + "/scene.pvd", frames);  // kept current, so a run that stops leaves a readable series
     }
   };
+  ProgressReport progress("scene " + a.scene);  // a line on stderr at most every 2 s, and the end
+  o.observers = {&progress};
   const RateFormRunResult r = run_rate_form(scheme, sc.y0, o);
   std::printf("%s", csv_line({std::to_string(r.steps), num(r.time), "", "", "", run_status_name(r.status),
                               std::to_string(r.particle)})

@@ -391,6 +391,7 @@ RateFormRunResult run_rate_form(const RateFormScheme<Dim>& scheme, const Eigen::
   check_run_options(scheme, y0, o, "run_rate_form");
   RateFormStepper<Dim> stepper(scheme, y0, o);
   RunOptions ro{.dt = o.dt, .t_end = o.t_end, .record_every = o.record_every};
+  ro.observers = o.observers;
   ro.limits.max_displacement = o.max_displacement;
   ro.limits.energy_growth = o.energy_growth;
   RateFormRunResult r;

@@ -51,9 +51,11 @@ ProgressReport::ProgressReport(std::string label, double interval_seconds)
 void ProgressReport::advanced(long n, long nsteps, double t) {
   char buf[96];
   std::snprintf(buf, sizeof(buf), "step %ld/%ld t = %.4g", n, nsteps, t);
-  m_line.update(static_cast<double>(n), static_cast<double>(nsteps), buf);
+  m_reported = m_line.update(static_cast<double>(n), static_cast<double>(nsteps), buf) || m_reported;
 }
 
-void ProgressReport::finished(const std::string& message) { m_line.finish(message); }
+void ProgressReport::finished(const std::string& message) {
+  if (m_reported) m_line.finish(message);  // a run too short for a progress line stays quiet
+}
 
 }  // namespace sphstab

@@ -106,6 +106,8 @@ struct RateFormRunOptions {
   double energy_growth = std::numeric_limits<double>::infinity();  ///< stop when KE > energy_growth * KE(0)
   /// Called at every record with (step, time, state); may be empty.
   std::function<void(long, double, const Eigen::VectorXd&)> observer = {};
+  /// The run loop's observers (integrate/run_observer.hpp; e.g. io/run_output.hpp's ProgressReport), not owned.
+  std::vector<RunObserver*> observers = {};
   RateFormIntegrator integrator = RateFormIntegrator::PredictorCorrector;
   /// Predictor-corrector only: a step's F^0 is the previous step's corrector evaluation F(x, v_p, rho_p, S_p) instead
   /// of a fresh F at the corrected state: ONE rate evaluation per step. [GMS2001, §6.2] call the scheme a

@@ -50,7 +50,8 @@ class VtkSeries final : public RunObserver {
   std::vector<std::pair<double, std::string>> m_pvd;
 };
 
-/// "label: step n/N t = ..." on stderr at most every interval_seconds (io/progress.hpp), and the final message.
+/// "label: step n/N t = ..." on stderr at most every interval_seconds (io/progress.hpp), and the final message when a
+/// progress line was shown (a run shorter than the interval prints nothing).
 class ProgressReport final : public RunObserver {
  public:
   explicit ProgressReport(std::string label, double interval_seconds = 2.0);
@@ -59,6 +60,7 @@ class ProgressReport final : public RunObserver {
 
  private:
   ProgressLine m_line;
+  bool m_reported = false;
 };
 
 }  // namespace sphstab
