@@ -130,6 +130,10 @@ RateFormScheme<Dim>::RateFormScheme(std::shared_ptr<const Discretisation<Dim>> d
     throw std::invalid_argument(
         "RateFormScheme: xsph, viscosity_alpha, viscosity_beta, artificial_stress and its exponent must be finite and "
         ">= 0");
+  if (!nonneg(options.bulk_viscosity_quadratic) || !nonneg(options.bulk_viscosity_linear))
+    throw std::invalid_argument("RateFormScheme: bulk_viscosity_quadratic and bulk_viscosity_linear must be finite and "
+                                ">= 0 (got " + format_number(options.bulk_viscosity_quadratic) + ", " +
+                                format_number(options.bulk_viscosity_linear) + ")");
   if (deviator.size() != 0 && deviator.size() != kStress)
     throw std::invalid_argument("RateFormScheme: deviator must have " + std::to_string(kStress) + " entries (got " +
                                 std::to_string(deviator.size()) + ")");
@@ -429,6 +433,9 @@ std::string RateFormScheme<Dim>::name() const {
     s += std::string(", viscosity ") +
          (m_options.viscosity == ViscositySwitch::Compression ? "compression" : "always") + " " +
          format_number(m_options.viscosity_alpha) + "/" + format_number(m_options.viscosity_beta);
+  if (m_options.bulk_viscosity_quadratic > 0 || m_options.bulk_viscosity_linear > 0)
+    s += ", bulk viscosity " + format_number(m_options.bulk_viscosity_quadratic) + "/" +
+         format_number(m_options.bulk_viscosity_linear);
   if (m_options.artificial_stress > 0) s += ", artificial stress " + format_number(m_options.artificial_stress);
   if (m_options.gradient == RateFormGradient::Ncsph) s += ", ncsph";
   switch (m_options.momentum) {
@@ -638,7 +645,36 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (int i = 0; i < n; ++i) vol[i] = m_mass[i] / rho[i];
 
-  // Stress sigma = S - p I, sigma / rho^2 and the artificial stress R per particle.
+  // MCM's bulk viscosity (RateFormOptions::bulk_viscosity_*): q_i = rho_i h (Q1 h d_i^2 - Q2 c0 d_i) where the
+  // divergence d_i of v is negative. d_i = sum_j (v_j - v_i) . Ghat_ij with the corrected gradient when one is given
+  // (gh, V_j included), else the plain V_j grad W_ij computed here; the self pair contributes nothing.
+  const bool bulk = o.bulk_viscosity_quadratic > 0 || o.bulk_viscosity_linear > 0;
+  std::vector<Scalar>& bulk_q = ws.bulk_q;
+  const auto bulk_pressure = [&](const std::vector<Vec>* corrected) {
+    bulk_q.assign(n, Scalar(0));
+    const double q1 = o.bulk_viscosity_quadratic * h, q2 = o.bulk_viscosity_linear * c0;
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (int i = 0; i < n; ++i) {
+      Scalar div(0);
+      for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
+        const int j = nl.indices[k];
+        if (j == i) continue;
+        const Vec dv = v[j] - v[i];
+        if (corrected) {
+          div += dv.cwiseProduct((*corrected)[k]).sum();
+        } else {
+          Vec r;
+          Scalar r2;
+          separation(i, j, r, r2);
+          const Scalar rr = sqrt(r2);
+          div += (vol[j] * kernel.d1(rr, h) / rr) * dv.cwiseProduct(r).sum();
+        }
+      }
+      if (detail::re(div) < 0) bulk_q[i] = rho[i] * h * (q1 * div * div - q2 * div);
+    }
+  };
+
+  // Stress sigma = S - (p + q) I, sigma / rho^2 and the artificial stress R per particle.
   std::vector<Mat>&sigma = ws.sigma, &sigma_rho2 = ws.sigma_rho2, &R = ws.R;
   const auto stresses = [&] {
     sigma.resize(n);
@@ -647,7 +683,7 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
     FirstException first;  // the artificial stress refuses rho <= 0: a run's result, not an abort in the region
 #pragma omp parallel for schedule(static) num_threads(threads)
     for (int i = 0; i < n; ++i) first.run([&] {
-      const Scalar pressure = K * (rho[i] / rho0 - 1.0);
+      const Scalar pressure = K * (rho[i] / rho0 - 1.0) + (bulk ? bulk_q[i] : Scalar(0));
       Mat s;
       if constexpr (Dim == 1) {
         s(0, 0) = S[i][0];
@@ -699,6 +735,7 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
 
   if constexpr (std::is_same_v<Scalar, double>) {
     if (o.pair_loop == PairLoop::Pairs && !partial) {  // each pair once (rate_form_pair_loop.hpp)
+      if (bulk) bulk_pressure(nullptr);
       stresses();
       dydt.resize(m_size);
       ws.acc.resize(n);
@@ -756,6 +793,7 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
     // the whole list. Each pair's r, |r|, W, grad W and pair terms are computed once (rows summed at the end: twice),
     // by the same operations as before; the row loops are compiled for the active viscosity and artificial-stress
     // terms.
+    if (bulk) bulk_pressure(nullptr);
     stresses();
     dydt.resize(m_size);
     with_kernel_functions(kernel, h, [&](const auto& kf) {
@@ -1173,6 +1211,7 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
         }
     }
 
+    if (bulk) bulk_pressure(&gh);
     stresses();
 
     // Local means of algorithm 4.1 of P_ij = V_j grad W_ij (C_ij, S-SPH): row mean r_i, column mean c_j =

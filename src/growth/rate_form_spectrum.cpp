@@ -9,6 +9,7 @@
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/memory_budget.hpp"
 #include "sphstab/growth/system_spectrum.hpp"
+#include "sphstab/integrate/xsph.hpp"
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
 #include "sphstab/linalg/dense_general_eigen.hpp"
 
@@ -73,6 +74,10 @@ RateFormSpectrum rate_form_spectrum(const RateFormScheme<Dim>& scheme, const Eig
     for (int c = 0; c < 1 + RateFormScheme<Dim>::kStress && scheme.density_offset(i) >= 0; ++c)
       iq.push_back(scheme.density_offset(i) + c);
   }
+  if (!(options.map_leapfrog_xsph >= 0) || !std::isfinite(options.map_leapfrog_xsph) ||
+      (options.map_leapfrog_xsph > 0 && (options.map_dt <= 0 || options.map_integrator != RateFormIntegrator::Leapfrog)))
+    throw std::invalid_argument("rate_form_spectrum: map_leapfrog_xsph must be finite and >= 0, and > 0 only with the "
+                                "leap-frog map (map_dt > 0; got " + format_number(options.map_leapfrog_xsph) + ")");
   if (!(options.map_dt >= 0) || !std::isfinite(options.map_dt))
     throw std::invalid_argument("rate_form_spectrum: map_dt must be finite and >= 0 (got " +
                                 format_number(options.map_dt) + ")");
@@ -189,7 +194,42 @@ RateFormSpectrum rate_form_spectrum(const RateFormScheme<Dim>& scheme, const Eig
       out.eigenvalues[2 * k + 1] = -s;
     }
   }
-  if (leapfrog_map && !damped) {  // z^2 - (2 + dt^2 mu) z + 1 = 0 for each mu in eig(B): the larger root
+  if (leapfrog_map && !damped && options.map_leapfrog_xsph > 0) {
+    // Powell's XSPH: w_{n+1} = (I + P + dt^2 B P) w_n - P w_{n-1} (see the header), P on the free velocity DOFs.
+    const double dt = options.map_dt;
+    const SparseMatrix<> S = xsph_smoothing_matrix(scheme.discretisation(),
+                                                   {.epsilon = options.map_leapfrog_xsph, .include_fixed = true});
+    Eigen::MatrixXd P = Eigen::MatrixXd::Zero(nv, nv);
+    for (int k = 0; k < S.outerSize(); ++k)
+      for (SparseMatrix<>::InnerIterator it(S, k); it; ++it)
+        for (int a = 0; a < Dim; ++a) P(Dim * it.row() + a, Dim * it.col() + a) = it.value();
+    if (Q.size()) P = Q.transpose() * P * Q;
+    const Eigen::MatrixXd BP = B * P;
+    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(2 * m, 2 * m);
+    C.topLeftCorner(m, m) = P + dt * dt * BP;
+    C.topLeftCorner(m, m).diagonal().array() += 1.0;
+    C.topRightCorner(m, m) = -P;
+    C.bottomLeftCorner(m, m).setIdentity();
+    const DenseGeneralEigen ce = general_eigen(C, true);
+    if (ce.status != Status::Successful) {
+      out.status = ce.status;
+      out.reason = "dgeev failed on the leap-frog map with XSPH (info " + std::to_string(ce.lapack_info) + ")";
+      return out;
+    }
+    out.map_spectral_radius = 1;
+    out.map_eigenvalue = 1;
+    out.map_reduced = static_cast<int>(C.rows());
+    Eigen::Index k = 0;
+    ce.values.cwiseAbs().maxCoeff(&k);
+    if (std::abs(ce.values[k]) > 1) {
+      out.map_spectral_radius = std::abs(ce.values[k]);
+      out.map_eigenvalue = ce.values[k];
+      Eigen::VectorXcd v = ce.vectors.col(k).head(m);
+      if (Q.size()) v = Q.cast<std::complex<double>>() * v;
+      out.map_mode = real_mode_shape(v);
+    }
+    out.map_growth = std::log(out.map_spectral_radius) / dt;
+  } else if (leapfrog_map && !damped) {  // z^2 - (2 + dt^2 mu) z + 1 = 0 for each mu in eig(B): the larger root
     const double dt = options.map_dt;
     out.map_spectral_radius = 1;
     out.map_eigenvalue = 1;

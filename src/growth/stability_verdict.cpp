@@ -219,11 +219,12 @@ StabilityVerdict stability_verdict(const RateFormScheme<Dim>& scheme, const Eige
   if (std::isfinite(run.yield_stress) || run.neighbour_skin > 0)
     throw std::invalid_argument(who + ": needs an elastic run on the scheme's own list (no yield stress, no skin)");
   const StateLayout layout = state_layout(scheme);
-  const bool stepper = options.stepper_map || run.leapfrog_xsph > 0 || run.absorbing_half_step;
   if (!(run.dt > 0) || !std::isfinite(run.dt))
     throw std::invalid_argument(who + ": dt must be finite and > 0 (got " + format_number(run.dt) + ")");
   bool at_rest = true;
   for (int k : layout.velocity) at_rest = at_rest && y[k] == 0;
+  // Powell's XSPH acts outside F: its map is reduced at rest (rate_form_spectrum), else only the stepper has it.
+  const bool stepper = options.stepper_map || (run.leapfrog_xsph > 0 && !at_rest) || run.absorbing_half_step;
   const bool reduced = at_rest && !stepper && !run.reuse_corrector_rate;
   const std::string needs = ": a class basis needs the reduced route (a state at rest, the two-rate "
                             "predictor-corrector or the leap-frog, no stepper-only option)";
@@ -235,7 +236,8 @@ StabilityVerdict stability_verdict(const RateFormScheme<Dim>& scheme, const Eige
                             .basis = options.basis,
                             .map_dt = run.dt,
                             .map_positions = run.positions,
-                            .map_integrator = run.integrator});
+                            .map_integrator = run.integrator,
+                            .map_leapfrog_xsph = run.leapfrog_xsph});
   if (!s.map_reason.empty() && options.basis.size()) throw std::invalid_argument(who + needs + " (" + s.map_reason + ")");
   if (reduced && s.map_reason.empty()) {
     StabilityVerdict v;

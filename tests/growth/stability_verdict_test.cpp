@@ -171,6 +171,58 @@ TEST(StabilityVerdict, ReducedRouteEqualsTheDenseMapOfTheWholeJacobian) {
                std::invalid_argument);
 }
 
+// Powell's XSPH (2.71) on the leap-frog's v^{n+1/2} acts outside F; at rest its map is reduced exactly
+// (rate_form_spectrum.hpp: the companion of w_{n+1} = (I + P + dt^2 B P) w_n - P w_{n-1}). Against the stepper's own
+// map by central differences (rate_form_step_matrix), whole and per mirror class, in tension and compression.
+TEST(StabilityVerdict, PowellXsphLeapfrogMapIsReducedExactly) {
+  SwegleOptions so;
+  so.n = 7;
+  const RateFormMaterial steel = RateFormMaterial::from_youngs(so.youngs_modulus, so.poisson_ratio, so.density);
+  const SwegleScene scene = make_swegle_scene(so);
+  const auto& d = scene.discretisation;
+  Eigen::VectorXd pos(2 * d->free_count());
+  for (int f = 0; f < d->free_count(); ++f) pos.segment<2>(2 * f) = d->particles.x.row(d->free[f]).transpose();
+  const MirrorSymmetry mirror =
+      mirror_symmetry(pos, d->particles.x.row(scene.centre).transpose(), 1e-9 * so.spacing);
+  const double dt = 0.8 * scene.h / steel.p_wave_speed();
+  int compared = 0;
+  for (double xi : {1.05, 0.95, 1.0})
+    for (double eps : {0.1, 0.3}) {
+      if (xi == 1.0 && eps == 0.3) continue;
+      const RateFormScheme<2> scheme(d, steel, {}, so.density / xi);
+      const Eigen::VectorXd y = scheme.uniform_state();
+      const RateFormRunOptions run{.dt = dt, .integrator = RateFormIntegrator::Leapfrog, .leapfrog_xsph = eps};
+      const double floor = 1e-5 / dt;
+      const StabilityVerdict red = stability_verdict(scheme, y, run, {.floor = floor});
+      ASSERT_EQ(red.status, Status::Successful) << red.reason;
+      EXPECT_EQ(red.map_route, "reduced");
+      const StabilityVerdict step = stability_verdict(scheme, y, run, {.floor = floor, .stepper_map = true});
+      ASSERT_EQ(step.status, Status::Successful) << step.reason;
+      EXPECT_EQ(step.map_route, "stepper");
+      const std::string what = "xi " + std::to_string(xi) + " eps " + std::to_string(eps);
+      // Central differences (delta 1e-7) of a linear step: rounding ~1e-9 in rho.
+      EXPECT_NEAR(red.map_growth, step.map_growth, 1e-8 / dt + 1e-6 * std::abs(step.map_growth)) << what;
+      EXPECT_EQ(red.verdict, step.verdict) << what;
+      double class_map = -1e300;
+      for (int px : {-1, 1})
+        for (int py : {-1, 1})
+          class_map = std::max(
+              class_map,
+              stability_verdict(scheme, y, run, {.floor = floor, .basis = symmetry_basis(mirror, px, py)}).map_growth);
+      EXPECT_NEAR(class_map, red.map_growth, 1e-10 / dt + 1e-8 * std::abs(red.map_growth)) << what;
+      // The smoothing only damps: never faster than the plain leap-frog's map.
+      RateFormRunOptions plain = run;
+      plain.leapfrog_xsph = 0;
+      const StabilityVerdict p = stability_verdict(scheme, y, plain, {.floor = floor});
+      EXPECT_LE(red.map_growth, p.map_growth + 1e-10 / dt) << what;
+      std::printf("%s: map growth reduced %.9e stepper %.9e classes %.9e, without XSPH %.9e; J %.4e; %s\n",
+                  what.c_str(), red.map_growth, step.map_growth, class_map, p.map_growth, red.semi_discrete_growth,
+                  red.letter().c_str());
+      ++compared;
+    }
+  EXPECT_EQ(compared, 5);
+}
+
 // PC1 carries the rate: the map on (y, F^0) is twice as large and, on an undamped first-order oscillation, its root
 // mu = 1 + z + z^2/2 - z^3/4 - z^4/8 + ... (mu^2 - (1 + 3z/2) mu + z/2 = 0) gives |mu|^2 = 1 + theta^4/2 + O(theta^6):
 // omega^4 dt^3 / 4, twice the PC's, although it is velocity Verlet for x'' = a(x).

@@ -143,6 +143,14 @@ struct RateFormOptions {
   ViscositySwitch viscosity = ViscositySwitch::Off;
   double viscosity_alpha = 0.06;          ///< linear coefficient (MCM deck default 0.06)
   double viscosity_beta = 1.5;            ///< quadratic coefficient (MCM deck default 1.5; Compression only)
+  /// MCM's bulk viscosity ([Powell2012, appendix, MCM input deck, material card: QBVC 1.5, LBVC 0.06]), the
+  /// von Neumann-Richtmyer / DYNA form on the velocity divergence d_i = tr L_i of each particle (not a pair term):
+  ///   q_i = rho_i l (Q1 l d_i^2 - Q2 c0 d_i)  where d_i < 0 (compression), 0 otherwise,   l = h, c0 = sqrt(K/rho0),
+  /// added to the pressure in the momentum equation (sigma = S - (p + q) I). d_i is the divergence of the particle
+  /// velocities v (not of the GMS XSPH velocity) with the scheme's gradient (plain V_j grad W_ij, or NCSPH's). Both
+  /// coefficients >= 0; 0 and 0: off. The switch reads the real part (a complex-step Jacobian at rest takes it off).
+  double bulk_viscosity_quadratic = 0;  ///< Q1 (QBVC; MCM deck 1.5)
+  double bulk_viscosity_linear = 0;     ///< Q2 (LBVC; MCM deck 0.06)
   double artificial_stress = 0;           ///< eps_a of [GMS2001, (6.4)] (GMS use 0.3), >= 0; 0: off
   double artificial_stress_exponent = 4;  ///< n of f^n (GMS 4)
   bool evolve_fixed = true;               ///< fixed particles integrate rho and S
@@ -295,7 +303,7 @@ class RateFormScheme final : public SemiDiscreteSystem {
     Workspace& operator=(Workspace&&) = default;
     // Per particle.
     std::vector<Eigen::Matrix<Scalar, Dim, 1>> x, v, vhat, row_mean, col_mean, mean_mean;
-    std::vector<Scalar> rho, vol;
+    std::vector<Scalar> rho, vol, bulk_q;
     std::vector<Eigen::Matrix<Scalar, kStress, 1>> S;
     std::vector<Eigen::Matrix<Scalar, Dim, Dim>> sigma, sigma_rho2, R;  // sigma, sigma / rho^2, artificial stress
     std::vector<Eigen::Matrix<bool, Dim, 1>> on;

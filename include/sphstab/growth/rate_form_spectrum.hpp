@@ -27,7 +27,11 @@
 /// **The staggered leap-frog's map** (map_integrator = Leapfrog, [Powell2012, algorithm 1.1]): at rest without
 /// velocity-dependent rates (Jvv = 0) it is v^{n+3/2} - 2 v^{n+1/2} + v^{n-1/2} = dt^2 B v^{n+1/2}
 /// (integrate/linear_step_map.hpp), so each eigenvalue mu of B gives the two roots of z^2 - (2 + dt^2 mu) z + 1 = 0 and
-/// rho(M) = max(1, max |z|). With Jvv != 0 (a viscosity that acts at rest) it is not reduced: the map fields stay NaN
+/// rho(M) = max(1, max |z|). With Powell's XSPH (map_leapfrog_xsph = eps > 0, RateFormRunOptions::leapfrog_xsph:
+/// v^{n+1/2} <- P v^{n+1/2} before the drift, P = xsph_smoothing_matrix (x) I at the rest positions, integrate/xsph.hpp;
+/// linear in v, so exact at rest) the step is w~ = P w_n, p_{n+1} = p_n + dt B w~, w_{n+1} = w~ + dt p_{n+1} (w_n =
+/// v^{n+1/2}, p the elastic acceleration), i.e. w_{n+1} = (I + P + dt^2 B P) w_n - P w_{n-1}: the eigenvalues of that
+/// companion matrix (2 nv, or 2 m in a class). With Jvv != 0 (a viscosity that acts at rest) it is not reduced: the map fields stay NaN
 /// and `map_reason` says why (growth/stability_verdict.hpp then takes the dense map).
 /// tests/growth/stability_verdict_test.cpp compares both with the dense maps of the whole J.
 ///
@@ -60,6 +64,8 @@ struct RateFormSpectrumOptions {
   PositionUpdate map_positions = PositionUpdate::Gms;  ///< the corrector's position update (rate_form_run.hpp)
   /// The integrator of the map: the two-rate predictor-corrector or the staggered leap-frog (not PC1).
   RateFormIntegrator map_integrator = RateFormIntegrator::PredictorCorrector;
+  /// Leap-frog map only: epsilon of Powell's XSPH (2.71) on v^{n+1/2} (RateFormRunOptions::leapfrog_xsph), >= 0.
+  double map_leapfrog_xsph = 0;
 };
 
 struct RateFormSpectrum {

@@ -116,7 +116,8 @@ struct StabilityVerdictOptions {
   /// estimates (dominant_wavenumber, periodic when the particle set is).
   std::optional<BravaisLattice2D> lattice = std::nullopt;
   /// Map by central differences of the stepper (rate_form_step_matrix) even where the closed form applies. The
-  /// options that act outside F (leapfrog_xsph, absorbing_half_step) always take the stepper.
+  /// options that act outside F take the stepper: absorbing_half_step always, leapfrog_xsph away from rest (at rest
+  /// its map is reduced exactly, growth/rate_form_spectrum.hpp).
   bool stepper_map = false;
   double delta = 1e-7;  ///< the stepper's central-difference increment
   /// Optional orthonormal columns (free velocity DOFs x m) spanning an invariant class of the motion, e.g. the mirror
@@ -130,7 +131,8 @@ struct StabilityVerdictOptions {
 /// reuse_corrector_rate, positions, leapfrog_xsph, absorbing_half_step) at dt = run.dt (pass the run's dt:
 /// run_rate_form reduces it to t_end / ceil(t_end / dt)). Two routes (map_route):
 ///   "reduced"      at rest (all velocities 0) with the two-rate predictor-corrector (either position update), or
-///                  the leap-frog without velocity-dependent rates at rest, and no stepper-only option: both rates
+///                  the leap-frog (with or without Powell's XSPH) without velocity-dependent rates at rest, and no
+///                  stepper-only option: both rates
 ///                  from the exact reduction of growth/rate_form_spectrum.hpp (PC: rho = max(1, rho(M_red)), M_red of
 ///                  size dofs + rank[Jvx Jvq]; leap-frog: from the eigenvalues of B); no dense J or M. A basis
 ///                  restricts both to its class. A 21 x 21 Swegle block: eigenproblems of ~900 and ~1800.
