@@ -10,7 +10,7 @@
 #include "sphstab/problems/colliding_rings.hpp"
 
 namespace sphstab {
-namespace {
+namespace fragments_test {
 
 /// Independent reference: breadth-first search over the O(N^2) bond matrix, fragments numbered by their lowest
 /// particle index (the same convention as find_fragments, so the label vectors must be equal).

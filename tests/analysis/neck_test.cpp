@@ -10,7 +10,7 @@
 #include "sphstab/problems/plastic_slab.hpp"
 
 namespace sphstab {
-namespace {
+namespace neck_test {
 
 constexpr double kDp = 0.016;
 

@@ -5,7 +5,7 @@
 #include <cmath>
 
 namespace sphstab {
-namespace {
+namespace oscillation_test {
 
 TEST(Oscillation, DampedSineGivesItsPeriodAndDecay) {
   // y = e^{-g t} sin(2 pi t / T): crossings at multiples of T/2 exactly (the envelope does not move them), extremes

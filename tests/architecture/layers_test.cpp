@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-namespace {
+namespace layers_test {
 
 namespace fs = std::filesystem;
 
@@ -137,4 +137,4 @@ TEST(Layers, TheSourceTreeRespectsTheLayers) {
   EXPECT_TRUE(v.empty()) << v.size() << " violations:\n" << all;
 }
 
-}  // namespace
+}  // namespace layers_test

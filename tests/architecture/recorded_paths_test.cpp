@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-namespace {
+namespace recorded_paths_test {
 
 namespace fs = std::filesystem;
 
@@ -181,4 +181,4 @@ TEST(RecordedPaths, TheTreeNamesNoPathOutsideTheRepository) {
                          << all;
 }
 
-}  // namespace
+}  // namespace recorded_paths_test

@@ -15,7 +15,7 @@
 #include "sphstab/io/csv.hpp"
 
 namespace sphstab {
-namespace {
+namespace cli_fuzz_test {
 
 #if defined(__SANITIZE_ADDRESS__)
 constexpr double kMemoryLimit = 3e9;  // shadow memory and redzones

@@ -12,7 +12,7 @@
 #include <unistd.h>
 #include <vector>
 
-namespace {
+namespace cli_output_test {
 
 const std::vector<std::string> kCommands = {"kernels", "tcrit --n 10", "spectrum --n 6", "run --n 5 --t-end 0.5",
                                             "scene rings --dp 0.2 --t-end 0.5"};
@@ -36,7 +36,6 @@ int exit_status(const std::string& cmd) {
   return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }
 
-}  // namespace
 
 TEST(CliOutput, AFullStandardOutputIsOneErrorLineAndExitOne) {
   if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full on this machine";
@@ -72,3 +71,5 @@ TEST(CliOutput, ANormalRunStillSucceeds) {
   }
   std::filesystem::remove_all(dir);
 }
+
+}  // namespace cli_output_test

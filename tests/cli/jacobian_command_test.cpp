@@ -18,7 +18,7 @@
 #include "sphstab/particles/lattice_presets.hpp"
 
 namespace sphstab {
-namespace {
+namespace jacobian_command_test {
 
 std::filesystem::path scratch(const std::string& name) {
   return std::filesystem::temp_directory_path() / ("sphstab_jacobian_test_" + std::to_string(getpid())) / name;

@@ -15,7 +15,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace operators_command_test {
 
 namespace fs = std::filesystem;
 

@@ -22,7 +22,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace run_command_test {
 
 std::filesystem::path scratch(const std::string& name) {
   return std::filesystem::temp_directory_path() / ("sphstab_run_test_" + std::to_string(getpid())) / name;

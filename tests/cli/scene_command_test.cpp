@@ -20,7 +20,7 @@
 #include "sphstab/problems/colliding_rings.hpp"
 
 namespace sphstab {
-namespace {
+namespace scene_command_test {
 
 std::filesystem::path scratch(const std::string& name) {
   return std::filesystem::temp_directory_path() / ("sphstab_scene_test_" + std::to_string(getpid())) / name;

@@ -12,7 +12,7 @@
 #include "sphstab/io/csv.hpp"
 
 namespace sphstab {
-namespace {
+namespace spectrum_command_test {
 
 // One directory per test process: ctest runs the tests of this file in parallel processes, and a shared stdout file
 // let one test read another's output (a CI failure of BadInputIsOneErrorLine).

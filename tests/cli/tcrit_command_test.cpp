@@ -17,7 +17,7 @@
 #include "sphstab/stability/matrix_free_critical_load.hpp"
 
 namespace sphstab {
-namespace {
+namespace tcrit_command_test {
 
 struct CliRun {
   int status = -1;

@@ -8,7 +8,7 @@
 #include <string>
 
 namespace sphstab {
-namespace {
+namespace checked_arithmetic_test {
 
 TEST(CheckedArithmetic, ExactResultsInsideTheRange) {
   EXPECT_EQ(checked_mul(3037000499L, 3037000499L, "x"), 9223372030926249001L);  // largest square below 2^63

@@ -12,7 +12,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace memory_budget_test {
 
 /// Restores the process-wide limit when a test ends.
 struct LimitGuard {

@@ -11,7 +11,7 @@
 #include <stdexcept>
 
 namespace sphstab {
-namespace {
+namespace absorbing_boundary_test {
 
 const double kCp = 1.8708, kCs = 1.0;
 

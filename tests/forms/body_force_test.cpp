@@ -14,7 +14,7 @@
 #include "sphstab/models/st_venant_kirchhoff.hpp"
 
 namespace sphstab {
-namespace {
+namespace body_force_test {
 
 const LameParameters kLame{.lambda = 1.2, .mu = 0.8};
 constexpr double kRho = 7.8;

@@ -15,7 +15,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace correction_gradient_test {
 
 /// Line lattice of n free particles, dx = 1, with fixed layers `supports` kernel supports thick (strictly inside,
 /// as tension_lattice_1d), optionally perturbed (free particles) or periodic.

@@ -16,7 +16,7 @@
 #include "sphstab/problems/impedance_step.hpp"
 
 namespace sphstab {
-namespace {
+namespace density_step_reflection_test {
 
 constexpr double kE = 200e9, kRho1 = 8000, kLength = 0.3, kStep = 0.15, kRise = 2e-6, kDuration = 10e-6;
 

@@ -10,7 +10,7 @@
 #include "sphstab/problems/bar_wave_exact.hpp"
 
 namespace sphstab {
-namespace {
+namespace elastic_bar_test {
 
 ElasticBarOptions bar_options(int n, StrainGradient g, StressDivergence d, BarBoundary b,
                               LagrangianFrame f = LagrangianFrame::Total, double h_over_dx = 1.3) {

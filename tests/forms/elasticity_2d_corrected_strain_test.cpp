@@ -9,7 +9,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace elasticity_2d_corrected_strain_test {
 
 const ElasticMaterial kMaterial{.lambda = 1.2, .mu = 0.8, .rho = 7.8};
 

@@ -11,7 +11,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace elasticity_2d_test {
 
 const ElasticMaterial kMaterial{.lambda = 1.3, .mu = 0.7, .rho = 1.9};
 

@@ -19,7 +19,7 @@
 #include "sphstab/models/neo_hookean.hpp"
 
 namespace sphstab {
-namespace {
+namespace finite_strain_hourglass_test {
 
 using test::random_vector;
 const LameParameters kLame{.lambda = 1.2, .mu = 0.8};

@@ -18,7 +18,7 @@
 #include "sphstab/models/st_venant_kirchhoff.hpp"
 
 namespace sphstab {
-namespace {
+namespace finite_strain_total_lagrangian_test {
 
 using test::random_vector;
 const LameParameters kLame{.lambda = 1.2, .mu = 0.8};

@@ -8,7 +8,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace linear_elastic_test {
 
 Eigen::VectorXd random_field(long n, double amplitude, unsigned seed) {
   std::mt19937_64 rng(seed);

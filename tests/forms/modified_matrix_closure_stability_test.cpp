@@ -19,7 +19,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace modified_matrix_closure_stability_test {
 
 enum class Closure { Modified, Mirror };
 

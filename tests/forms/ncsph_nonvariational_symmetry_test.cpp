@@ -16,7 +16,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace ncsph_nonvariational_symmetry_test {
 
 struct Result {
   double asymmetry;

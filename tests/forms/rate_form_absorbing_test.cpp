@@ -16,7 +16,7 @@
 #include "sphstab/numerics/random_vector.hpp"
 
 namespace sphstab {
-namespace {
+namespace rate_form_absorbing_test {
 
 const RateFormMaterial kSteel = RateFormMaterial::from_youngs(2.1, 0.3, 7.8);  // Powell's g, cm, us
 const Kernel<2> kCubic2(KernelType::CubicSpline);

@@ -20,7 +20,7 @@
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
 
 namespace sphstab {
-namespace {
+namespace rate_form_bulk_viscosity_test {
 
 const RateFormMaterial kMaterial{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};
 constexpr double kQ1 = 1.5, kQ2 = 0.06;  // the MCM deck's QBVC, LBVC

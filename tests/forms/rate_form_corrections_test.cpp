@@ -17,7 +17,7 @@
 #include "sphstab/operators/operators.hpp"
 
 namespace sphstab {
-namespace {
+namespace rate_form_corrections_test {
 
 const RateFormMaterial kGms{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};
 

@@ -14,7 +14,7 @@
 #include "sphstab/forms/rate_form.hpp"
 
 namespace sphstab {
-namespace {
+namespace rate_form_pair_loop_test {
 
 const RateFormMaterial kGms{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};
 

@@ -14,7 +14,7 @@
 #include "sphstab/numerics/random_vector.hpp"
 
 namespace sphstab {
-namespace {
+namespace rate_form_state_test {
 
 const RateFormMaterial kMaterial{.density = 2.0, .bulk_modulus = 3.0, .shear_modulus = 0.5};
 

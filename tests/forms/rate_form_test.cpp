@@ -16,7 +16,7 @@
 #include "sphstab/spectral/lattice_dispersion.hpp"
 
 namespace sphstab {
-namespace {
+namespace rate_form_test {
 
 using Complex = std::complex<double>;
 

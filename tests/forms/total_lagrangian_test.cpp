@@ -9,7 +9,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace total_lagrangian_test {
 
 const ElasticMaterial kMaterial{.lambda = 1.2, .mu = 0.8, .rho = 7.8};
 

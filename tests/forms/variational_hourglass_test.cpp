@@ -15,7 +15,7 @@
 #include "sphstab/models/st_venant_kirchhoff.hpp"
 
 namespace sphstab {
-namespace {
+namespace variational_hourglass_test {
 
 constexpr double kRho = 3.1;
 const LameParameters kLame{.lambda = 1.7, .mu = 0.6};

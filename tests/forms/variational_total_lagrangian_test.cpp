@@ -17,7 +17,7 @@
 #include "sphstab/problems/turek_hron_csm3.hpp"
 
 namespace sphstab {
-namespace {
+namespace variational_total_lagrangian_test {
 
 const LameParameters kLame{.lambda = 1.2, .mu = 0.8};
 constexpr double kRho = 7.8;

@@ -9,7 +9,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace wave_1d_test {
 
 std::shared_ptr<const Discretisation<1>> line(int n, KernelType type, double h, bool periodic = false,
                                               double perturbation = 0.0) {

@@ -17,7 +17,7 @@
 #include "sphstab/problems/swegle.hpp"
 
 namespace sphstab {
-namespace {
+namespace class_growth_test {
 
 TEST(ClassGrowth, ClassesTogetherGiveTheWholeSpectrum) {
   // 9 x 9 Swegle block in tension (unstable), centre particle pushed along +x: class (px, py) = (-1, +1).

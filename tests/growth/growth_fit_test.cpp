@@ -5,7 +5,7 @@
 #include <cmath>
 
 namespace sphstab {
-namespace {
+namespace growth_fit_test {
 
 TEST(GrowthFit, LogLinearFitIsExactForAnExponential) {
   std::vector<double> t, y;

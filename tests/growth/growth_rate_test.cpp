@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace sphstab {
-namespace {
+namespace growth_rate_test {
 
 TEST(GrowthRate, SymmetricTwoByTwo) {
   // mu = 3 (stable, oscillation frequency sqrt 3) and mu = -1 (growth e^t along (1, -1)).

@@ -10,7 +10,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace linear_growth_test {
 
 TEST(LinearGrowth, MatrixGrowthOfKnownSpectra) {
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(3, 3);
@@ -68,7 +68,7 @@ TEST(LinearGrowth, LeapfrogMapWithoutHookMatchesTheSemiDiscreteRate) {
 }  // namespace sphstab
 
 namespace sphstab {
-namespace {
+namespace linear_growth_test {
 
 TEST(LinearGrowth, LeapfrogMapMatchesTheSteppedAlgorithmWithAHook) {
   // 2 DOFs, one unstable direction, a symmetric smoothing S; the growth per step of the leap-frog stepper with the

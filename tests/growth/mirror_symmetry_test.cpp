@@ -8,7 +8,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace mirror_symmetry_test {
 
 TEST(MirrorSymmetry, ClassesPartitionTheFieldsAndBlockDiagonaliseASymmetricJacobian) {
   const int n = 7;

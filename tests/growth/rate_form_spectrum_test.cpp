@@ -13,7 +13,7 @@
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
 
 namespace sphstab {
-namespace {
+namespace rate_form_spectrum_test {
 
 const RateFormMaterial kGms{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};
 

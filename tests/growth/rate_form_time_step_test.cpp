@@ -17,7 +17,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace rate_form_time_step_test {
 
 const RateFormMaterial kGms{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};
 

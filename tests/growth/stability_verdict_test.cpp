@@ -16,7 +16,7 @@
 #include "sphstab/spectral/rate_form_symbol.hpp"
 
 namespace sphstab {
-namespace {
+namespace stability_verdict_test {
 
 const RateFormMaterial kGms{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};
 

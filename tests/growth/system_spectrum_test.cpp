@@ -14,7 +14,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace system_spectrum_test {
 
 std::shared_ptr<const WaveForm1D> wave(int n, MomentumForm form, double tension) {
   Kernel<1> k(KernelType::CubicSpline);

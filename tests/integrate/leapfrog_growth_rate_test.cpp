@@ -10,7 +10,7 @@
 #include "sphstab/integrate/time_step.hpp"
 
 namespace sphstab {
-namespace {
+namespace leapfrog_growth_rate_test {
 
 TEST(LeapfrogGrowthRate, AgreesWithTheDenseOneStepMapOnANonsymmetricMatrix) {
   // a random non-symmetric A (complex and real eigenvalues of both signs) at two time steps

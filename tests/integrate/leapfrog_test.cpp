@@ -12,7 +12,7 @@
 #include "sphstab/io/run_output.hpp"
 
 namespace sphstab {
-namespace {
+namespace leapfrog_test {
 
 SecondOrderSystem oscillator(double omega) {
   SecondOrderSystem s;

@@ -15,7 +15,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace rate_form_neighbour_rebuild_test {
 
 const RateFormMaterial kGms{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.22};
 const Kernel<2> kCubic(KernelType::CubicSpline);

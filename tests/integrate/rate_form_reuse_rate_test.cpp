@@ -12,7 +12,7 @@
 #include "sphstab/integrate/rate_form_run.hpp"
 
 namespace sphstab {
-namespace {
+namespace rate_form_reuse_rate_test {
 
 const RateFormMaterial kGms{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};
 

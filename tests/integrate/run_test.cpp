@@ -12,7 +12,7 @@
 #include "sphstab/integrate/leapfrog.hpp"
 
 namespace sphstab {
-namespace {
+namespace run_test {
 
 /// Counts: u grows by one per step; throws at step `throw_at` (0: never); records its steps.
 class CountingStepper final : public Stepper {

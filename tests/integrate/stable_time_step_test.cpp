@@ -16,7 +16,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace stable_time_step_test {
 
 const LameParameters kLame{.lambda = 1.2, .mu = 0.8};
 

@@ -8,7 +8,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace xsph_test {
 
 template <int Dim>
 std::shared_ptr<const Discretisation<Dim>> lattice(int n, bool periodic, double perturbation = 0) {

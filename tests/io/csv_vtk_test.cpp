@@ -11,7 +11,7 @@
 #include "sphstab/io/vtk.hpp"
 
 namespace sphstab {
-namespace {
+namespace csv_vtk_test {
 
 namespace fs = std::filesystem;
 

@@ -7,7 +7,7 @@
 #include <fstream>
 
 namespace sphstab {
-namespace {
+namespace matrix_market_test {
 
 std::string temp_path(const std::string& name) {
   auto dir = std::filesystem::temp_directory_path() / ("sphstab_mm_test_" + std::to_string(::getpid()));

@@ -11,7 +11,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace analytic_jacobian_1d_test {
 
 using C = std::complex<double>;
 using VecC = Eigen::VectorXcd;

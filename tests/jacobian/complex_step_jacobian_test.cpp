@@ -11,7 +11,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace complex_step_jacobian_test {
 
 /// A toy force with a known Jacobian, independent of SPH: a nonlinear spring chain with fixed ends,
 /// a_i = (u_{i+1} - 2 u_i + u_{i-1}) + c (u_{i+1} - u_i)^3 - c (u_i - u_{i-1})^3 + load * u_i.

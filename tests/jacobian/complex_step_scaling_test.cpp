@@ -21,7 +21,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace complex_step_scaling_test {
 
 TEST(ComplexStepSize, IsTheFixedStepInsideTheBandAndScalesOutside) {
   for (double s : {1e-12, 1e-3, 1.0, 7.8, 1e12}) EXPECT_EQ(complex_step_size(1e-30, s), 1e-30) << s;

@@ -19,7 +19,7 @@
 #include "sphstab/stability/matrix_free_critical_load.hpp"
 
 namespace sphstab {
-namespace {
+namespace matrix_free_linearisation_3d_test {
 
 const ElasticMaterial kMaterial{.lambda = 1.2115384615384615, .mu = 0.8076923076923077, .rho = 7.8};
 constexpr double kH = 1.3;

@@ -17,7 +17,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace matrix_free_linearisation_test {
 
 const ElasticMaterial kMaterial{.lambda = 1.2115384615384615, .mu = 0.8076923076923077, .rho = 7.8};
 

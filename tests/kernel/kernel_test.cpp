@@ -9,7 +9,7 @@
 #include "sphstab/numerics/quadrature.hpp"
 
 namespace sphstab {
-namespace {
+namespace kernel_test {
 
 template <int Dim>
 double radial_integral(const Kernel<Dim>& k, double h) {

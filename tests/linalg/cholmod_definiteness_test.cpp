@@ -7,7 +7,7 @@
 #include "sphstab/linalg/dense_symmetric_eigen.hpp"
 
 namespace sphstab {
-namespace {
+namespace cholmod_definiteness_test {
 
 /// Random sparse symmetric matrix Q D Q^T restricted to a band: here built as B^T B + shift I with a random sparse
 /// B, so that its smallest eigenvalue can be placed on either side of zero by the shift.

@@ -4,7 +4,7 @@
 #include "sphstab/linalg/dense_symmetric_eigen.hpp"
 
 namespace sphstab {
-namespace {
+namespace dense_eigen_test {
 
 TEST(DenseSymmetricEigen, TridiagonalToeplitzExact) {
   const int n = 12;

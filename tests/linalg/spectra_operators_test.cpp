@@ -13,7 +13,7 @@
 #include "sphstab/linalg/dense_symmetric_eigen.hpp"
 
 namespace sphstab {
-namespace {
+namespace spectra_operators_test {
 
 /// Symmetric banded test pair: A indefinite (random band), B positive definite (diagonally dominant band).
 struct Pair {

@@ -10,7 +10,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace artificial_stress_test {
 
 using Complex = std::complex<double>;
 using T2 = SymmetricTensor2<double>;

@@ -15,7 +15,7 @@
 #include "sphstab/models/st_venant_kirchhoff.hpp"
 
 namespace sphstab {
-namespace {
+namespace hyperelastic_models_test {
 
 using cd = std::complex<double>;
 constexpr double kStep = 1e-30;  // complex step: no cancellation, exact to round-off

@@ -14,7 +14,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace von_mises_test {
 
 template <int Dim>
 StoredDeviator<Dim> random_deviator(std::mt19937_64& rng, double scale) {

@@ -7,7 +7,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace neighbour_list_test {
 
 template <int Dim>
 ParticleSet<Dim> random_set(int n, double box, bool periodic, unsigned seed) {

@@ -5,7 +5,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace sparsity_test {
 
 /// Dense boolean reachability within r hops, free block, for comparison.
 Eigen::MatrixXi reach(const NeighbourList& nl, const std::vector<int>& free_slot, int r) {

@@ -12,7 +12,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace dual_test {
 
 using D = Dual<double>;
 using DC = Dual<std::complex<double>>;

@@ -12,7 +12,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace boundary_particles_test {
 
 ParticleSet<2> block(int nx, int ny, double dx) {
   ParticleSet<2> p;

@@ -8,7 +8,7 @@
 #include "sphstab/operators/shepard.hpp"
 
 namespace sphstab {
-namespace {
+namespace column_shepard_test {
 
 using test::make_case;
 

@@ -9,7 +9,7 @@
 #include "sphstab/operators/ncsph.hpp"
 
 namespace sphstab {
-namespace {
+namespace correction_test {
 
 using test::Complex;
 using test::make_case;

@@ -13,7 +13,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace ismail_boundary_test {
 
 Eigen::VectorXd random_field(int n, unsigned seed) {
   std::mt19937 gen(seed);

@@ -8,7 +8,7 @@
 #include "sphstab/operators/shepard.hpp"
 
 namespace sphstab {
-namespace {
+namespace mean_polish_test {
 
 using test::Complex;
 using test::make_case;

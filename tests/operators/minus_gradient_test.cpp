@@ -7,7 +7,7 @@
 #include "correction_fixture.hpp"
 
 namespace sphstab {
-namespace {
+namespace minus_gradient_test {
 
 using test::make_case;
 

@@ -7,7 +7,7 @@
 #include "correction_fixture.hpp"
 
 namespace sphstab {
-namespace {
+namespace ncsph_test {
 
 using test::Complex;
 using test::make_case;

@@ -5,7 +5,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace operators_test {
 
 template <int Dim>
 void expect_pairwise(LatticeType type, int n) {

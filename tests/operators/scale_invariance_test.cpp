@@ -13,7 +13,7 @@
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
-namespace {
+namespace scale_invariance_test {
 
 struct Assembled {
   NeighbourList nl;

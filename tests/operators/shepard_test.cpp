@@ -5,7 +5,7 @@
 #include "correction_fixture.hpp"
 
 namespace sphstab {
-namespace {
+namespace shepard_test {
 
 using test::Complex;
 using test::make_case;

@@ -9,7 +9,7 @@
 #include "sphstab/operators/operators.hpp"
 
 namespace sphstab {
-namespace {
+namespace block_lattice_test {
 
 // 7 x 3 free particles with the layers of the cubic spline at h = 1.3 dx (support 2.6: 2 layers): free block first,
 // x fastest, at ((i + 1/2) dx, (j + 1/2) dx); 11 x 7 particles in all; every free neighbourhood complete.

@@ -7,7 +7,7 @@
 #include "sphstab/operators/operators.hpp"
 
 namespace sphstab {
-namespace {
+namespace lattice_test {
 
 TEST(Lattice, FixedLayerCountFollowsSupport) {
   EXPECT_EQ(fixed_layers_needed(2.6, 1.0), 2);    // h = 1.3 dx: neighbours at 1, 2 dx

@@ -6,7 +6,7 @@
 #include <vector>
 
 namespace sphstab {
-namespace {
+namespace bar_wave_exact_test {
 
 /// Midpoint rule with m cells: the integrands here are piecewise constant with a few jumps, so the error is
 /// at most (number of jumps) x (jump size) x (b - a) / m.

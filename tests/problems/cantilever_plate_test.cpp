@@ -7,7 +7,7 @@
 #include <cmath>
 
 namespace sphstab {
-namespace {
+namespace cantilever_plate_test {
 
 TEST(CantileverPlate, FundamentalRootAndTheNotesRecomputedPeriods) {
   const double kl = cantilever_fundamental_kl();

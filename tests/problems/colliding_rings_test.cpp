@@ -8,7 +8,7 @@
 #include <utility>
 
 namespace sphstab {
-namespace {
+namespace colliding_rings_test {
 
 /// Independent count: cell centres in doubled grid units are the odd integers (a, b); the ring keeps
 /// (2 R_in)^2 <= a^2 + b^2 <= (2 R_out)^2 with R_in, R_out the radii in spacings (whole numbers here), in exact

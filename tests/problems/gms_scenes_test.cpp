@@ -11,7 +11,7 @@
 #include "sphstab/forms/rate_form_state.hpp"
 
 namespace sphstab {
-namespace {
+namespace gms_scenes_test {
 
 TEST(GmsScenes, RingsMoveTowardsEachOtherAndAreOneFragmentEach) {
   const CollidingRingsOptions geometry{.spacing = 0.2, .speed = 0.059};

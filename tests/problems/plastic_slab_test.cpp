@@ -8,7 +8,7 @@
 #include <string>
 
 namespace sphstab {
-namespace {
+namespace plastic_slab_test {
 
 TEST(PlasticSlab, GmsGridIs188By63With13DrivenColumnsAtEachEnd) {
   const PlasticSlab slab = make_plastic_slab();

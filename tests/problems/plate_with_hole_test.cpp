@@ -15,7 +15,7 @@
 #include "sphstab/models/neo_hookean.hpp"
 
 namespace sphstab {
-namespace {
+namespace plate_with_hole_test {
 
 TEST(PlateWithHole, GeometryImagesAndEdge) {
   // 8 x 8 sites at (i + 1/2) / 4: r < 0.5 removes (0.125, 0.125), (0.375, 0.125), (0.125, 0.375) (r = 0.177, 0.395,

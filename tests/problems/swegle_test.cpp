@@ -10,7 +10,7 @@
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
 
 namespace sphstab {
-namespace {
+namespace swegle_test {
 
 TEST(Swegle, SceneMatchesPowellsSetup) {
   const SwegleScene s = make_swegle_scene({});

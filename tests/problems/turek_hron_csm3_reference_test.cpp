@@ -21,7 +21,7 @@
 #include "sphstab/problems/turek_hron_csm3.hpp"
 
 namespace sphstab {
-namespace {
+namespace turek_hron_csm3_reference_test {
 
 namespace fs = std::filesystem;
 using C = TurekHronCsm3;

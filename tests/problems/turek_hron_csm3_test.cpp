@@ -8,7 +8,7 @@
 #include <cmath>
 
 namespace sphstab {
-namespace {
+namespace turek_hron_csm3_test {
 
 using C = TurekHronCsm3;
 

@@ -12,7 +12,7 @@
 #include "sphstab/linalg/dense_general_eigen.hpp"
 
 namespace sphstab {
-namespace {
+namespace fourier_symbol_2d_test {
 
 const ElasticMaterial kMaterial{.lambda = 1.2115384615384615, .mu = 0.8076923076923077, .rho = 7.8};
 

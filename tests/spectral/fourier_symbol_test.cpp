@@ -7,7 +7,7 @@
 #include "sphstab/stability/critical_load.hpp"
 
 namespace sphstab {
-namespace {
+namespace fourier_symbol_test {
 
 TEST(FourierSymbol1D, SawtoothIsInvisibleToTheGradient) {
   for (KernelType type : all_kernel_types()) {

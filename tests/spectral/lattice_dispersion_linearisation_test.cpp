@@ -9,7 +9,7 @@
 #include "sphstab/spectral/lattice_dispersion.hpp"
 
 namespace sphstab {
-namespace {
+namespace lattice_dispersion_linearisation_test {
 
 using test::Complex;
 

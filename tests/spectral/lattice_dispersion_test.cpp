@@ -9,7 +9,7 @@
 #include "sphstab/spectral/fourier_symbol_2d.hpp"
 
 namespace sphstab {
-namespace {
+namespace lattice_dispersion_test {
 
 const double pi = M_PI;
 const Eigen::Vector2d k_short(pi, 0);  // k = (pi/dp, 0), dp = 1

@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 namespace sphstab {
-namespace {
+namespace plane_wave_reflection_test {
 
 const double kCp = std::sqrt(1.4 / 0.4), kCs = 1.0;  // plane strain nu = 0.3: c_p / c_s = sqrt(2 (1 - nu) / (1 - 2 nu))
 

@@ -13,7 +13,7 @@
 #include "sphstab/spectral/lattice_dispersion.hpp"
 
 namespace sphstab {
-namespace {
+namespace rate_form_symbol_test {
 
 const RateFormMaterial kGms{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};
 

@@ -8,7 +8,7 @@
 #include "sphstab/stability/critical_load.hpp"
 
 namespace sphstab {
-namespace {
+namespace tension_estimates_test {
 
 TEST(TensionEstimates1D, CubicByHandAtHEqualsOnePointTwoFive) {
   // Cubic B-spline, support 2h, h = 1.25, dx = 1: neighbours at q = 0.8 and 1.6.

@@ -22,7 +22,7 @@
 #include "sphstab/problems/turek_hron_csm3.hpp"
 
 namespace sphstab {
-namespace {
+namespace zigzag_modes_test {
 
 using C = TurekHronCsm3;
 constexpr double kZigzag = 0.5;

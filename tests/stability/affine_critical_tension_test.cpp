@@ -14,7 +14,7 @@
 #include "sphstab/stability/critical_load.hpp"
 
 namespace sphstab {
-namespace {
+namespace affine_critical_tension_test {
 
 /// A hand-made linearisation on 1 dof per particle; `symmetric` measured as affine_jacobian does (tolerance 1e-12).
 Linearisation pair(const Eigen::MatrixXd& a0, const Eigen::MatrixXd& a1, const Eigen::VectorXd& x) {

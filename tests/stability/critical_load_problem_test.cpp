@@ -12,7 +12,7 @@
 #include "sphstab/spectral/fourier_symbol_2d.hpp"
 
 namespace sphstab {
-namespace {
+namespace critical_load_problem_test {
 
 CriticalLoadRouteOptions route(CriticalLoadRoute r) {
   CriticalLoadRouteOptions o;

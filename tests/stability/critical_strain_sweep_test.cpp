@@ -7,7 +7,7 @@
 #include "sphstab/core/memory_budget.hpp"
 
 namespace sphstab {
-namespace {
+namespace critical_strain_sweep_test {
 
 TEST(CriticalStrainSweep, CasesInOrderAndEqualToTheFrontDoor) {
   int calls = 0;

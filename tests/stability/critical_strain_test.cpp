@@ -14,7 +14,7 @@
 #include "sphstab/stability/critical_load.hpp"
 
 namespace sphstab {
-namespace {
+namespace critical_strain_test {
 
 const ElasticMaterial kMaterial{.lambda = 1.2115384615384615, .mu = 0.8076923076923077, .rho = 7.8};
 

@@ -10,7 +10,7 @@
 #include "sphstab/particles/lattice_presets.hpp"
 
 namespace sphstab {
-namespace {
+namespace critical_tension_sweep_test {
 
 TEST(CriticalTensionSweep, PlainCasesAreTheEngineWithTheEstimates) {
   const CriticalTensionSweep s{.n = 30,

@@ -11,7 +11,7 @@
 #include "sphstab/stability/critical_load.hpp"
 
 namespace sphstab {
-namespace {
+namespace critical_tension_test {
 
 ParticleSet<1> line(int nfree, double h, bool periodic = false) {
   return make_lattice<1>(LatticeType::Line, nfree, {.spacing = 1.0, .support_radius = 2 * h, .periodic = periodic});

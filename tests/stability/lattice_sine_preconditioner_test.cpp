@@ -14,7 +14,7 @@
 #include "sphstab/stability/lattice_stencil.hpp"
 
 namespace sphstab {
-namespace {
+namespace lattice_sine_preconditioner_test {
 
 const ElasticMaterial kMaterial{.lambda = 1.2115384615384615, .mu = 0.8076923076923077, .rho = 7.8};
 

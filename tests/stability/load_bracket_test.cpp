@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 namespace sphstab {
-namespace {
+namespace load_bracket_test {
 
 TEST(LoadBracket, FindsAKnownThresholdUpAndDown) {
   const double t_star = 0.0123456789;

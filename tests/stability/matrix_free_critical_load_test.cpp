@@ -15,7 +15,7 @@
 #include "sphstab/stability/lattice_sine_preconditioner.hpp"
 
 namespace sphstab {
-namespace {
+namespace matrix_free_critical_load_test {
 
 const ElasticMaterial kMaterial{.lambda = 1.2115384615384615, .mu = 0.8076923076923077, .rho = 7.8};
 

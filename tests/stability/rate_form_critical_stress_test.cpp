@@ -9,7 +9,7 @@
 #include "sphstab/stability/critical_load.hpp"
 
 namespace sphstab {
-namespace {
+namespace rate_form_critical_stress_test {
 
 const RateFormMaterial kMaterial{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};  // M = 1.4
 

@@ -18,7 +18,7 @@
 #include "sphstab/stability/critical_load.hpp"
 
 namespace sphstab {
-namespace {
+namespace tl_ul_critical_2d_test {
 
 constexpr int kNx = 9, kNy = 3;
 

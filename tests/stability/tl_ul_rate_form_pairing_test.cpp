@@ -18,7 +18,7 @@
 #include "sphstab/stability/rate_form_critical_stress.hpp"
 
 namespace sphstab {
-namespace {
+namespace tl_ul_rate_form_pairing_test {
 
 constexpr int kFree = 41;
 constexpr double kH = 2.75;
