@@ -41,6 +41,11 @@ def claim_conservative_symmetric(r):
     cons = [x["relative_asymmetry"] for x in rows if x["form"] == "conservative"]
     check(max(cons) < 1e-14 and r.num("conservative_asymmetry_max") < 1e-14, f"conservative asymmetry "
                                                                            f"{max(cons):.3g}")
+    # The headline's number is the largest over both tables (it once quoted the amplitude table's 3.2e-16 while
+    # asymmetry.csv had 3.9e-16).
+    amp = [x["relative_asymmetry"] for x in r.csv("asymmetry_vs_amplitude.csv") if x["form"] == "conservative"]
+    approx(r.num("conservative_asymmetry_all"), max(cons + amp), "conservative_asymmetry_all", rel=0.05)
+    approx(r.num("conservative_asymmetry_max"), max(amp), "conservative_asymmetry_max (amplitude table)", rel=0.05)
     other = [x for x in rows if x["form"] != "conservative" and x["config"] == "displaced-loaded"]
     check(other and all(x["relative_asymmetry"] > 1e-6 for x in other),
           f"a non-conservative form symmetric when displaced and loaded: {[x.where() for x in other if x['relative_asymmetry'] <= 1e-6]}")
