@@ -299,8 +299,9 @@ def tl_plate_hole(study, data):
 
 
 def nrbc_1d(study, data):
-    """The number of Table 2.1 cells compared (rows × columns of table_half)."""
-    rows = md_rows(need(study, data, "table_half"))
+    """The number of Table 2.1 cells whose X pattern is compared: the truncated rows × columns of table_half (the
+    Reference row is not part of the count the driver makes)."""
+    rows = [r for r in md_rows(need(study, data, "table_half")) if not r[0].startswith("Reference")]
     return {"cells": str(sum(len(r) - 1 for r in rows))}
 
 

@@ -244,12 +244,15 @@ void write_table(const std::string& path, const std::vector<BarRun>& runs) {
 int main(int argc, char** argv) try {
   CLI::App app{"Powell 2012 ch. 2: 1D non-reflecting boundary, Table 2.1, h-study, time-step limits"};
   std::string out = "results/nrbc-1d";
-  double cfl = 0.5;
+  double cfl = 0.5, tssfac = 0.8;
   int threads = 2;
   std::vector<double> sweep = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8};
   std::vector<double> h_values = {1.1, 1.2, 1.3, 1.5, 1.7, 2.0, 2.5, 3.0};
   app.add_option("--out", out, "output directory");
-  app.add_option("--cfl", cfl, "dt = cfl dx / c of Table 2.1 (Powell gives none)")->check(CLI::Range(0.01, 2.0));
+  app.add_option("--cfl", cfl, "the tuned dt = cfl dx / c of the Table 2.1 sensitivity (the value at which the "
+                 "symmetric bar reproduces Powell's X pattern)")->check(CLI::Range(0.01, 2.0));
+  app.add_option("--tssfac", tssfac, "the headline dt = tssfac h / c (MCM deck TSSFAC 0.8, DYNA's rule at rest)")
+      ->check(CLI::Range(0.01, 1.5));
   app.add_option("--threads", threads, "concurrent runs")->check(CLI::Range(1, 64));
   app.add_option("--cfl-sweep", sweep, "CFL values of the sweep")->delimiter(',')->check(CLI::Range(0.01, 2.0));
   app.add_option("--h", h_values, "h / dx of the h-study")->delimiter(',')->check(CLI::Range(1.0, 4.0));
@@ -259,30 +262,37 @@ int main(int argc, char** argv) try {
   study::Summary sum;
   const std::vector<Form> forms = {Form::Sph, Form::Xsph, Form::Ncsph, Form::Ncxsph};
 
-  // 1. Table 2.1 at one dt: the symmetric bar with Powell's timing (half) and sphstab's (whole), and Powell's free end
-  // with his timing.
+  // 1. Table 2.1. Headline: Powell's geometry (free end) and timing (half) at MCM's time step, dt = TSSFAC h / c
+  // (the deck's TSSFAC 0.8 with DYNA's step rule h / c at rest: c dt/dx = 1.04). Sensitivities: the symmetric bar at
+  // that step, and the tuned c dt/dx = 0.5 (the value at which the symmetric bar reproduces Powell's X pattern) on the
+  // symmetric bar with both timings and on the free end.
+  const double cfl_mcm = tssfac * 1.3;
   struct Variant {
     bool half, mirror;
+    double cfl;
     const char* key;
   };
-  const std::vector<Variant> variants = {
-      {true, true, "table_half"}, {false, true, "table_whole"}, {true, false, "table_free"}};
+  const std::vector<Variant> variants = {{true, false, cfl_mcm, "table_headline"},
+                                         {true, true, cfl_mcm, "table_mcm_mirror"},
+                                         {true, true, cfl, "table_half"},
+                                         {false, true, cfl, "table_whole"},
+                                         {true, false, cfl, "table_free"}};
   std::vector<BarCase> table;
   for (const Variant& v : variants)
     for (Form f : forms) {
       // The reference has no absorbing particles: its timing flag is moot, run once per left end.
       if (v.half)
         table.push_back(
-            {.form = f, .particles = 800, .mirror = v.mirror, .half_step = true, .cfl = cfl, .keep_series = true});
+            {.form = f, .particles = 800, .mirror = v.mirror, .half_step = true, .cfl = v.cfl, .keep_series = true});
       for (int layers = 1; layers <= 5; ++layers)
         table.push_back(
-            {.form = f, .mirror = v.mirror, .layers = layers, .half_step = v.half, .cfl = cfl, .keep_series = true});
+            {.form = f, .mirror = v.mirror, .layers = layers, .half_step = v.half, .cfl = v.cfl, .keep_series = true});
       table.push_back({.form = f,
                        .mirror = v.mirror,
                        .layers = 8,
                        .upwind = true,
                        .half_step = v.half,
-                       .cfl = cfl,
+                       .cfl = v.cfl,
                        .keep_series = true});
     }
   for (Form f : forms)  // the references without MCM's viscosity
@@ -294,11 +304,12 @@ int main(int argc, char** argv) try {
     const std::size_t every = std::max<std::size_t>(1, r.t.size() / 400);  // plots need ~400 points, not every step
     for (std::size_t k = 0; k < r.t.size(); k += every) w.row({r.t[k], r.v[k], exact_velocity(0.795, r.t[k])});
   }
-  const auto find = [&](Form f, int particles, int layers, bool upwind, bool half, bool mirror = true,
+  const auto find = [&](Form f, int particles, int layers, bool upwind, bool half, double c, bool mirror = true,
                         ViscositySwitch viscosity = ViscositySwitch::Compression) -> const BarRun& {
     for (const BarRun& r : runs)
       if (r.c.form == f && r.c.particles == particles && r.c.layers == layers && r.c.upwind == upwind &&
-          (particles == 800 || r.c.half_step == half) && r.c.mirror == mirror && r.c.viscosity == viscosity)
+          (particles == 800 || r.c.half_step == half) && r.c.mirror == mirror && r.c.viscosity == viscosity &&
+          r.c.cfl == c)
         return r;
     throw std::logic_error("missing case");
   };
@@ -310,9 +321,9 @@ int main(int argc, char** argv) try {
   const auto cell = [](const BarRun& r) { return r.stable ? study::sig(100 * r.error, 3) : std::string("X"); };
   const auto paper_cell = [](double v) { return std::isnan(v) ? std::string("X") : study::sig(v, 5); };
   const auto row_run = [&](int row, int k, const Variant& v) -> const BarRun& {
-    return row == 0   ? find(forms[k], 800, 0, false, v.half, v.mirror)
-           : row == 6 ? find(forms[k], 100, 8, true, v.half, v.mirror)
-                      : find(forms[k], 100, row, false, v.half, v.mirror);
+    return row == 0   ? find(forms[k], 800, 0, false, v.half, v.cfl, v.mirror)
+           : row == 6 ? find(forms[k], 100, 8, true, v.half, v.cfl, v.mirror)
+                      : find(forms[k], 100, row, false, v.half, v.cfl, v.mirror);
   };
   for (const Variant& v : variants) {
     std::string md;
@@ -333,7 +344,7 @@ int main(int argc, char** argv) try {
     std::string md;
     std::vector<std::string> cells = {"Reference without viscosity"};
     for (int k = 0; k < 4; ++k)
-      cells.push_back(cell(find(forms[k], 800, 0, false, true, true, ViscositySwitch::Off)) + " (" +
+      cells.push_back(cell(find(forms[k], 800, 0, false, true, cfl, true, ViscositySwitch::Off)) + " (" +
                       paper_cell(paper[0][k]) + ")");
     study::md_row(md, cells);
     sum.set("table_inviscid", md);
@@ -441,6 +452,8 @@ int main(int argc, char** argv) try {
     sum.set("h_study", md);
   }
   sum.set("cfl", cfl, 3);
+  sum.set("cfl_mcm", cfl_mcm, 3);
+  sum.set("tssfac", tssfac, 3);
   sum.set("c", bar_speed(), 5);
   sum.set("runs", static_cast<long>(runs.size() + sweep_runs.size() + hruns.size()));
   sum.set("wall_seconds", study::seconds_since(t0), 3);
