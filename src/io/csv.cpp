@@ -70,13 +70,22 @@ std::string format_csv_cell(const CsvCell& cell) {
 }
 
 CsvWriter::CsvWriter(const std::string& path, std::vector<std::string> columns, bool flush_every_row)
-    : m_columns(std::move(columns)), m_flush(flush_every_row) {
+    : m_path(path), m_columns(std::move(columns)), m_flush(flush_every_row) {
   if (m_columns.empty()) throw std::invalid_argument("CsvWriter: empty column list for '" + path + "'");
   m_out.open(path, std::ios::out | std::ios::trunc);
   if (!m_out) throw std::runtime_error("CsvWriter: cannot open '" + path + "' for writing");
   for (std::size_t k = 0; k < m_columns.size(); ++k) m_out << (k ? "," : "") << csv_quote(m_columns[k]);
   m_out << '\n';
+  flush();
+}
+
+void CsvWriter::check_stream() {
+  if (!m_out) throw std::runtime_error("CsvWriter: error writing '" + m_path + "' (disk full or I/O error)");
+}
+
+void CsvWriter::flush() {
   m_out.flush();
+  check_stream();
 }
 
 void CsvWriter::row(const std::vector<CsvCell>& cells) {
@@ -88,6 +97,7 @@ void CsvWriter::row(const std::vector<CsvCell>& cells) {
   m_out << '\n';
   ++m_rows;
   if (m_flush) m_out.flush();
+  check_stream();
 }
 
 int CsvTable::column_index(const std::string& name) const {

@@ -6,49 +6,50 @@
 #include <stdexcept>
 #include <vector>
 
+#include "sphstab/io/atomic_output.hpp"
+
 namespace sphstab {
 
 namespace {
 
-std::FILE* open_for_writing(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  if (!f) throw std::runtime_error("write_matrix_market: cannot open '" + path + "' for writing");
-  return f;
-}
-
-void write_comment(std::FILE* f, const std::string& comment) {
+void write_comment(std::ostream& out, const std::string& comment) {
   std::istringstream lines(comment);
   std::string line;
-  while (std::getline(lines, line)) std::fprintf(f, "%% %s\n", line.c_str());
+  while (std::getline(lines, line)) out << "% " << line << '\n';
 }
 
-void close_checked(std::FILE* f, const std::string& path) {
-  const bool ok = !std::ferror(f);
-  if (std::fclose(f) != 0 || !ok) throw std::runtime_error("write_matrix_market: error writing '" + path + "'");
+/// One printf-formatted line into the stream (the %.17g of the values: round-trip exact).
+template <class... Args>
+void line(std::ostream& out, const char* format, Args... args) {
+  char buf[96];
+  const int n = std::snprintf(buf, sizeof(buf), format, args...);
+  out.write(buf, n);
 }
 
 }  // namespace
 
+// Written to a temporary file and renamed into place (io/atomic_output.hpp): a failed write leaves no truncated .mtx.
 void write_matrix_market(const std::string& path, const SparseMatrix<double>& A, const std::string& comment) {
-  std::FILE* f = open_for_writing(path);
-  std::fprintf(f, "%%%%MatrixMarket matrix coordinate real general\n");
-  write_comment(f, comment);
-  std::fprintf(f, "%ld %ld %ld\n", static_cast<long>(A.rows()), static_cast<long>(A.cols()),
-               static_cast<long>(A.nonZeros()));
+  AtomicOutput file(path, "write_matrix_market");
+  std::ostream& out = file.stream();
+  out << "%%MatrixMarket matrix coordinate real general\n";
+  write_comment(out, comment);
+  line(out, "%ld %ld %ld\n", static_cast<long>(A.rows()), static_cast<long>(A.cols()), static_cast<long>(A.nonZeros()));
   for (int i = 0; i < A.outerSize(); ++i)
     for (SparseMatrix<double>::InnerIterator it(A, i); it; ++it)
-      std::fprintf(f, "%ld %ld %.17g\n", static_cast<long>(it.row()) + 1, static_cast<long>(it.col()) + 1, it.value());
-  close_checked(f, path);
+      line(out, "%ld %ld %.17g\n", static_cast<long>(it.row()) + 1, static_cast<long>(it.col()) + 1, it.value());
+  file.commit();
 }
 
 void write_matrix_market(const std::string& path, const Eigen::MatrixXd& A, const std::string& comment) {
-  std::FILE* f = open_for_writing(path);
-  std::fprintf(f, "%%%%MatrixMarket matrix array real general\n");
-  write_comment(f, comment);
-  std::fprintf(f, "%ld %ld\n", static_cast<long>(A.rows()), static_cast<long>(A.cols()));
+  AtomicOutput file(path, "write_matrix_market");
+  std::ostream& out = file.stream();
+  out << "%%MatrixMarket matrix array real general\n";
+  write_comment(out, comment);
+  line(out, "%ld %ld\n", static_cast<long>(A.rows()), static_cast<long>(A.cols()));
   for (Eigen::Index j = 0; j < A.cols(); ++j)
-    for (Eigen::Index i = 0; i < A.rows(); ++i) std::fprintf(f, "%.17g\n", A(i, j));
-  close_checked(f, path);
+    for (Eigen::Index i = 0; i < A.rows(); ++i) line(out, "%.17g\n", A(i, j));
+  file.commit();
 }
 
 SparseMatrix<double> read_matrix_market(const std::string& path) {

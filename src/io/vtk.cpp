@@ -1,5 +1,7 @@
 #include "sphstab/io/vtk.hpp"
 
+#include "sphstab/io/atomic_output.hpp"
+
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -93,8 +95,8 @@ void write_vtp(const std::string& path, const Eigen::MatrixXd& points, const std
     if (f.name.empty() || f.name.find_first_of("\"<>&") != std::string::npos)
       throw std::invalid_argument("write_vtp: field name '" + f.name + "' is empty or contains \" < > &");
   }
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("write_vtp: cannot open '" + path + "' for writing");
+  AtomicOutput file(path, "write_vtp");  // renamed into place only once complete (io/atomic_output.hpp)
+  std::ostream& out = file.stream();
   out << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       << "  <PolyData>\n"
@@ -125,7 +127,7 @@ void write_vtp(const std::string& path, const Eigen::MatrixXd& points, const std
   for (long i = 0; i < n; ++i) out << i + 1 << ((i + 1) % 12 == 0 || i + 1 == n ? '\n' : ' ');
   out << "        </DataArray>\n      </Verts>\n";
   out << "    </Piece>\n  </PolyData>\n</VTKFile>\n";
-  if (!out) throw std::runtime_error("write_vtp: write to '" + path + "' failed");
+  file.commit();
 }
 
 const VtkField& VtpData::field(const std::string& name) const {
@@ -215,8 +217,8 @@ VtpData read_vtp(const std::string& path) {
 }
 
 void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& entries) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("write_pvd: cannot open '" + path + "' for writing");
+  AtomicOutput file(path, "write_pvd");
+  std::ostream& out = file.stream();
   out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       << "  <Collection>\n";
   char buf[40];
@@ -225,6 +227,7 @@ void write_pvd(const std::string& path, const std::vector<std::pair<double, std:
     out << "    <DataSet timestep=\"" << buf << "\" group=\"\" part=\"0\" file=\"" << file << "\"/>\n";
   }
   out << "  </Collection>\n</VTKFile>\n";
+  file.commit();
 }
 
 }  // namespace sphstab

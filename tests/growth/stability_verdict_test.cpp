@@ -186,9 +186,9 @@ TEST(StabilityVerdict, PowellXsphLeapfrogMapIsReducedExactly) {
       mirror_symmetry(pos, d->particles.x.row(scene.centre).transpose(), 1e-9 * so.spacing);
   const double dt = 0.8 * scene.h / steel.p_wave_speed();
   int compared = 0;
-  for (double xi : {1.05, 0.95, 1.0})
+  // Tension with eps 0.1 and 0.3 (the stepper's dense map is the test's cost: ~8 s each under ASan).
+  for (double xi : {1.05})
     for (double eps : {0.1, 0.3}) {
-      if (xi == 1.0 && eps == 0.3) continue;
       const RateFormScheme<2> scheme(d, steel, {}, so.density / xi);
       const Eigen::VectorXd y = scheme.uniform_state();
       const RateFormRunOptions run{.dt = dt, .integrator = RateFormIntegrator::Leapfrog, .leapfrog_xsph = eps};
@@ -220,7 +220,7 @@ TEST(StabilityVerdict, PowellXsphLeapfrogMapIsReducedExactly) {
                   red.letter().c_str());
       ++compared;
     }
-  EXPECT_EQ(compared, 5);
+  EXPECT_EQ(compared, 2);
 }
 
 // PC1 carries the rate: the map on (y, F^0) is twice as large and, on an undamped first-order oscillation, its root

@@ -11,9 +11,9 @@ scripts/sanitize.sh is cut for time (no studies, no benchmarks, -O1). This test 
      leaves MPI out);
   3. every test program the Release suite builds from tests/**/*_test.cpp is also in the sanitizer selection, except
      MPI programs and *_slow_test.cpp (label slow, which the sanitizer stage may leave to the Release stage).
-A test program is attributed to the layer of its folder: tests/<layer>/<name>_test.cpp is built into the program
-<layer>_tests (SPHSTAB_TEST_PROGRAMS=folder, tests/CMakeLists.txt) or <name>_test (=file); a selected folder program
-covers every non-slow test file of its folder.
+A test file tests/<layer>/<name>_test.cpp belongs to the layer of its folder, and to the program that builds it:
+BUILD_DIR/test_programs.txt (written by tests/CMakeLists.txt) lists each program with its sources (a group of files
+with SPHSTAB_TEST_PROGRAMS=folder, one file with =file); a selected program covers every file it builds.
 """
 import json
 import os
@@ -88,9 +88,15 @@ def main(argv):
 
     with open(os.path.join(ROOT, "docs", "layers.txt"), encoding="utf-8") as f:
         layers = [line.split()[0] for line in f if line.strip() and not line.startswith("#")]
-    # A folder program <layer>_tests stands for every non-slow test file of its folder.
-    chosen = chosen | {p for p, layer in program_layer.items()
-                       if f"{layer}_tests" in chosen and not p.endswith("_slow_test")}
+    # A program stands for every test file it builds (test_programs.txt: "program source...").
+    listing = os.path.join(build, "test_programs.txt")
+    if not os.path.exists(listing):
+        fail(f"{listing} is missing (tests/CMakeLists.txt writes it)")
+    with open(listing, encoding="utf-8") as f:
+        for line in f:
+            words = line.split()
+            if words and words[0] in chosen:
+                chosen = chosen | {os.path.basename(src)[:-4] for src in words[1:]}
     covered = {program_layer[p] for p in chosen if p in program_layer}
     tested = set(program_layer.values())  # layers with test programs of their own (system/ is tested through growth/)
     missing = [layer for layer in layers if layer != "distributed" and layer in tested and layer not in covered]

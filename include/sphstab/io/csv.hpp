@@ -52,11 +52,16 @@ class CsvWriter {
   const std::vector<std::string>& columns() const { return m_columns; }
   long rows_written() const { return m_rows; }
 
-  /// Writes one row; throws std::invalid_argument if the cell count differs from the column count.
+  /// Writes one row; throws std::invalid_argument if the cell count differs from the column count, and
+  /// std::runtime_error("CsvWriter: error writing '<path>' (disk full or I/O error)") when the stream fails (checked
+  /// after every row: with flush_every_row the row has reached the file; otherwise at the next buffer flush).
   void row(const std::vector<CsvCell>& cells);
-  void flush() { m_out.flush(); }
+  /// Flushes; throws std::runtime_error as row() when the stream fails.
+  void flush();
 
  private:
+  void check_stream();
+  std::string m_path;
   std::ofstream m_out;
   std::vector<std::string> m_columns;
   bool m_flush = true;
