@@ -42,6 +42,9 @@ void add_rate_form_options(CLI::App& cmd, RateFormArgs& a, bool lists) {
   cmd.add_option("--viscosity", a.viscosity, "off | compression | always");
   cmd.add_option("--alpha", a.alpha, "viscosity alpha (default " + a.alpha + ")");
   cmd.add_option("--beta", a.beta, "viscosity beta (default " + a.beta + ")");
+  cmd.add_option("--bulk-viscosity", a.bulk_viscosity,
+                 "Q1,Q2: MCM's bulk viscosity q = rho h (Q1 h d^2 - Q2 c0 d) where the velocity divergence d < 0 (the "
+                 "MCM deck's QBVC,LBVC: 1.5,0.06), both >= 0 (default " + a.bulk_viscosity + ": off)");
   cmd.add_option("--artificial-stress", a.artificial_stress,
                  "GMS artificial stress epsilon, >= 0 (default " + a.artificial_stress + ")");
   cmd.add_option(
@@ -101,6 +104,13 @@ RateFormSetup parse_rate_form_args(const RateFormArgs& a, const std::string& com
   o.viscosity = parse_viscosity_switch(a.viscosity);
   o.viscosity_alpha = parse_double(a.alpha, c + "--alpha");
   o.viscosity_beta = parse_double(a.beta, c + "--beta");
+  const std::vector<std::string> bulk = split_list(a.bulk_viscosity, ',', c + "--bulk-viscosity");
+  if (bulk.size() != 2)
+    throw std::invalid_argument(c + "--bulk-viscosity takes two values Q1,Q2 (got '" + a.bulk_viscosity + "')");
+  o.bulk_viscosity_quadratic = parse_double(bulk[0], c + "--bulk-viscosity Q1");
+  o.bulk_viscosity_linear = parse_double(bulk[1], c + "--bulk-viscosity Q2");
+  if (!(o.bulk_viscosity_quadratic >= 0) || !(o.bulk_viscosity_linear >= 0))
+    throw std::invalid_argument(c + "--bulk-viscosity: Q1 and Q2 must be >= 0 (got '" + a.bulk_viscosity + "')");
   o.artificial_stress = parse_double(a.artificial_stress, c + "--artificial-stress");
   o.gradient = parse_rate_form_gradient(a.gradient);
   o.momentum = parse_rate_form_momentum(a.momentum);

@@ -22,7 +22,7 @@ struct RateFormArgs {
   std::string dim = "2", lattice, n = "12", kernel = "cubic", h = "1.3", xi = "1.02", youngs = "2.1", poisson = "0.3",
               density = "7.8", dx = "0.01", xsph = "0", viscosity = "off", alpha = "0.06", beta = "1.5",
               artificial_stress = "0", continuity = "summation", gradient = "plain", momentum = "symmetric",
-              switch_rule = "tension", counting = "actual", pair_loop = "auto";
+              switch_rule = "tension", counting = "actual", pair_loop = "auto", bulk_viscosity = "0,0";
   bool periodic = false;
   /// Whether an option was typed (set by add_rate_form_options): an option that does nothing in the combination
   /// given is refused by parse_rate_form_args.
@@ -30,7 +30,8 @@ struct RateFormArgs {
 };
 
 /// Registers --dim, --lattice, --n, --periodic, --kernel, --h, --xi, --dx, --youngs, --poisson, --density,
-/// --continuity, --xsph, --viscosity, --alpha, --beta, --artificial-stress, --gradient, --momentum, --switch-rule,
+/// --continuity, --xsph, --viscosity, --alpha, --beta, --bulk-viscosity, --artificial-stress, --gradient, --momentum,
+/// --switch-rule,
 /// --counting and --pair-loop on `cmd`, bound to `a` (which must outlive the parse). `lists`: --kernel, --h and --xi
 /// accept comma lists (a sweep) rather than one value.
 void add_rate_form_options(CLI::App& cmd, RateFormArgs& a, bool lists);

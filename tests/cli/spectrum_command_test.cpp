@@ -38,6 +38,29 @@ TEST(SpectrumCommand, GrowthRateInGmsUnits) {
   EXPECT_GE(t.numeric_column("mode_kx_over_pi")[0], 0.0);
 }
 
+// --bulk-viscosity Q1,Q2 (MCM's QBVC,LBVC) reaches the scheme: its switch is off at rest (d = 0), so the spectrum is
+// the same to the last bit; malformed or negative values are one error line.
+TEST(SpectrumCommand, BulkViscosityIsOffAtRestAndCheckedOnInput) {
+  const std::vector<std::string> base = {"spectrum", "--periodic", "--n", "8", "--xi", "1.02"};
+  std::vector<std::string> with = base;
+  with.insert(with.end(), {"--bulk-viscosity", "1.5,0.06"});
+  const test::CliOutcome a = run(base), b = run(with);
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  const double ga = read_csv(a.out_path).numeric_column("growth_rate")[0];
+  const double gb = read_csv(b.out_path).numeric_column("growth_rate")[0];
+  EXPECT_GT(ga, 0.0);
+  EXPECT_EQ(ga, gb);
+  for (const char* bad : {"1.5", "1.5,0.06,1", "-1,0", "0,nan", ""}) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), {"--bulk-viscosity", bad});
+    const test::CliOutcome r = run(args);
+    EXPECT_EQ(r.exit_code, 1) << bad;
+    EXPECT_NE(r.err.find("--bulk-viscosity"), std::string::npos) << bad << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << bad << ": " << r.err;
+  }
+}
+
 // Issue 36: with no neighbour inside the support (2h = 0.6 dx, 1.0 dx) every particle is decoupled; the spectrum is
 // not "0, successful" but NaN with numerical-issue and the reason (README), exit 0; at h = 0.8 it is computed.
 // The same lattice at dx = 1e-40 and 1e58 gives the dx = 1 growth rate divided by dx (the complex step scales with
