@@ -24,6 +24,23 @@ RateFormRunOptions pc(double dt) { return {.dt = dt}; }
 RateFormRunOptions pc1(double dt) { return {.dt = dt, .reuse_corrector_rate = true}; }
 RateFormRunOptions leapfrog(double dt) { return {.dt = dt, .integrator = RateFormIntegrator::Leapfrog}; }
 
+/// The Swegle block of n x n free particles (problems/swegle.hpp, steel) and the mirror symmetry about its centre.
+struct SwegleBlock {
+  SwegleScene scene;
+  RateFormMaterial steel;
+  MirrorSymmetry mirror;
+};
+
+SwegleBlock swegle_block(int n) {
+  SwegleOptions so;
+  so.n = n;
+  SwegleScene scene = make_swegle_scene(so);
+  const RateFormMaterial steel = RateFormMaterial::from_youngs(so.youngs_modulus, so.poisson_ratio, so.density);
+  const MirrorSymmetry mirror = mirror_symmetry(
+      scene.free_positions(), scene.discretisation->particles.x.row(scene.centre).transpose(), 1e-9 * so.spacing);
+  return {std::move(scene), steel, mirror};
+}
+
 TEST(StabilityVerdict, DecisionRules) {
   const double f = 0.05;
   EXPECT_EQ(classify_verdict(0.0, 0.0, f), VerdictClass::Stable);
@@ -98,15 +115,12 @@ TEST(StabilityVerdict, NeutralSpectrumUnderThePredictorCorrectorIsIntegratorOnly
 // summation continuity), both position updates. Then the four mirror classes of the block: the largest class rate is
 // the whole block's rate, for both J and M (the classes partition the motion).
 TEST(StabilityVerdict, ReducedRouteEqualsTheDenseMapOfTheWholeJacobian) {
-  SwegleOptions so;
-  so.n = 5;
-  const RateFormMaterial steel = RateFormMaterial::from_youngs(so.youngs_modulus, so.poisson_ratio, so.density);
-  const SwegleScene scene = make_swegle_scene(so);
+  const SwegleBlock b = swegle_block(5);
+  const SwegleOptions& so = b.scene.options;
+  const RateFormMaterial& steel = b.steel;
+  const SwegleScene& scene = b.scene;
   const auto& d = scene.discretisation;
-  Eigen::VectorXd pos(2 * d->free_count());
-  for (int f = 0; f < d->free_count(); ++f) pos.segment<2>(2 * f) = d->particles.x.row(d->free[f]).transpose();
-  const MirrorSymmetry mirror =
-      mirror_symmetry(pos, d->particles.x.row(scene.centre).transpose(), 1e-9 * so.spacing);
+  const MirrorSymmetry& mirror = b.mirror;
   const double dt = 0.3 * scene.h / steel.p_wave_speed();
   int compared = 0;
   for (double xi : {1.03, 0.97})
@@ -173,17 +187,14 @@ TEST(StabilityVerdict, ReducedRouteEqualsTheDenseMapOfTheWholeJacobian) {
 
 // Powell's XSPH (2.71) on the leap-frog's v^{n+1/2} acts outside F; at rest its map is reduced exactly
 // (rate_form_spectrum.hpp: the companion of w_{n+1} = (I + P + dt^2 B P) w_n - P w_{n-1}). Against the stepper's own
-// map by central differences (rate_form_step_matrix), whole and per mirror class, in tension and compression.
+// map by central differences (rate_form_step_matrix), whole and per mirror class, in tension.
 TEST(StabilityVerdict, PowellXsphLeapfrogMapIsReducedExactly) {
-  SwegleOptions so;
-  so.n = 7;
-  const RateFormMaterial steel = RateFormMaterial::from_youngs(so.youngs_modulus, so.poisson_ratio, so.density);
-  const SwegleScene scene = make_swegle_scene(so);
+  const SwegleBlock b = swegle_block(7);
+  const SwegleOptions& so = b.scene.options;
+  const RateFormMaterial& steel = b.steel;
+  const SwegleScene& scene = b.scene;
   const auto& d = scene.discretisation;
-  Eigen::VectorXd pos(2 * d->free_count());
-  for (int f = 0; f < d->free_count(); ++f) pos.segment<2>(2 * f) = d->particles.x.row(d->free[f]).transpose();
-  const MirrorSymmetry mirror =
-      mirror_symmetry(pos, d->particles.x.row(scene.centre).transpose(), 1e-9 * so.spacing);
+  const MirrorSymmetry& mirror = b.mirror;
   const double dt = 0.8 * scene.h / steel.p_wave_speed();
   int compared = 0;
   // Tension with eps 0.1 and 0.3 (the stepper's dense map is the test's cost: ~8 s each under ASan).
