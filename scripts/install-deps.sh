@@ -3,7 +3,7 @@
 set -euo pipefail
 packages=(cmake g++ make libeigen3-dev libspectra-dev libsuitesparse-dev liblapack-dev liblapacke-dev
           libfftw3-dev libgtest-dev libbenchmark-dev libcli11-dev python3-matplotlib python3-numpy python3-scipy
-          pkg-config time petsc-dev libslepc-real-dev openmpi-bin libopenmpi-dev)
+          pkg-config time python3-dev pybind11-dev python3-pytest petsc-dev libslepc-real-dev openmpi-bin libopenmpi-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Sanitizer build: AddressSanitizer + UndefinedBehaviorSanitizer (with float-cast-overflow), no recovery, library and
-# unit tests only (studies and benchmarks off), into ${SANITIZE_BUILD_DIR:-build-sanitize}; then the whole ctest suite.
+# unit tests only (studies, benchmarks, PETSc and Python off), into ${SANITIZE_BUILD_DIR:-build-sanitize}; then the whole
+# ctest suite, one ctest test per test program (SPHSTAB_TEST_REGISTRATION=program: one ASan start-up per program, not per
+# GoogleTest case; a failure names the program and, in its output, the case).
 # Run by .ci/run after the normal suite. Locally: bash scripts/sanitize.sh [extra CMake configure arguments].
 # -O1 -g1 (line tables only): the sanitizers' usual optimisation level, and half the compile time of -O2 -g (measured
 # on src/stability/critical_load.cpp: 41 s against 78 s of CPU, docs/ci.md); reports still name file and line.
@@ -12,7 +14,8 @@ build=${SANITIZE_BUILD_DIR:-build-sanitize}
 flags="-fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all -fno-omit-frame-pointer"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_CXX_FLAGS_SANITIZE="-O1 -g1 -DNDEBUG" -DCMAKE_CXX_FLAGS="$flags" \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DSPHSTAB_BUILD_STUDIES=OFF \
-  -DSPHSTAB_BUILD_BENCHMARKS=OFF -DSPHSTAB_WITH_PETSC=OFF "$@" >/dev/null
+  -DSPHSTAB_BUILD_BENCHMARKS=OFF -DSPHSTAB_WITH_PETSC=OFF -DSPHSTAB_WITH_PYTHON=OFF \
+  -DSPHSTAB_TEST_REGISTRATION=program "$@" >/dev/null
 cmake --build "$build" -j "$(nproc)"
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=0:abort_on_error=0:halt_on_error=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}

@@ -11,6 +11,7 @@ void register_spectrum_command(CLI::App& app);
 void register_run_command(CLI::App& app);
 void register_scene_command(CLI::App& app);
 void register_jacobian_command(CLI::App& app);
+void register_stability_command(CLI::App& app);
 
 inline void register_commands(CLI::App& app) {
   register_kernels_command(app);
@@ -20,6 +21,7 @@ inline void register_commands(CLI::App& app) {
   register_run_command(app);
   register_scene_command(app);
   register_jacobian_command(app);
+  register_stability_command(app);
 }
 
 }  // namespace sphstab::cli

@@ -61,10 +61,4 @@ std::uint64_t parse_unsigned(const std::string& text, const std::string& what) {
   return v;
 }
 
-NeighbourCounting parse_neighbour_counting(const std::string& name) {
-  if (name == "actual") return NeighbourCounting::Actual;
-  if (name == "boundary-level") return NeighbourCounting::BoundaryLevel;
-  throw std::invalid_argument("unknown neighbour counting '" + name + "' (valid: actual, boundary-level)");
-}
-
 }  // namespace sphstab::cli

@@ -18,7 +18,5 @@ double parse_double(const std::string& text, const std::string& what);
 long parse_integer(const std::string& text, long lo, long hi, const std::string& what);
 /// An unsigned 64-bit integer (seeds): digits only.
 std::uint64_t parse_unsigned(const std::string& text, const std::string& what);
-/// "actual" | "boundary-level": the n_i of the local means (operators/local_polish.hpp).
-NeighbourCounting parse_neighbour_counting(const std::string& name);
 
 }  // namespace sphstab::cli

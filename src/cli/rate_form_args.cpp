@@ -1,9 +1,12 @@
 #include "rate_form_args.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "parse.hpp"
+#include "sphstab/core/checked_arithmetic.hpp"
+#include "sphstab/growth/stability_verdict.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/length_scale.hpp"
 #include "sphstab/forms/stabilised_sph.hpp"
@@ -165,6 +168,57 @@ void require_run_length(double t_end, double dt, long particles, const std::stri
                                 std::to_string(particles) + " particles (" + format_number(work, 3) +
                                 " particle-steps, more than " + format_number(kMaxParticleSteps, 3) +
                                 ", about a day at 1 us each); shorten --t-end or raise the time step");
+}
+
+namespace {
+
+double positive(const std::string& text, const std::string& what) {
+  const double v = parse_double(text, what);
+  if (!(v > 0) || !std::isfinite(v)) throw std::invalid_argument(what + " must be finite and > 0 (got " + text + ")");
+  return v;
+}
+
+}  // namespace
+
+VerdictSetup parse_verdict_args(const VerdictArgs& a, const std::string& command) {
+  const std::string c = command + ": ";
+  VerdictSetup v;
+  if (a.integrator.empty()) {
+    if (!a.dt.empty() || !a.t_end.empty() || !a.energy_ratio.empty())
+      throw std::invalid_argument(c + "--dt, --t-end and --energy-ratio belong to a verdict: give --integrator");
+    return v;
+  }
+  v.on = true;
+  if (a.integrator == "pc1")
+    v.run.reuse_corrector_rate = true;
+  else if (a.integrator == "leapfrog")
+    v.run.integrator = RateFormIntegrator::Leapfrog;
+  else if (a.integrator != "pc")
+    throw std::invalid_argument(c + "unknown --integrator '" + a.integrator + "' (valid: pc, pc1, leapfrog)");
+  if (a.dt.empty() || a.t_end.empty())
+    throw std::invalid_argument(c + "--integrator needs --dt and --t-end (the verdict is for that run)");
+  const double dt = positive(a.dt, c + "--dt"), t_end = positive(a.t_end, c + "--t-end");
+  const long steps =
+      std::max(1L, checked_floor_count(std::ceil(t_end / dt - 1e-9), 1L << 53, c + "steps --t-end / --dt"));
+  v.run.dt = t_end / static_cast<double>(steps);
+  v.run.t_end = t_end;
+  const double ratio = a.energy_ratio.empty() ? 100.0 : parse_double(a.energy_ratio, c + "--energy-ratio");
+  if (!(ratio > 1) || !std::isfinite(ratio))
+    throw std::invalid_argument(c + "--energy-ratio must be finite and > 1 (got " + a.energy_ratio + ")");
+  v.floor = detection_floor(t_end, ratio);
+  return v;
+}
+
+
+void add_verdict_options(CLI::App& cmd, VerdictArgs& a) {
+  cmd.add_option("--integrator", a.integrator,
+                  "pc | pc1 | leapfrog: add the stability verdict of a run with this integrator (needs --dt and "
+                  "--t-end): map_growth = ln rho(M) / dt of the one-step map, floor = ln(--energy-ratio) / (2 t_end), "
+                  "verdict S | U | I | B (growth/stability_verdict.hpp; at rest with pc or a viscosity-free leapfrog reduced exactly, otherwise dense in the whole state)");
+  cmd.add_option("--dt", a.dt, "the verdict's time step > 0 (reduced to t_end / ceil(t_end / dt) as in `run`)");
+  cmd.add_option("--t-end", a.t_end, "the verdict's run length > 0");
+  cmd.add_option("--energy-ratio", a.energy_ratio,
+                  "kinetic-energy growth the run detects, > 1 (default 100): the floor is ln(ratio) / (2 t_end)");
 }
 
 }  // namespace sphstab::cli

@@ -11,6 +11,7 @@
 
 #include "sphstab/forms/discretisation.hpp"
 #include "sphstab/forms/rate_form.hpp"
+#include "sphstab/integrate/rate_form_run.hpp"
 #include "sphstab/kernel/kernel.hpp"
 #include "sphstab/particles/lattice.hpp"
 
@@ -74,5 +75,24 @@ inline constexpr double kMaxParticleSteps = 1e11;
 /// Refuses (one-line std::invalid_argument prefixed `who`) a run of ceil(t_end / dt) steps over `particles` particles
 /// beyond kMaxParticleSteps, naming the step count and the work; t_end and dt are finite and > 0.
 void require_run_length(double t_end, double dt, long particles, const std::string& who);
+
+/// The verdict options as typed; all empty: no verdict columns.
+struct VerdictArgs {
+  std::string integrator, dt, t_end, energy_ratio;
+};
+
+/// The run a verdict is for: the integrator at the run's dt (reduced to t_end / ceil(t_end / dt) as `sphstab run`
+/// does) and the floor ln(energy_ratio) / (2 t_end).
+struct VerdictSetup {
+  bool on = false;
+  RateFormRunOptions run;
+  double floor = 0;
+};
+
+/// Registers --integrator, --dt, --t-end and --energy-ratio (the run a verdict is for) on `cmd`, bound to `a`.
+void add_verdict_options(CLI::App& cmd, VerdictArgs& a);
+
+/// Parses `a` (errors prefixed "<command>: "): empty when no option was given; --integrator needs --dt and --t-end.
+VerdictSetup parse_verdict_args(const VerdictArgs& a, const std::string& command);
 
 }  // namespace sphstab::cli

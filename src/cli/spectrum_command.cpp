@@ -32,53 +32,6 @@ namespace {
 
 std::string num(double v) { return format_number(v, 10); }
 
-/// The verdict options as typed; all empty: no verdict columns.
-struct VerdictArgs {
-  std::string integrator, dt, t_end, energy_ratio;
-};
-
-/// The run a verdict is for: the integrator at the run's dt (reduced to t_end / ceil(t_end / dt) as `sphstab run`
-/// does) and the floor ln(energy_ratio) / (2 t_end).
-struct VerdictSetup {
-  bool on = false;
-  RateFormRunOptions run;
-  double floor = 0;
-};
-
-double positive(const std::string& text, const std::string& what) {
-  const double v = parse_double(text, what);
-  if (!(v > 0) || !std::isfinite(v)) throw std::invalid_argument(what + " must be finite and > 0 (got " + text + ")");
-  return v;
-}
-
-VerdictSetup parse_verdict_args(const VerdictArgs& a) {
-  VerdictSetup v;
-  if (a.integrator.empty()) {
-    if (!a.dt.empty() || !a.t_end.empty() || !a.energy_ratio.empty())
-      throw std::invalid_argument("spectrum: --dt, --t-end and --energy-ratio belong to a verdict: give --integrator");
-    return v;
-  }
-  v.on = true;
-  if (a.integrator == "pc1")
-    v.run.reuse_corrector_rate = true;
-  else if (a.integrator == "leapfrog")
-    v.run.integrator = RateFormIntegrator::Leapfrog;
-  else if (a.integrator != "pc")
-    throw std::invalid_argument("spectrum: unknown --integrator '" + a.integrator + "' (valid: pc, pc1, leapfrog)");
-  if (a.dt.empty() || a.t_end.empty())
-    throw std::invalid_argument("spectrum: --integrator needs --dt and --t-end (the verdict is for that run)");
-  const double dt = positive(a.dt, "spectrum: --dt"), t_end = positive(a.t_end, "spectrum: --t-end");
-  const long steps =
-      std::max(1L, checked_floor_count(std::ceil(t_end / dt - 1e-9), 1L << 53, "spectrum: steps --t-end / --dt"));
-  v.run.dt = t_end / static_cast<double>(steps);
-  v.run.t_end = t_end;
-  const double ratio = a.energy_ratio.empty() ? 100.0 : parse_double(a.energy_ratio, "spectrum: --energy-ratio");
-  if (!(ratio > 1) || !std::isfinite(ratio))
-    throw std::invalid_argument("spectrum: --energy-ratio must be finite and > 1 (got " + a.energy_ratio + ")");
-  v.floor = detection_floor(t_end, ratio);
-  return v;
-}
-
 template <int Dim>
 void run(const RateFormSetup& setup, const VerdictSetup& verdict) {
   const RateFormMaterial& material = setup.material;
@@ -150,7 +103,7 @@ void run(const RateFormSetup& setup, const VerdictSetup& verdict) {
 
 void run_spectrum(const RateFormArgs& a, const VerdictArgs& va) {
   const RateFormSetup setup = parse_rate_form_args(a, "spectrum", true, 2, 4000, 40);
-  const VerdictSetup verdict = parse_verdict_args(va);
+  const VerdictSetup verdict = parse_verdict_args(va, "spectrum");
   for (double h : setup.h_over_dx) {  // the reduced problem is dense: 2 x free DOFs squared
     const double free = setup.dim == 1 ? setup.n : double(setup.n) * setup.n;
     require_dense_memory(static_cast<long>(2 * setup.dim * free), 3, "spectrum: --n " + a.n + " h/dx " + num(h));
@@ -173,14 +126,7 @@ void register_spectrum_command(CLI::App& app) {
       "wavevector; CSV");
   add_rate_form_options(*cmd, *a, true);
   cmd->get_option("--viscosity")->description("off | compression | always (linearised at rest: compression = off)");
-  cmd->add_option("--integrator", va->integrator,
-                  "pc | pc1 | leapfrog: add the stability verdict of a run with this integrator (needs --dt and "
-                  "--t-end): map_growth = ln rho(M) / dt of the one-step map, floor = ln(--energy-ratio) / (2 t_end), "
-                  "verdict S | U | I | B (growth/stability_verdict.hpp; at rest with pc or a viscosity-free leapfrog reduced exactly, otherwise dense in the whole state)");
-  cmd->add_option("--dt", va->dt, "the verdict's time step > 0 (reduced to t_end / ceil(t_end / dt) as in `run`)");
-  cmd->add_option("--t-end", va->t_end, "the verdict's run length > 0");
-  cmd->add_option("--energy-ratio", va->energy_ratio,
-                  "kinetic-energy growth the run detects, > 1 (default 100): the floor is ln(ratio) / (2 t_end)");
+  add_verdict_options(*cmd, *va);
   cmd->callback([a, va] { run_spectrum(*a, *va); });
 }
 

@@ -1,11 +1,19 @@
 #include "sphstab/operators/local_polish.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 #include "correction_detail.hpp"
 #include "sphstab/numerics/instantiation.hpp"
 
 namespace sphstab {
+
+NeighbourCounting parse_neighbour_counting(const std::string& name) {
+  if (name == "actual") return NeighbourCounting::Actual;
+  if (name == "boundary-level") return NeighbourCounting::BoundaryLevel;
+  throw std::invalid_argument("unknown neighbour counting '" + name + "' (valid: actual, boundary-level)");
+}
 
 template <int Dim>
 Eigen::VectorXd neighbour_counts(const ParticleSet<Dim>& p, const NeighbourList& nl, NeighbourCounting counting) {

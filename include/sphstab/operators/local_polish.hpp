@@ -37,6 +37,7 @@
 /// \endcode
 #include <Eigen/Core>
 #include <complex>
+#include <string>
 
 #include "sphstab/neighbours/neighbour_list.hpp"
 #include "sphstab/operators/operators.hpp"
@@ -48,6 +49,9 @@ enum class NeighbourCounting {
   Actual,        ///< n_i = |N(i)|, self included
   BoundaryLevel  ///< Powell Fig. 4.3 (see neighbour_counts)
 };
+
+/// Parses "actual" | "boundary-level"; throws std::invalid_argument naming the valid choices otherwise.
+NeighbourCounting parse_neighbour_counting(const std::string& name);
 
 /// Neighbour counts n_i (N entries, as doubles) for the local polish.
 ///

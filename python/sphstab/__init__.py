@@ -1,0 +1,159 @@
+"""sphstab: is this SPH formulation stable, and why? The C++ library's front doors from Python.
+
+The compiled module ``_sphstab`` holds every computation; this file only adapts arguments and results to NumPy and
+SciPy (no second copy of the library's logic). Errors are Python exceptions carrying the library's one-line message,
+the same text the CLI prints after ``sphstab: error:`` (ValueError for bad input, RuntimeError otherwise,
+``MemoryLimitError`` for a refused size).
+
+Quick start (after ``bash scripts/test.sh``, with ``PYTHONPATH=build/python``)::
+
+    import sphstab
+    cases = sphstab.critical_tension(n=30, kernels=["cubic", "quintic"], h=[1.0, 1.2, 1.5])
+    ops = sphstab.operators(sphstab.lattice("square", 10, support_radius=2.6), "cubic", 1.3)
+    ops["G_x"]                      # scipy.sparse.csr_matrix, sharing the library's storage
+"""
+import numpy as _np
+import scipy.sparse as _sparse
+
+from ._sphstab import (  # noqa: F401  (re-exported)
+    CriticalTensionCase,
+    Kernel,
+    MemoryLimitError,
+    NeighbourList,
+    ParticleSet1D,
+    ParticleSet2D,
+    ParticleSet3D,
+    RateFormOptions,
+    RateFormTimeStep,
+    StabilityVerdict,
+    StateStability,
+    detection_floor,
+    fourier_symbol_1d,
+    kernel_names,
+    lattice,
+    material_from_youngs,
+    neighbours,
+    read_particle_state,
+)
+from . import _sphstab
+
+__all__ = [
+    "CriticalTensionCase", "Kernel", "MemoryLimitError", "NeighbourList", "ParticleSet1D", "ParticleSet2D",
+    "ParticleSet3D", "RateFormOptions", "RateFormTimeStep", "StabilityVerdict", "StateStability", "critical_tension",
+    "detection_floor", "fourier_symbol_1d", "kernel_names", "lattice", "material_from_youngs", "neighbours",
+    "operators", "read_particle_state", "state_stability", "table", "write_modes_vtk",
+]
+
+
+def _csr(parts):
+    """scipy.sparse.csr_matrix over the library's own arrays (no copy: data, indices and indptr are views of the
+    C++ matrix, kept alive by the arrays)."""
+    data, indices, indptr, shape = parts
+    return _sparse.csr_matrix((data, indices, indptr), shape=shape, copy=False)
+
+
+def operators(particles, kernel="cubic", h=1.3, hessian=False, correction="none", counting="actual",
+              polish_free=False):
+    """The SPH operator matrices of ``particles`` (a ParticleSet1D/2D/3D) for ``kernel`` and smoothing length ``h``,
+    as ``sphstab operators`` writes them: a dict of scipy.sparse.csr_matrix named W, G_x (G_y, G_z), the corrected
+    gradient G_<correction>_x ... (correction other than "none") and H_xx, H_xy, ... (hessian=True). Row-major with
+    the neighbour-list pattern; W_ij = W(|x_i - x_j|, h) V_j, G^a_ij = dW/dx_i^a V_j. No copy is made."""
+    return {name: _csr(parts) for name, parts in
+            _sphstab._operators(particles, kernel, float(h), bool(hessian), correction, counting,
+                                bool(polish_free)).items()}
+
+
+def _list(value):
+    return [value] if isinstance(value, (str, int, float)) else list(value)
+
+
+def critical_tension(n=30, kernels=("cubic",), h=(1.3,), forms=("conservative",), periodic=False,
+                     compression=False, method="both", backend="auto", correction="none", corrected="auto"):
+    """The critical tension T_crit of the 1D pre-stressed bar (Powell (3.40): the smallest T > 0 at which
+    A(T) = K - n T L stops being positive definite) for every kernel x h/dx x momentum form, in that order (form
+    fastest): the cases `sphstab tcrit` prints, each a CriticalTensionCase with tcrit, status and reason. ``h`` is
+    h/dx (dx = 1). ``table(cases)`` turns them into NumPy columns."""
+    return _sphstab._critical_tension(int(n), _list(kernels), [float(x) for x in _list(h)], _list(forms),
+                                      bool(periodic), bool(compression), method, backend, correction, corrected)
+
+
+def table(cases):
+    """Columns of a list of result objects: {field: numpy array} for every public property."""
+    if not cases:
+        return {}
+    names = [k for k in dir(cases[0]) if not k.startswith("_")]
+    return {k: _np.array([getattr(c, k) for c in cases]) for k in names}
+
+
+def _matrix(a, rows, cols, name, dtype=float):
+    if a is None:
+        return _np.zeros((0, 0))
+    a = _np.asarray(a, dtype=dtype)
+    if a.ndim == 1 and cols == 1:
+        a = a.reshape(-1, 1)
+    if a.ndim == 1 and rows == 1:
+        a = a.reshape(1, -1)
+    if a.ndim != 2:
+        raise ValueError(f"state: {name} must be a 2-D array (got {a.ndim} dimensions)")
+    return a
+
+
+def _state_arrays(x, density, mass, v, deviator, fixed):
+    x = _np.asarray(x, dtype=float)
+    x = _matrix(x.reshape(-1, 1) if x.ndim == 1 else x, None, None, "x")
+    dim = x.shape[1]
+    density = _np.asarray(density, dtype=float).reshape(-1)
+    mass = _np.asarray(mass, dtype=float).reshape(-1)
+    v = _matrix(v, None, dim, "v") if v is not None and _np.size(v) else _np.zeros((0, 0))
+    stress_cols = 1 if dim == 1 else 3
+    deviator = (_matrix(deviator, None, stress_cols, "deviator") if deviator is not None and _np.size(deviator)
+                else _np.zeros((0, 0)))
+    fixed = [] if fixed is None else [bool(f) for f in _np.asarray(fixed).reshape(-1)]
+    return x, dim, density, mass, v, deviator, fixed
+
+
+def write_modes_vtk(path, result, x, density, mass, h, v=None, deviator=None, fixed=None, spacing=0.0):
+    """Writes the state with the modes of its StateStability ``result`` to a VTK PolyData file for ParaView: point
+    data velocity, density, mass, fixed, semi_discrete_mode and map_mode (velocity shapes, 0 on fixed particles)."""
+    x, dim, density, mass, v, deviator, fixed = _state_arrays(x, density, mass, v, deviator, fixed)
+    _sphstab._write_state_modes_vtp(str(path), x, density, mass, float(h), v, deviator, fixed, float(spacing), result)
+
+
+def state_stability(x, density, mass, h, v=None, deviator=None, fixed=None, spacing=0.0, kernel="cubic",
+                    youngs=None, poisson=None, rho0=None, bulk_modulus=None, shear_modulus=None, scheme=None,
+                    integrator="pc", leapfrog_xsph=0.0, dt=None, t_end=None, energy_ratio=100.0, floor=None,
+                    lattice=None):
+    """Is this particle state linearly unstable, and which mode will grow?
+
+    The rate-form scheme (continuity, equation of state, Jaumann rate, and the terms of ``scheme``, a RateFormOptions)
+    is built AT the state given as arrays, N particles: ``x`` (N x dim, dim 1 or 2), ``density`` (N), ``mass`` (N),
+    smoothing length ``h``, optional velocities ``v`` (N x dim), deviatoric stress ``deviator`` (N x 1 in 1D, N x 3 in
+    2D: S_xx, S_yy, S_xy), ``fixed`` flags (N) and the initial spacing ``spacing`` (artificial stress, 2D
+    wavevectors). Material: ``youngs``, ``poisson`` and ``rho0``, or ``rho0``, ``bulk_modulus`` and
+    ``shear_modulus``. The verdict is for a run with ``integrator`` ("pc", "pc1", "leapfrog") at step ``dt``; its
+    detection floor is ``floor`` or detection_floor(t_end, energy_ratio).
+
+    Returns a StateStability: ``verdict`` (letter S/U/I/B, semi_discrete_growth, map_growth, floor, ...),
+    ``semi_discrete_mode`` and ``map_mode`` (shape over the free particles, the particle where it peaks, its
+    wavevector), ``time_step`` (leap-frog and predictor-corrector limits, at rest) and ``acceleration_max`` (how far
+    the state is from an equilibrium).
+    """
+    x, dim, density, mass, v, deviator, fixed = _state_arrays(x, density, mass, v, deviator, fixed)
+    if rho0 is None:
+        raise ValueError("state: rho0 (the reference density of the equation of state) is required")
+    if youngs is not None or poisson is not None:
+        if youngs is None or poisson is None or bulk_modulus is not None or shear_modulus is not None:
+            raise ValueError("state: give youngs and poisson, or bulk_modulus and shear_modulus")
+        rho0, bulk_modulus, shear_modulus = material_from_youngs(youngs, poisson, rho0)
+    elif bulk_modulus is None or shear_modulus is None:
+        raise ValueError("state: give youngs and poisson, or bulk_modulus and shear_modulus")
+    if dt is None:
+        raise ValueError("state: dt (the step of the run the verdict is for) is required")
+    if floor is None:
+        if t_end is None:
+            raise ValueError("state: give the detection floor, or t_end (and energy_ratio) to compute it")
+        floor = detection_floor(t_end, energy_ratio)
+    return _sphstab._state_stability(dim, x, density, mass, float(h), v, deviator, fixed, float(spacing), kernel,
+                                     float(rho0), float(bulk_modulus), float(shear_modulus),
+                                     scheme if scheme is not None else RateFormOptions(), integrator,
+                                     float(leapfrog_xsph), float(dt), float(floor), lattice or "")

@@ -1,0 +1,37 @@
+#pragma once
+// The pieces of the Python module _sphstab (module.cpp): each bind_*.cpp registers one family of the library's front
+// doors. Helpers shared by them live here.
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <string>
+
+#include "sphstab/operators/operators.hpp"
+
+namespace sphstab::python {
+
+namespace py = pybind11;
+
+void bind_kernels(py::module_& m);    // kernels, Fourier symbols
+void bind_particles(py::module_& m);  // particle sets, lattices, neighbour lists, operators and corrections
+void bind_stability(py::module_& m);  // critical tension, the stability of a given state
+
+/// A compressed row-major sparse matrix as the tuple (data, indices, indptr, (rows, cols)) of NumPy arrays that view
+/// its storage without a copy: the matrix is moved to the heap and owned by a capsule that every array keeps alive.
+/// scipy.sparse.csr_matrix((data, indices, indptr), shape=shape, copy=False) then shares the memory (sphstab/__init__.py).
+inline py::tuple csr_arrays(SparseMatrix<> matrix) {
+  auto* owned = new SparseMatrix<>(std::move(matrix));
+  owned->makeCompressed();
+  py::capsule owner(owned, [](void* p) { delete static_cast<SparseMatrix<>*>(p); });
+  const auto nnz = static_cast<py::ssize_t>(owned->nonZeros());
+  py::array_t<double> data({nnz}, {sizeof(double)}, owned->valuePtr(), owner);
+  py::array_t<int> indices({nnz}, {sizeof(int)}, owned->innerIndexPtr(), owner);
+  py::array_t<int> indptr({static_cast<py::ssize_t>(owned->outerSize() + 1)}, {sizeof(int)}, owned->outerIndexPtr(),
+                          owner);
+  return py::make_tuple(data, indices, indptr, py::make_tuple(owned->rows(), owned->cols()));
+}
+
+}  // namespace sphstab::python

@@ -1,0 +1,53 @@
+"""The critical tension from Python is the CLI's, and SciPy's eigsh on the exported A0, A1 gives the same load."""
+import numpy as np
+import pytest
+import scipy.io
+import scipy.sparse.linalg
+
+import sphstab
+from conftest import cli_error, csv_rows
+
+
+def test_tcrit_equals_the_cli(cli):
+    kernels, hs, forms = ["cubic", "quintic", "wendland-c2"], [1.0, 1.3, 1.7], ["conservative", "plus"]
+    cases = sphstab.critical_tension(n=24, kernels=kernels, h=hs, forms=forms)
+    rc, out, err = cli("tcrit", "--n", 24, "--kernel", ",".join(kernels), "--h", ",".join(map(str, hs)),
+                       "--form", ",".join(forms))
+    assert rc == 0, err
+    rows = csv_rows(out)
+    assert len(rows) == len(cases) == len(kernels) * len(hs) * len(forms)
+    for c, r in zip(cases, rows):
+        assert (c.kernel, c.form, c.status) == (r["kernel"], r["form"], r["status"])
+        assert c.h_over_dx == float(r["h_over_dx"])
+        for mine, theirs in [(c.tcrit, r["tcrit"]), (c.tcrit_eig, r["tcrit_eig"]), (c.tcrit_bisect, r["tcrit_bisect"])]:
+            # The CLI prints 12 significant digits: the same number to the last printed digit.
+            assert abs(mine - float(theirs)) <= 5e-12 * abs(mine) or (np.isnan(mine) and theirs.lower() == "nan")
+    columns = sphstab.table(cases)
+    assert columns["tcrit"].shape == (len(cases),)
+
+
+@pytest.mark.parametrize("kernel,h,form", [("cubic", 1.3, "conservative"), ("quintic", 1.1, "plus"),
+                                          ("wendland-c4", 1.6, "conservative")])
+def test_eigsh_on_the_exported_linearisation_agrees_with_the_critical_load(cli, tmp_path, kernel, h, form):
+    n = 40
+    rc, _, err = cli("jacobian", "elastic", "--dim", 1, "--n", n, "--kernel", kernel, "--h", h, "--form", form,
+                     "--out", tmp_path)
+    assert rc == 0, err
+    a0 = scipy.io.mmread(str(tmp_path / "A0.mtx")).tocsc()
+    a1 = scipy.io.mmread(str(tmp_path / "A1.mtx")).tocsc()
+    # A(T) = A0 + T A1 with A0 positive definite loses definiteness at T = 1 / lambda_max of -A1 x = lambda A0 x
+    # (an independent route: ARPACK on the generalised problem instead of the library's Cholesky / LAPACK).
+    lam = scipy.sparse.linalg.eigsh(-a1, k=1, M=a0, which="LA", return_eigenvectors=False)[0]
+    (case,) = sphstab.critical_tension(n=n, kernels=[kernel], h=[h], forms=[form])
+    assert case.status == "successful"
+    assert abs(1.0 / lam - case.tcrit) <= 1e-8 * case.tcrit
+
+
+def test_bad_input_raises_the_cli_message(cli):
+    for kwargs, args in [({"kernels": ["nope"]}, ["--kernel", "nope"]), ({"forms": ["nope"]}, ["--form", "nope"]),
+                         ({"method": "nope"}, ["--method", "nope"])]:
+        with pytest.raises(ValueError) as e:
+            sphstab.critical_tension(n=10, **kwargs)
+        rc, _, err = cli("tcrit", "--n", 10, *args)
+        assert rc == 1
+        assert str(e.value) == cli_error(err)
