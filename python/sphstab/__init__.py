@@ -25,23 +25,29 @@ from ._sphstab import (  # noqa: F401  (re-exported)
     ParticleSet3D,
     RateFormOptions,
     RateFormTimeStep,
+    RunResult,
+    Scene2D,
     StabilityVerdict,
     StateStability,
     detection_floor,
     fourier_symbol_1d,
+    gms_plate_scene,
+    gms_rings_scene,
     kernel_names,
     lattice,
     material_from_youngs,
     neighbours,
     read_particle_state,
+    run,
 )
 from . import _sphstab
 
 __all__ = [
-    "CriticalTensionCase", "Kernel", "MemoryLimitError", "NeighbourList", "ParticleSet1D", "ParticleSet2D",
-    "ParticleSet3D", "RateFormOptions", "RateFormTimeStep", "StabilityVerdict", "StateStability", "critical_tension",
-    "detection_floor", "fourier_symbol_1d", "kernel_names", "lattice", "material_from_youngs", "neighbours",
-    "operators", "read_particle_state", "state_stability", "table", "write_modes_vtk",
+    "critical_tension", "CriticalTensionCase", "detection_floor", "fourier_symbol_1d", "gms_plate_scene",
+    "gms_rings_scene", "Kernel", "kernel_names", "lattice", "material_from_youngs", "MemoryLimitError",
+    "NeighbourList", "neighbours", "operators", "ParticleSet1D", "ParticleSet2D", "ParticleSet3D",
+    "RateFormOptions", "RateFormTimeStep", "read_particle_state", "run", "RunResult", "Scene2D", "StabilityVerdict",
+    "state_stability", "StateStability", "table", "write_modes_vtk",
 ]
 
 

@@ -18,6 +18,7 @@ namespace py = pybind11;
 void bind_kernels(py::module_& m);    // kernels, Fourier symbols
 void bind_particles(py::module_& m);  // particle sets, lattices, neighbour lists, operators and corrections
 void bind_stability(py::module_& m);  // critical tension, the stability of a given state
+void bind_scenes(py::module_& m);     // scenes and the run loop
 
 /// A compressed row-major sparse matrix as the tuple (data, indices, indptr, (rows, cols)) of NumPy arrays that view
 /// its storage without a copy: the matrix is moved to the heap and owned by a capsule that every array keeps alive.

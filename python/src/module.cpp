@@ -12,4 +12,5 @@ PYBIND11_MODULE(_sphstab, m) {
   sphstab::python::bind_kernels(m);
   sphstab::python::bind_particles(m);
   sphstab::python::bind_stability(m);
+  sphstab::python::bind_scenes(m);
 }

@@ -13,6 +13,7 @@ def test_example_runs(path, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     monkeypatch.setenv("SPHSTAB_EXAMPLE_STEP", "0.2")  # coarser sweeps, smaller blocks: the test checks that it runs
     monkeypatch.setenv("SPHSTAB_EXAMPLE_BLOCK", "8")
+    monkeypatch.setenv("SPHSTAB_EXAMPLE_RINGS", "0.5,1,2")  # smaller rings: a dense J of ~600 states
     monkeypatch.setenv("MPLBACKEND", "Agg")
     runpy.run_path(str(path), run_name="__main__")
     assert list(tmp_path.glob("*.png")), "the example saves its figure"
