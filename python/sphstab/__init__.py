@@ -16,6 +16,7 @@ import numpy as _np
 import scipy.sparse as _sparse
 
 from ._sphstab import (  # noqa: F401  (re-exported)
+    CriticalStrainCase,
     CriticalTensionCase,
     Kernel,
     MemoryLimitError,
@@ -43,6 +44,7 @@ from ._sphstab import (  # noqa: F401  (re-exported)
 from . import _sphstab
 
 __all__ = [
+    "CriticalStrainCase", "critical_strain", "elastic_linearisation",
     "critical_tension", "CriticalTensionCase", "detection_floor", "fourier_symbol_1d", "gms_plate_scene",
     "gms_rings_scene", "Kernel", "kernel_names", "lattice", "material_from_youngs", "MemoryLimitError",
     "NeighbourList", "neighbours", "operators", "ParticleSet1D", "ParticleSet2D", "ParticleSet3D",
@@ -81,6 +83,32 @@ def critical_tension(n=30, kernels=("cubic",), h=(1.3,), forms=("conservative",)
     h/dx (dx = 1). ``table(cases)`` turns them into NumPy columns."""
     return _sphstab._critical_tension(int(n), _list(kernels), [float(x) for x in _list(h)], _list(forms),
                                       bool(periodic), bool(compression), method, backend, correction, corrected)
+
+
+def critical_strain(lattice="square", n=16, kernels=("cubic",), h=(1.3,), forms=("conservative",), periodic=False,
+                    lam=1.2115384615384615, mu=0.80769230769230769, prestrain="isotropic", compression=False,
+                    route="auto", method="both", backend="auto", criterion="auto", dim=None):
+    """The critical pre-strain e_crit of a 2D lattice (square, hex, face-centred) or a 3D cubic one under an isotropic
+    or uniaxial pre-strain, for every kernel x h/dx x form, each case through the critical-load front door
+    (critical_load_problem.hpp: route auto | assembled | matrix-free | symbol, its memory estimate and fallbacks), as
+    `sphstab tcrit --dim 2|3` computes it; with the infinite-lattice limit in 2D. Lame lambda (``lam``) and mu default
+    to E = 2.1, nu = 0.3 in plane strain. Returns CriticalStrainCase objects (``table`` makes columns)."""
+    if dim is None:
+        dim = 3 if lattice == "cubic" else 2
+    return _sphstab._critical_strain(int(dim), lattice, int(n), bool(periodic), _list(kernels),
+                                     [float(x) for x in _list(h)], _list(forms), float(lam), float(mu), prestrain,
+                                     bool(compression), route, method, backend, criterion)
+
+
+def elastic_linearisation(dim=1, n=30, kernel="cubic", h=1.3, form="conservative", lattice="square",
+                          lam=1.2115384615384615, mu=0.80769230769230769, prestrain="isotropic"):
+    """(A0, A1) of A(load) = A0 + load A1 for the lattice `sphstab jacobian elastic` exports, as
+    scipy.sparse.csr_matrix (no copy): 1D, a line of n free particles with fixed layers under pre-tension T (Powell
+    (3.40), load T); 2D, an n x n lattice under a pre-strain e (load e). The critical load is the smallest load at
+    which A stops being positive definite."""
+    a0, a1 = _sphstab._elastic_linearisation(int(dim), int(n), kernel, float(h), form, lattice, float(lam), float(mu),
+                                              prestrain)
+    return _csr(a0), _csr(a1)
 
 
 def table(cases):

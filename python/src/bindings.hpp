@@ -19,6 +19,7 @@ void bind_kernels(py::module_& m);    // kernels, Fourier symbols
 void bind_particles(py::module_& m);  // particle sets, lattices, neighbour lists, operators and corrections
 void bind_stability(py::module_& m);  // critical tension, the stability of a given state
 void bind_scenes(py::module_& m);     // scenes and the run loop
+void bind_critical_loads(py::module_& m);  // elastic linearisations, critical pre-strain of 2D/3D lattices
 
 /// A compressed row-major sparse matrix as the tuple (data, indices, indptr, (rows, cols)) of NumPy arrays that view
 /// its storage without a copy: the matrix is moved to the heap and owned by a capsule that every array keeps alive.

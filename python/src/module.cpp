@@ -13,4 +13,5 @@ PYBIND11_MODULE(_sphstab, m) {
   sphstab::python::bind_particles(m);
   sphstab::python::bind_stability(m);
   sphstab::python::bind_scenes(m);
+  sphstab::python::bind_critical_loads(m);
 }

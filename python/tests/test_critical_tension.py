@@ -51,3 +51,41 @@ def test_bad_input_raises_the_cli_message(cli):
         rc, _, err = cli("tcrit", "--n", 10, *args)
         assert rc == 1
         assert str(e.value) == cli_error(err)
+
+
+@pytest.mark.parametrize("dim,args", [(1, dict(n=20, kernel="quintic", h=1.4, form="plus")),
+                                      (2, dict(n=5, kernel="cubic", h=1.3, form="conservative", lattice="hex",
+                                               prestrain="uniaxial"))])
+def test_linearisation_equals_the_jacobian_export_bit_for_bit(cli, tmp_path, dim, args):
+    flags = ["--dim", dim] + [x for k, v in args.items() for x in (f"--{k}", v)]
+    rc, _, err = cli("jacobian", "elastic", "--out", tmp_path, *flags)
+    assert rc == 0, err
+    mine = sphstab.elastic_linearisation(dim=dim, **args)
+    for name, m in zip(("A0", "A1"), mine):
+        ref = scipy.io.mmread(str(tmp_path / f"{name}.mtx")).tocsr()
+        ref.sort_indices()
+        assert np.array_equal(m.indptr, ref.indptr) and np.array_equal(m.indices, ref.indices), name
+        assert np.array_equal(m.data, ref.data), name
+
+
+def test_critical_strain_equals_the_cli_and_eigsh(cli, tmp_path):
+    kernels, hs, forms = ["cubic", "quintic"], [1.2, 1.5], ["conservative", "plus"]
+    cases = sphstab.critical_strain(lattice="hex", n=8, kernels=kernels, h=hs, forms=forms, route="assembled")
+    rc, out, err = cli("tcrit", "--dim", 2, "--lattice", "hex", "--n", 8, "--kernel", ",".join(kernels), "--h",
+                       ",".join(map(str, hs)), "--form", ",".join(forms), "--route", "assembled")
+    assert rc == 0, err
+    rows = csv_rows(out)
+    assert len(rows) == len(cases) == 8
+    for c, r in zip(cases, rows):
+        assert (c.kernel, c.form, c.status, c.criterion) == (r["kernel"], r["form"], r["status"], r["criterion"])
+        for mine, theirs in [(c.ecrit, r["ecrit"]), (c.ecrit_infinite, r["ecrit_infinite"])]:
+            assert abs(mine - float(theirs)) <= 5e-12 * abs(mine) or (np.isnan(mine) and theirs.lower() == "nan")
+    # The conservative form's A(e) is symmetric: ARPACK on the exported pencil gives the same e_crit.
+    c = cases[0]
+    a0, a1 = sphstab.elastic_linearisation(dim=2, n=8, kernel="cubic", h=1.2, lattice="hex")
+    lam = scipy.sparse.linalg.eigsh(-a1.tocsc(), k=1, M=a0.tocsc(), which="LA", return_eigenvectors=False)[0]
+    assert abs(1.0 / lam - c.ecrit) <= 1e-8 * abs(c.ecrit)
+    with pytest.raises(ValueError):
+        sphstab.critical_strain(route="nope")
+    with pytest.raises(ValueError):
+        sphstab.critical_strain(lattice="pentagon")
