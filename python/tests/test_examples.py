@@ -23,3 +23,16 @@ def test_fig_3_2_example_is_about_ten_lines():
     text = (pathlib.Path(__file__).parent.parent / "examples" / "fig_3_2_critical_tension.py").read_text()
     code = [l for l in text.splitlines() if l.strip() and not l.lstrip().startswith("#")]
     assert len(code) <= 12, code
+
+
+def test_the_readme_session_runs(tmp_path, monkeypatch, capsys):
+    """The ten-line session in README.md (its ```python block) runs as printed."""
+    readme = (pathlib.Path(__file__).parent.parent.parent / "README.md").read_text()
+    start = readme.index("```python\n") + len("```python\n")
+    code = readme[start:readme.index("```", start)]
+    lines = [l for l in code.splitlines() if l.strip() and not l.lstrip().startswith("#")]
+    assert len(lines) <= 12, lines
+    monkeypatch.chdir(tmp_path)
+    exec(compile(code, "README.md", "exec"), {})
+    out = capsys.readouterr().out
+    assert out.strip(), "the session prints its results"
