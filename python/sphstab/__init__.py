@@ -37,14 +37,16 @@ from ._sphstab import (  # noqa: F401  (re-exported)
     kernel_names,
     lattice,
     material_from_youngs,
+    max_memory,
     neighbours,
     read_particle_state,
     run,
+    set_max_memory,
 )
 from . import _sphstab
 
 __all__ = [
-    "CriticalStrainCase", "critical_strain", "elastic_linearisation",
+    "CriticalStrainCase", "critical_strain", "elastic_linearisation", "max_memory", "set_max_memory",
     "critical_tension", "CriticalTensionCase", "detection_floor", "fourier_symbol_1d", "gms_plate_scene",
     "gms_rings_scene", "Kernel", "kernel_names", "lattice", "material_from_youngs", "MemoryLimitError",
     "NeighbourList", "neighbours", "operators", "ParticleSet1D", "ParticleSet2D", "ParticleSet3D",

@@ -9,6 +9,19 @@ PYBIND11_MODULE(_sphstab, m) {
   namespace py = pybind11;
   m.doc() = "sphstab: stability of SPH for elastic solids (the C++ library's front doors)";
   py::register_exception<sphstab::MemoryLimitError>(m, "MemoryLimitError", PyExc_RuntimeError);
+  m.def(
+      "set_max_memory",
+      [](const py::object& limit) {
+        // The CLI's --max-memory: bytes, or text such as "4G"; 0 or None: the machine's memory.
+        if (limit.is_none()) return sphstab::set_memory_limit_bytes(0);
+        if (py::isinstance<py::str>(limit))
+          return sphstab::set_memory_limit_bytes(sphstab::parse_memory_size(limit.cast<std::string>()));
+        sphstab::set_memory_limit_bytes(limit.cast<double>());
+      },
+      py::arg("limit"),
+      "The memory the size estimates allow (the CLI's --max-memory): bytes or text such as '4G'; None: the "
+      "machine's. A computation estimated above it raises MemoryLimitError before it allocates.");
+  m.def("max_memory", &sphstab::memory_limit_bytes, "The memory the size estimates allow, in bytes.");
   sphstab::python::bind_kernels(m);
   sphstab::python::bind_particles(m);
   sphstab::python::bind_stability(m);

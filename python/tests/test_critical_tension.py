@@ -89,3 +89,22 @@ def test_critical_strain_equals_the_cli_and_eigsh(cli, tmp_path):
         sphstab.critical_strain(route="nope")
     with pytest.raises(ValueError):
         sphstab.critical_strain(lattice="pentagon")
+
+
+def test_sizes_are_checked_before_anything_is_allocated():
+    with pytest.raises(ValueError, match="h/dx must be finite and > 0"):
+        sphstab.critical_tension(n=10, h=[float("nan")])
+    with pytest.raises(sphstab.MemoryLimitError, match="needs"):
+        sphstab.critical_tension(n=10**8)
+    default = sphstab.max_memory()
+    try:
+        sphstab.set_max_memory("1M")  # the CLI's --max-memory 1M
+        assert sphstab.max_memory() == 1e6
+        with pytest.raises(sphstab.MemoryLimitError):
+            sphstab.critical_strain(n=40, route="assembled")
+        with pytest.raises(ValueError):
+            sphstab.set_max_memory("lots")
+    finally:
+        sphstab.set_max_memory(None)
+    assert sphstab.max_memory() == default
+    assert issubclass(sphstab.MemoryLimitError, RuntimeError)

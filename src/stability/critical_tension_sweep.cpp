@@ -39,6 +39,9 @@ std::vector<CriticalTensionCase> critical_tension_sweep(const CriticalTensionSwe
     throw std::invalid_argument(
         "critical_tension_sweep: a corrected form needs fixed layers (the general route does not deflate the "
         "translation null mode of a periodic lattice)");
+  for (double h : s.hs)  // before the memory estimates, which a NaN would turn into "needs ~nan bytes"
+    if (!(h > 0) || !std::isfinite(h))
+      throw std::invalid_argument("critical_tension_sweep: h/dx must be finite and > 0 (got " + num(h) + ")");
   for (double h : s.hs) {
     const double support = Kernel<1>(s.kernels[0]).support_radius(h);
     const bool dense = s.method != CriticalLoadMethod::Bisection &&
