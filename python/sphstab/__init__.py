@@ -46,7 +46,7 @@ from ._sphstab import (  # noqa: F401  (re-exported)
 from . import _sphstab
 
 __all__ = [
-    "CriticalStrainCase", "critical_strain", "elastic_linearisation", "max_memory", "set_max_memory",
+    "CriticalStrainCase", "critical_strain", "elastic_linearisation", "max_memory", "set_max_memory", "rate_form_jacobian",
     "critical_tension", "CriticalTensionCase", "detection_floor", "fourier_symbol_1d", "gms_plate_scene",
     "gms_rings_scene", "Kernel", "kernel_names", "lattice", "material_from_youngs", "MemoryLimitError",
     "NeighbourList", "neighbours", "operators", "ParticleSet1D", "ParticleSet2D", "ParticleSet3D",
@@ -155,6 +155,31 @@ def write_modes_vtk(path, result, x, density, mass, h, v=None, deviator=None, fi
     _sphstab._write_state_modes_vtp(str(path), x, density, mass, float(h), v, deviator, fixed, float(spacing), result)
 
 
+def _material(youngs, poisson, rho0, bulk_modulus, shear_modulus):
+    if rho0 is None:
+        raise ValueError("state: rho0 (the reference density of the equation of state) is required")
+    if youngs is not None or poisson is not None:
+        if youngs is None or poisson is None or bulk_modulus is not None or shear_modulus is not None:
+            raise ValueError("state: give youngs and poisson, or bulk_modulus and shear_modulus")
+        return material_from_youngs(youngs, poisson, rho0)
+    if bulk_modulus is None or shear_modulus is None:
+        raise ValueError("state: give youngs and poisson, or bulk_modulus and shear_modulus")
+    return float(rho0), float(bulk_modulus), float(shear_modulus)
+
+
+def rate_form_jacobian(x, density, mass, h, v=None, deviator=None, fixed=None, spacing=0.0, kernel="cubic",
+                       youngs=None, poisson=None, rho0=None, bulk_modulus=None, shear_modulus=None, scheme=None):
+    """J = dF/dy of the rate-form scheme built at a state given as arrays (the arguments of state_stability), by
+    coloured complex step as `sphstab jacobian rate-form` computes it. Returns (J as scipy.sparse.csr_matrix, y the
+    state vector, offsets: N x 4 int array of each particle's x, v, rho and S offsets in y, -1 where it has none)."""
+    x, dim, density, mass, v, deviator, fixed = _state_arrays(x, density, mass, v, deviator, fixed)
+    rho0, bulk_modulus, shear_modulus = _material(youngs, poisson, rho0, bulk_modulus, shear_modulus)
+    j, y, offsets = _sphstab._rate_form_jacobian(x, density, mass, float(h), v, deviator, fixed, float(spacing), kernel,
+                                                 rho0, bulk_modulus, shear_modulus,
+                                                 scheme if scheme is not None else RateFormOptions())
+    return _csr(j), y, offsets
+
+
 def state_stability(x, density, mass, h, v=None, deviator=None, fixed=None, spacing=0.0, kernel="cubic",
                     youngs=None, poisson=None, rho0=None, bulk_modulus=None, shear_modulus=None, scheme=None,
                     integrator="pc", leapfrog_xsph=0.0, dt=None, t_end=None, energy_ratio=100.0, floor=None,
@@ -175,14 +200,7 @@ def state_stability(x, density, mass, h, v=None, deviator=None, fixed=None, spac
     the state is from an equilibrium).
     """
     x, dim, density, mass, v, deviator, fixed = _state_arrays(x, density, mass, v, deviator, fixed)
-    if rho0 is None:
-        raise ValueError("state: rho0 (the reference density of the equation of state) is required")
-    if youngs is not None or poisson is not None:
-        if youngs is None or poisson is None or bulk_modulus is not None or shear_modulus is not None:
-            raise ValueError("state: give youngs and poisson, or bulk_modulus and shear_modulus")
-        rho0, bulk_modulus, shear_modulus = material_from_youngs(youngs, poisson, rho0)
-    elif bulk_modulus is None or shear_modulus is None:
-        raise ValueError("state: give youngs and poisson, or bulk_modulus and shear_modulus")
+    rho0, bulk_modulus, shear_modulus = _material(youngs, poisson, rho0, bulk_modulus, shear_modulus)
     if dt is None:
         raise ValueError("state: dt (the step of the run the verdict is for) is required")
     if floor is None:

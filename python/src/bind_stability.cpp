@@ -9,6 +9,7 @@
 #include "sphstab/core/status.hpp"
 #include "sphstab/growth/state_stability.hpp"
 #include "sphstab/io/particle_state_file.hpp"
+#include "sphstab/jacobian/complex_step_jacobian.hpp"
 #include "sphstab/stability/critical_tension_sweep.hpp"
 
 namespace sphstab::python {
@@ -79,6 +80,29 @@ StateStability state_stability_of(const Eigen::MatrixXd& x, const Eigen::VectorX
                                    const Eigen::MatrixXd& deviator, const std::vector<bool>& fixed, double spacing,
                                    const StateStabilityOptions& o) {
   return state_stability(make_state<Dim>(x, density, mass, h, v, deviator, fixed, spacing), o);
+}
+
+/// J = dF/dy of the rate-form scheme built at the state (coloured complex step, as `sphstab jacobian rate-form`),
+/// with the state's layout: per particle the offsets of x, v, rho and S in y (-1 where it carries none).
+template <int Dim>
+py::tuple jacobian_at(const ParticleState<Dim>& s, const std::string& kernel, const RateFormMaterial& material,
+                      const RateFormOptions& options) {
+  RateFormAtState<Dim> at;
+  SparseMatrix<> J;
+  {
+    py::gil_scoped_release release;
+    at = rate_form_at_state(s, parse_kernel_type(kernel), material, options);
+    J = jacobian(*at.scheme, at.y);
+  }
+  const int n = at.scheme->discretisation().size();
+  py::array_t<int> offsets({n, 4});
+  for (int i = 0; i < n; ++i) {
+    offsets.mutable_at(i, 0) = at.scheme->position_offset(i);
+    offsets.mutable_at(i, 1) = at.scheme->velocity_offset(i);
+    offsets.mutable_at(i, 2) = at.scheme->density_offset(i);
+    offsets.mutable_at(i, 3) = at.scheme->stress_offset(i);
+  }
+  return py::make_tuple(csr_arrays(std::move(J)), at.y, offsets);
 }
 
 }  // namespace
@@ -226,6 +250,25 @@ void bind_stability(py::module_& m) {
       py::arg("deviator"), py::arg("fixed"), py::arg("spacing"), py::arg("kernel"), py::arg("rho0"),
       py::arg("bulk_modulus"), py::arg("shear_modulus"), py::arg("scheme"), py::arg("integrator"),
       py::arg("leapfrog_xsph"), py::arg("dt"), py::arg("floor"), py::arg("lattice"));
+
+  m.def(
+      "_rate_form_jacobian",
+      [](const Eigen::MatrixXd& x, const Eigen::VectorXd& density, const Eigen::VectorXd& mass, double h,
+         const Eigen::MatrixXd& v, const Eigen::MatrixXd& deviator, const std::vector<bool>& fixed, double spacing,
+         const std::string& kernel, double rho0, double bulk_modulus, double shear_modulus,
+         const RateFormOptions& scheme) {
+        const RateFormMaterial material{.density = rho0, .bulk_modulus = bulk_modulus, .shear_modulus = shear_modulus};
+        if (x.cols() == 1)
+          return jacobian_at<1>(make_state<1>(x, density, mass, h, v, deviator, fixed, spacing), kernel, material,
+                                scheme);
+        if (x.cols() == 2)
+          return jacobian_at<2>(make_state<2>(x, density, mass, h, v, deviator, fixed, spacing), kernel, material,
+                                scheme);
+        throw std::invalid_argument("state: positions must have 1 or 2 columns (got " + std::to_string(x.cols()) + ")");
+      },
+      py::arg("x"), py::arg("density"), py::arg("mass"), py::arg("h"), py::arg("v"), py::arg("deviator"),
+      py::arg("fixed"), py::arg("spacing"), py::arg("kernel"), py::arg("rho0"), py::arg("bulk_modulus"),
+      py::arg("shear_modulus"), py::arg("scheme"));
 
   m.def(
       "read_particle_state",

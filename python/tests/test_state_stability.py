@@ -1,6 +1,7 @@
 """The stability of a state given as arrays: the same spectrum and verdict as the lattice built in C++ (the CLI's
 `spectrum`), a moving state, and bad arrays that raise one-line errors instead of crashing."""
 import numpy as np
+import scipy.io
 import pytest
 
 import sphstab
@@ -118,3 +119,17 @@ def test_modes_are_written_for_paraview_and_the_file_reads_back_as_the_same_stat
     assert 'Name="semi_discrete_mode"' in text and 'Name="map_mode"' in text
     with pytest.raises(ValueError, match=".csv or .vtp"):
         sphstab.read_particle_state(str(tmp_path / "state.txt"), h=0.013)
+
+
+def test_jacobian_at_a_state_equals_the_cli_export(cli, tmp_path):
+    rc, _, err = cli("jacobian", "rate-form", "--n", 6, "--xi", 1.02, "--dx", DX, "--youngs", E, "--poisson", NU,
+                     "--density", RHO0, "--out", tmp_path)
+    assert rc == 0, err
+    ref = scipy.io.mmread(str(tmp_path / "J.mtx")).tocsr()
+    ref.sort_indices()
+    j, y, offsets = sphstab.rate_form_jacobian(**lattice_state(2, 6, 1.3, 1.02), youngs=E, poisson=NU, rho0=RHO0)
+    assert j.shape == ref.shape and offsets.shape == (len(lattice_state(2, 6, 1.3, 1.02)["density"]), 4)
+    assert np.array_equal(j.indptr, ref.indptr) and np.array_equal(j.indices, ref.indices)
+    # The masses pass through m / rho0 * rho0 (the last bit): equal to rounding.
+    assert np.max(np.abs(j.data - ref.data)) <= 1e-12 * np.max(np.abs(ref.data))
+    assert np.max(np.abs(j.data)) > 0
