@@ -34,6 +34,7 @@ from ._sphstab import (  # noqa: F401  (re-exported)
     fourier_symbol_1d,
     gms_plate_scene,
     gms_rings_scene,
+    gms_slab_scene,
     kernel_names,
     lattice,
     material_from_youngs,
@@ -48,7 +49,7 @@ from . import _sphstab
 __all__ = [
     "CriticalStrainCase", "critical_strain", "elastic_linearisation", "max_memory", "set_max_memory", "rate_form_jacobian",
     "critical_tension", "CriticalTensionCase", "detection_floor", "fourier_symbol_1d", "gms_plate_scene",
-    "gms_rings_scene", "Kernel", "kernel_names", "lattice", "material_from_youngs", "MemoryLimitError",
+    "gms_rings_scene", "gms_slab_scene", "Kernel", "kernel_names", "lattice", "material_from_youngs", "MemoryLimitError",
     "NeighbourList", "neighbours", "operators", "ParticleSet1D", "ParticleSet2D", "ParticleSet3D",
     "RateFormOptions", "RateFormTimeStep", "read_particle_state", "run", "RunResult", "Scene2D", "StabilityVerdict",
     "state_stability", "StateStability", "table", "write_modes_vtk",

@@ -162,6 +162,21 @@ void bind_scenes(py::module_& m) {
       py::arg("length") = 20.0, py::arg("thickness") = 2.0, py::arg("across") = 10, py::arg("clamp_layers") = 4,
       py::arg("tip_speed") = 0.01, py::arg("eps") = 0.3, "GMS 2001 §7.1: the oscillating cantilever plate.");
 
+  m.def(
+      "gms_slab_scene",
+      [](double length, double width, double spacing, double end_zone, double acceleration, double yield_stress,
+         double eps) {
+        GmsSceneOptions o;
+        o.scheme = gms_scheme_options(eps);
+        o.material.shear_modulus = 0.3;  // GMS §7.3 (as `sphstab scene slab`)
+        return gms_slab_scene({.length = length, .width = width, .spacing = spacing, .end_zone = end_zone,
+                               .acceleration = acceleration},
+                              yield_stress, o);
+      },
+      py::arg("length") = 3.0, py::arg("width") = 1.0, py::arg("spacing") = 0.04, py::arg("end_zone") = 0.2,
+      py::arg("acceleration") = 5e-6, py::arg("yield_stress") = 0.03, py::arg("eps") = 0.3,
+      "GMS 2001 §7.3: a von Mises slab pulled at both ends (driven end zones) until it necks.");
+
   py::class_<RateFormRunResult>(m, "RunResult", "A run's outcome (integrate/run.hpp): status, series, last state.")
       .def_property_readonly("status", [](const RateFormRunResult& r) { return run_status_name(r.status); })
       .def_readonly("message", &RateFormRunResult::message)

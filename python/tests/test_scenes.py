@@ -57,3 +57,19 @@ def test_a_scene_state_goes_into_state_stability():
         assert (s.acceleration_max > 1e-6) == forced, (speed, s.acceleration_max)
         if not forced:
             assert s.acceleration_max == 0.0
+
+
+def test_slab_end_zones_follow_their_prescribed_acceleration():
+    a = 5e-3
+    scene = sphstab.gms_slab_scene(spacing=0.1, acceleration=a)
+    x0 = scene.state(scene.y0)["x"]
+    r = sphstab.run(scene, cfl=0.5, t_end=2.0)
+    assert r.status == "completed"
+    x = scene.state(r.y)["x"]
+    left, right = np.argmin(x0[:, 0]), np.argmax(x0[:, 0])
+    # Driven particles move as x0 + a t^2 / 2 exactly (RateFormScheme::set_driven), outwards at both ends.
+    expected = 0.5 * a * r.time**2
+    assert abs((x0[left, 0] - x[left, 0]) - expected) <= 1e-12 + 1e-9 * expected
+    assert abs((x[right, 0] - x0[right, 0]) - expected) <= 1e-12 + 1e-9 * expected
+    assert "min_width" in scene.measures
+    assert 0 < scene.measure("min_width", r.y) <= 1.0 + 1e-9
