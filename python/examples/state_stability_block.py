@@ -1,16 +1,17 @@
 # %% [markdown]
-# # Which mode grows? The stability of a particle state given as arrays
-# A square block of steel (g-cm-us units: rho0 7.8, E 2.1, nu 0.3) on a lattice with fixed outer layers, under a
-# uniform volume strain of 2 % (tension). Any SPH code's state can be passed the same way: positions, densities,
-# masses, h, fixed flags (and velocities and deviatoric stresses when it moves). The verdict separates the scheme's
-# own growth (semi-discrete, J = dF/dy) from the integrator's (the one-step map at dt).
+# # Which mode grows? The Swegle block's spectrum, from a state given as arrays
+# The Swegle block as this project sets it up (problems/swegle.hpp; Powell 2012, Fig. 4.2): 21 x 21 free particles of
+# steel (g-cm-us units: rho0 7.8, E 2.1, nu 0.3) at dx = 0.01 cm, h = 1.3 dx, with fixed layers one support thick,
+# under a uniform volume strain of 2 % (tension). Any SPH code's state can be passed the same way: positions,
+# densities, masses, h, fixed flags (and velocities and deviatoric stresses when it moves). The verdict separates the
+# scheme's own growth (semi-discrete, J = dF/dy) from the integrator's (the one-step map at dt).
 # %%
 import os
 import numpy as np
 import matplotlib.pyplot as plt
 import sphstab
 
-dx, h, n = 0.01, 0.013, int(os.environ.get("SPHSTAB_EXAMPLE_BLOCK", "12"))
+dx, h, n = 0.01, 0.013, int(os.environ.get("SPHSTAB_EXAMPLE_BLOCK", "21"))
 p = sphstab.lattice("square", n, spacing=dx, support_radius=sphstab.Kernel("cubic", 2).support_radius(h))
 rho = np.full(len(p), 7.8 / 1.02)
 rho0, K, mu = sphstab.material_from_youngs(2.1, 0.3, 7.8)
