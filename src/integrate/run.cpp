@@ -47,7 +47,9 @@ std::pair<long, double> run_steps(const RunOptions& o, const std::string& who) {
 }
 
 RunResult run(Stepper& stepper, const RunOptions& o, const std::string& who) {
-  const auto [nsteps, dt] = run_steps(o, who);
+  const std::pair<long, double> steps_dt = run_steps(o, who);
+  const long nsteps = steps_dt.first;  // named variables, not a structured binding: the lambdas below capture them
+  const double dt = steps_dt.second;
   if (o.record_every < 0 || o.snapshot_every < 0) throw std::invalid_argument(who + ": output intervals must be >= 0");
   if (o.limits.check_every < 1)
     throw std::invalid_argument(who + ": limits.check_every must be >= 1 (got " +

@@ -106,7 +106,9 @@ MatrixFreeLinearisation<Dim>::MatrixFreeLinearisation(const Discretisation<Dim>&
 }
 
 template <int Dim>
-MatrixFreeLinearisation<Dim>::MatrixFreeLinearisation(const ElasticForm2D& force) requires(Dim == 2)
+template <int D>
+  requires(D == 2 && D == Dim)
+MatrixFreeLinearisation<Dim>::MatrixFreeLinearisation(const ElasticForm2D& force)
     : MatrixFreeLinearisation(covered_discretisation(force), force.material(), force.form(), force.prestrain().kind) {}
 
 template <int Dim>
@@ -398,6 +400,7 @@ Linearisation assemble_by_products(const MatrixFreeLinearisation<Dim>& lin) {
 
 template class MatrixFreeLinearisation<2>;
 template class MatrixFreeLinearisation<3>;
+template MatrixFreeLinearisation<2>::MatrixFreeLinearisation(const ElasticForm2D& force);
 template Linearisation assemble_by_products<2>(const MatrixFreeLinearisation<2>&);
 template Linearisation assemble_by_products<3>(const MatrixFreeLinearisation<3>&);
 

@@ -91,8 +91,10 @@ TEST(AnalyticJacobian1D, MatchesComplexStepOfEveryForm) {
     ASSERT_EQ(jac.dofs(), 12);
     ASSERT_TRUE(jac.symmetric);
     const double scale = Eigen::MatrixXd(jac.A0).norm() + t * Eigen::MatrixXd(jac.A1).norm();
-    for (auto [form, alpha] : {std::pair{MomentumForm::Uncorrected, 0.0}, std::pair{MomentumForm::Plus, 1.0},
-                               std::pair{MomentumForm::Minus, -1.0}}) {
+    for (const auto& form_alpha : {std::pair{MomentumForm::Uncorrected, 0.0}, std::pair{MomentumForm::Plus, 1.0},
+                                   std::pair{MomentumForm::Minus, -1.0}}) {
+      const MomentumForm form = form_alpha.first;  // named variables: the lambda captures alpha (clang 14 cannot
+      const double alpha = form_alpha.second;      // capture a structured binding)
       Eigen::MatrixXd cs = jacobian_by_complex_step(s, [&](const VecC& u) { return s.force_alpha(u, t, alpha); });
       Eigen::MatrixXd closed = Eigen::MatrixXd(analytic_jacobian_1d(s.p, s.kernel, h, form).at(t));
       EXPECT_LT((cs - closed).norm(), 1e-13 * scale) << kernel_name(type) << " " << momentum_form_name(form);

@@ -90,8 +90,9 @@ TEST(BarJumpExact, JumpConditionsAndIntegralBalanceLaws) {
   // Midpoint error <= jump x cell / 2 per discontinuity: rho [v] <= 0.156 and [sigma]/E <= 0.039 with cells
   // <= 5e-6 and up to 8 discontinuities on the two time levels: <= 3.2e-6 and 8e-7.
   const int m = 200000;
-  for (auto [x1, x2, t1, t2] : std::vector<std::array<double, 4>>{
+  for (const std::array<double, 4>& box : std::vector<std::array<double, 4>>{
            {0.1, 0.6, 0.2, 1.1}, {0.0, 1.0, 0.0, 3.0}, {0.37, 0.91, 1.4, 4.2}, {0.05, 0.3, 0.0, 0.9}}) {
+    const double x1 = box[0], x2 = box[1], t1 = box[2], t2 = box[3];  // captured below: named, not bound
     const double lhs_m = midpoint([&](double x) { return rho * (ex.velocity(x, t2) - ex.velocity(x, t1)); }, x1, x2, m);
     const double rhs_m = midpoint([&](double t) { return ex.stress(x2, t) - ex.stress(x1, t); }, t1, t2, m);
     EXPECT_NEAR(lhs_m, rhs_m, 4e-6) << x1 << " " << x2 << " " << t1 << " " << t2;

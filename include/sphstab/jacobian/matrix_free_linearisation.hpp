@@ -76,7 +76,11 @@ class MatrixFreeLinearisation {
                           PreStrainKind kind);
   /// The linearisation of a 2D force function's form, material and pre-strain kind. Throws std::invalid_argument for
   /// a non-plain gradient provider, non-zero fixed displacements or additional momentum terms (not covered).
-  explicit MatrixFreeLinearisation(const ElasticForm2D& force) requires(Dim == 2);
+  /// (A constructor template, so that the explicit instantiation of the 3D class does not instantiate it: clang 14
+  /// instantiates constrained members of an explicitly instantiated class regardless of their constraints.)
+  template <int D = Dim>
+    requires(D == 2 && D == Dim)
+  explicit MatrixFreeLinearisation(const ElasticForm2D& force);
 
   int dofs() const { return Dim * free_count(); }
   int free_count() const { return static_cast<int>(m_free.size()); }
