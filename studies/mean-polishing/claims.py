@@ -59,3 +59,30 @@ def claim_mean_polish_fills_jacobian(r):
           f"locality.csv {none} -> {mean}")
     check(mean == r.num("n") ** 2 and none < mean / 3, f"{none} -> {mean} nonzeros")
     return f"{none} -> {mean}"
+
+
+def claim_nonsymmetric_counts(r):
+    """The counts of nonsymmetric A (the cases decided by the spectrum criterion instead of definiteness): in the N = 30
+    sweep (first criterion of each tension case) and with thin layers (thin_layers.csv) equal the summary's, and the
+    thin-layer table lists exactly the rows that are nonsymmetric or not in equilibrium."""
+    seen, nonsym, cases = set(), 0, 0
+    for x in r.csv("tcrit.csv"):
+        key = (x["kernel"], x["h_over_dx"], x["correction"], x["form"], x["corrected_operator"])
+        if x["N"] != 30 or x["direction"] != "tension" or key in seen:
+            continue
+        seen.add(key)
+        cases += 1
+        nonsym += x["criterion"] != "definiteness"
+    check(nonsym == r.num("nonsymmetric_cases"), f"tcrit.csv: {nonsym} of {cases} nonsymmetric, summary "
+          f"{r.key('nonsymmetric_cases')}")
+    check(0 < nonsym < cases, f"{nonsym} of {cases}: the count separates symmetric from nonsymmetric cases")
+    thin = r.csv("thin_layers.csv")
+    thin_nonsym = sum(x["criterion"] != "definiteness" for x in thin)
+    listed = sum(x["criterion"] != "definiteness" or x["equilibrium_residual"] > 1e-10 for x in thin)
+    check(thin_nonsym == r.num("thin_nonsymmetric") and len(thin) == r.num("thin_cases"),
+          f"thin_layers.csv: {thin_nonsym} of {len(thin)} nonsymmetric, summary {r.key('thin_nonsymmetric')} of "
+          f"{r.key('thin_cases')}")
+    rows = [l for l in r.text("summary.md").split("## Boundary sensitivity")[1].split("##")[0].splitlines()
+            if l.startswith("| ") and not l.startswith("| correction")]
+    check(len(rows) == listed, f"the thin-layer table lists {len(rows)} rows, {listed} are nonsymmetric or off equilibrium")
+    return f"{nonsym} of {cases} nonsymmetric (N = 30); thin layers {thin_nonsym} of {len(thin)}, {listed} listed"

@@ -348,7 +348,8 @@ int main(int argc, char** argv) {
       ++a.cases;
       if (std::isinf(r.tcrit)) ++a.tension_inf;
       if (std::isfinite(r.tcrit)) a.min_tension = std::min(a.min_tension, r.tcrit);
-      if (r.criterion != "pd") ++a.nonsymmetric;
+      if (r.criterion != criterion_name(Criterion::Definiteness)) ++a.nonsymmetric;  // (it compared with "pd", a
+                                                                                    // name no row carries: all counted)
     } else {
       if (std::isinf(r.tcrit)) ++a.compression_inf;
       if (std::isfinite(r.tcrit)) a.max_compression = std::max(a.max_compression, r.tcrit);
@@ -437,7 +438,7 @@ int main(int argc, char** argv) {
   lines.clear();
   int thin_nonsym = 0, thin_noneq = 0;
   for (const ThinRow& r : thin) {
-    const bool nonsym_r = r.first != "pd", noneq = r.residual > 1e-10;
+    const bool nonsym_r = r.first != criterion_name(Criterion::Definiteness), noneq = r.residual > 1e-10;
     thin_nonsym += nonsym_r;
     thin_noneq += noneq;
     if (nonsym_r || noneq)
