@@ -29,18 +29,16 @@ py::dict state_arrays(const Scene2& s, const Eigen::VectorXd& y) {
     throw std::invalid_argument("Scene.state: y has " + std::to_string(y.size()) + " entries, expected " +
                                 std::to_string(scheme.size()));
   const int n = scheme.discretisation().size();
-  py::dict d;
-  d["x"] = Eigen::MatrixXd(rate_form_positions(scheme, y).transpose());
-  d["v"] = Eigen::MatrixXd(rate_form_velocities(scheme, y).transpose());
-  d["density"] = rate_form_densities(scheme, y);
-  d["deviator"] = Eigen::MatrixXd(rate_form_deviators(scheme, y).transpose());
-  d["mass"] = scheme.mass();
-  std::vector<bool> fixed(n);
-  for (int i = 0; i < n; ++i) fixed[i] = scheme.position_offset(i) < 0;
-  d["fixed"] = fixed;
-  d["h"] = scheme.discretisation().h;
-  d["spacing"] = s.spacing;
-  return d;
+  ParticleState<2> state{.x = rate_form_positions(scheme, y).transpose(),
+                         .v = rate_form_velocities(scheme, y).transpose(),
+                         .density = rate_form_densities(scheme, y),
+                         .deviator = rate_form_deviators(scheme, y).transpose(),
+                         .mass = scheme.mass(),
+                         .fixed = std::vector<bool>(n),
+                         .h = scheme.discretisation().h,
+                         .spacing = s.spacing};
+  for (int i = 0; i < n; ++i) state.fixed[i] = scheme.position_offset(i) < 0;
+  return state_dict(state);
 }
 
 /// A run loop observer that calls a Python function (step, time, y) at every record; a truthy return (a string: the

@@ -61,20 +61,6 @@ ParticleState<Dim> make_state(const Eigen::MatrixXd& x, const Eigen::VectorXd& d
 }
 
 template <int Dim>
-py::dict state_dict(const ParticleState<Dim>& s) {
-  py::dict d;
-  d["x"] = s.x;
-  d["v"] = s.v;
-  d["density"] = s.density;
-  d["deviator"] = s.deviator;
-  d["mass"] = s.mass;
-  d["fixed"] = s.fixed;
-  d["h"] = s.h;
-  d["spacing"] = s.spacing;
-  return d;
-}
-
-template <int Dim>
 StateStability state_stability_of(const Eigen::MatrixXd& x, const Eigen::VectorXd& density,
                                    const Eigen::VectorXd& mass, double h, const Eigen::MatrixXd& v,
                                    const Eigen::MatrixXd& deviator, const std::vector<bool>& fixed, double spacing,

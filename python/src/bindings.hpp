@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "sphstab/growth/state_stability.hpp"
 #include "sphstab/operators/operators.hpp"
 
 namespace sphstab::python {
@@ -34,6 +35,22 @@ inline py::tuple csr_arrays(SparseMatrix<> matrix) {
   py::array_t<int> indptr({static_cast<py::ssize_t>(owned->outerSize() + 1)}, {sizeof(int)}, owned->outerIndexPtr(),
                           owner);
   return py::make_tuple(data, indices, indptr, py::make_tuple(owned->rows(), owned->cols()));
+}
+
+/// A particle state as the dict of arrays state_stability takes (x, v, density, deviator, mass, fixed, h, spacing):
+/// what read_particle_state and Scene.state return.
+template <int Dim>
+py::dict state_dict(const ParticleState<Dim>& s) {
+  py::dict d;
+  d["x"] = s.x;
+  d["v"] = s.v;
+  d["density"] = s.density;
+  d["deviator"] = s.deviator;
+  d["mass"] = s.mass;
+  d["fixed"] = s.fixed;
+  d["h"] = s.h;
+  d["spacing"] = s.spacing;
+  return d;
 }
 
 }  // namespace sphstab::python
