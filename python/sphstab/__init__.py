@@ -48,6 +48,7 @@ from . import _sphstab
 
 __all__ = [
     "CriticalStrainCase", "critical_strain", "elastic_linearisation", "max_memory", "set_max_memory", "rate_form_jacobian",
+    "rate_form_dispersion",
     "critical_tension", "CriticalTensionCase", "detection_floor", "fourier_symbol_1d", "gms_plate_scene",
     "gms_rings_scene", "gms_slab_scene", "Kernel", "kernel_names", "lattice", "material_from_youngs", "MemoryLimitError",
     "NeighbourList", "neighbours", "operators", "ParticleSet1D", "ParticleSet2D", "ParticleSet3D",
@@ -179,6 +180,21 @@ def rate_form_jacobian(x, density, mass, h, v=None, deviator=None, fixed=None, s
                                                  rho0, bulk_modulus, shear_modulus,
                                                  scheme if scheme is not None else RateFormOptions())
     return _csr(j), y, offsets
+
+
+def rate_form_dispersion(k, lattice="square", n=12, kernel="cubic", h=1.3, dx=0.01, xi=1.0, youngs=None,
+                         poisson=None, rho0=None, bulk_modulus=None, shear_modulus=None, scheme=None):
+    """The dispersion of the whole rate-form scheme (every term of ``scheme``) on a periodic lattice (line, square,
+    hex, face-centred; n per side, spacing dx, h = ``h`` x dx) at volume strain xi, from its exact Bloch symbol
+    (spectral/rate_form_symbol.hpp), at the wavevectors ``k`` (K x dim, 1/length; any real k). Returns a dict:
+    growth_rate (K), omega2 (K x dim, the acoustic branches), eigenvalues (K x s, all of Jhat(k))."""
+    rho0, bulk_modulus, shear_modulus = _material(youngs, poisson, rho0, bulk_modulus, shear_modulus)
+    k = _np.asarray(k, dtype=float)
+    if k.ndim == 1:
+        k = k.reshape(-1, 1) if lattice == "line" else k.reshape(1, -1)
+    return _sphstab._rate_form_dispersion(lattice, int(n), kernel, float(h), float(dx), float(xi), rho0,
+                                          bulk_modulus, shear_modulus,
+                                          scheme if scheme is not None else RateFormOptions(), k)
 
 
 def state_stability(x, density, mass, h, v=None, deviator=None, fixed=None, spacing=0.0, kernel="cubic",

@@ -10,6 +10,8 @@
 #include "sphstab/growth/state_stability.hpp"
 #include "sphstab/io/particle_state_file.hpp"
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
+#include "sphstab/particles/lattice.hpp"
+#include "sphstab/spectral/rate_form_symbol.hpp"
 #include "sphstab/stability/critical_tension_sweep.hpp"
 
 namespace sphstab::python {
@@ -89,6 +91,44 @@ py::tuple jacobian_at(const ParticleState<Dim>& s, const std::string& kernel, co
     offsets.mutable_at(i, 3) = at.scheme->stress_offset(i);
   }
   return py::make_tuple(csr_arrays(std::move(J)), at.y, offsets);
+}
+
+/// The Bloch symbol of the rate-form scheme on a periodic lattice at volume strain xi (spectral/rate_form_symbol.hpp)
+/// and its dispersion at each row of k (K x Dim, in 1/length): growth rate, omega^2 of the acoustic branches and all
+/// eigenvalues of Jhat(k).
+template <int Dim>
+py::dict dispersion(const std::string& lattice, int n, const std::string& kernel_name, double h_over_dx, double dx,
+                    double xi, const RateFormMaterial& material, const RateFormOptions& options,
+                    const Eigen::MatrixXd& k) {
+  if (k.cols() != Dim)
+    throw std::invalid_argument("rate_form_dispersion: k must have " + std::to_string(Dim) + " columns (got " +
+                                std::to_string(k.cols()) + ")");
+  if (!(xi > 0) || !std::isfinite(xi))
+    throw std::invalid_argument("rate_form_dispersion: xi must be finite and > 0 (got " + std::to_string(xi) + ")");
+  if (n < 1) throw std::invalid_argument("--n must be > 0 (got " + std::to_string(n) + ")");
+  const Kernel<Dim> kernel(parse_kernel_type(kernel_name));
+  const double h = h_over_dx * dx;
+  Eigen::VectorXd growth(k.rows());
+  Eigen::MatrixXcd omega2(k.rows(), Dim), lambda;
+  {
+    py::gil_scoped_release release;
+    const ParticleSet<Dim> set = make_lattice<Dim>(
+        parse_lattice_type(lattice), n, {.spacing = dx, .support_radius = kernel.support_radius(h), .periodic = true});
+    const RateFormScheme<Dim> scheme(make_discretisation(set, kernel, h), material, options, material.density / xi);
+    const RateFormSymbol<Dim> symbol = rate_form_symbol(scheme, scheme.uniform_state());
+    for (Eigen::Index q = 0; q < k.rows(); ++q) {
+      const RateFormDispersion d = rate_form_dispersion(symbol, Eigen::Matrix<double, Dim, 1>(k.row(q).transpose()));
+      if (q == 0) lambda.resize(k.rows(), d.lambda.size());
+      growth[q] = d.growth_rate;
+      omega2.row(q) = d.omega2.transpose();
+      lambda.row(q) = d.lambda.transpose();
+    }
+  }
+  py::dict out;
+  out["growth_rate"] = growth;
+  out["omega2"] = omega2;
+  out["eigenvalues"] = lambda;
+  return out;
 }
 
 }  // namespace
@@ -255,6 +295,19 @@ void bind_stability(py::module_& m) {
       py::arg("x"), py::arg("density"), py::arg("mass"), py::arg("h"), py::arg("v"), py::arg("deviator"),
       py::arg("fixed"), py::arg("spacing"), py::arg("kernel"), py::arg("rho0"), py::arg("bulk_modulus"),
       py::arg("shear_modulus"), py::arg("scheme"));
+
+  m.def(
+      "_rate_form_dispersion",
+      [](const std::string& lattice, int n, const std::string& kernel, double h_over_dx, double dx, double xi,
+         double rho0, double bulk_modulus, double shear_modulus, const RateFormOptions& scheme,
+         const Eigen::MatrixXd& k) {
+        const RateFormMaterial material{.density = rho0, .bulk_modulus = bulk_modulus, .shear_modulus = shear_modulus};
+        if (parse_lattice_type(lattice) == LatticeType::Line)
+          return dispersion<1>(lattice, n, kernel, h_over_dx, dx, xi, material, scheme, k);
+        return dispersion<2>(lattice, n, kernel, h_over_dx, dx, xi, material, scheme, k);
+      },
+      py::arg("lattice"), py::arg("n"), py::arg("kernel"), py::arg("h_over_dx"), py::arg("dx"), py::arg("xi"),
+      py::arg("rho0"), py::arg("bulk_modulus"), py::arg("shear_modulus"), py::arg("scheme"), py::arg("k"));
 
   m.def(
       "read_particle_state",

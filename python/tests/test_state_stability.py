@@ -133,3 +133,25 @@ def test_jacobian_at_a_state_equals_the_cli_export(cli, tmp_path):
     # The masses pass through m / rho0 * rho0 (the last bit): equal to rounding.
     assert np.max(np.abs(j.data - ref.data)) <= 1e-12 * np.max(np.abs(ref.data))
     assert np.max(np.abs(j.data)) > 0
+
+
+@pytest.mark.parametrize("n,xi", [(12, 1.02), (12, 0.98)])
+def test_symbol_over_the_box_wavevectors_gives_the_periodic_spectrum(cli, n, xi):
+    # Two routes to the growth of a periodic square lattice: the exact Bloch symbol at the box's n x n wavevectors
+    # (max over k), and the reduced full-state spectrum of `sphstab spectrum --periodic`.
+    m = np.arange(n)
+    k = 2 * np.pi * np.array([(a, b) for a in m for b in m], dtype=float) / (n * DX)
+    d = sphstab.rate_form_dispersion(k, lattice="square", n=n, h=1.3, dx=DX, xi=xi, youngs=E, poisson=NU, rho0=RHO0)
+    rc, out, err = cli("spectrum", "--periodic", "--n", n, "--h", 1.3, "--xi", xi, "--dx", DX, "--youngs", E,
+                       "--poisson", NU, "--density", RHO0)
+    assert rc == 0, err
+    (row,) = csv_rows(out)
+    gamma = float(row["growth_rate"])
+    omega = np.sqrt(np.max(np.abs(d["omega2"])))
+    assert d["growth_rate"].shape == (n * n,) and d["omega2"].shape == (n * n, 2)
+    if gamma > 1e-6 * omega:  # unstable: the fastest Bloch wave is the spectrum's growth rate
+        assert abs(np.max(d["growth_rate"]) - gamma) <= 1e-8 * gamma
+    else:  # neutral: every branch has omega^2 >= 0 to rounding
+        assert np.min(d["omega2"].real) >= -1e-9 * np.max(np.abs(d["omega2"]))
+    with pytest.raises(ValueError, match="columns"):
+        sphstab.rate_form_dispersion(np.zeros((3, 3)), n=n, youngs=E, poisson=NU, rho0=RHO0)
