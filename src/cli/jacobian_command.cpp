@@ -109,7 +109,7 @@ void run_elastic(const ElasticArgs& a) {
 
 template <int Dim>
 void export_rate_form(const RateFormSetup& s, const std::filesystem::path& dir, const std::string& out) {
-  const auto disc = make_rate_form_discretisation<Dim>(s, s.kernels.front(), s.h_over_dx.front());
+  const auto disc = rate_form_block_discretisation<Dim>(block_options(s, s.kernels.front(), s.h_over_dx.front()));
   const RateFormScheme<Dim> scheme(disc, s.material, s.options, s.material.density / s.xi.front());
   const Eigen::VectorXd y = scheme.uniform_state();
   const SparseMatrix<> J = jacobian(scheme, y);

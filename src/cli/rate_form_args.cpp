@@ -136,29 +136,19 @@ RateFormSetup parse_rate_form_args(const RateFormArgs& a, const std::string& com
   return s;
 }
 
-int rate_form_layer_supports(const RateFormOptions& o) {
-  if (o.momentum == RateFormMomentum::StabilisedSph) return 3;
-  if (o.gradient == RateFormGradient::Ncsph || o.momentum != RateFormMomentum::Symmetric) return 2;
-  return 1;
+RateFormBlockOptions block_options(const RateFormSetup& s, KernelType kernel, double h_over_dx, double xi,
+                                   double kick) {
+  return {.lattice = s.lattice,
+          .n = s.n,
+          .periodic = s.periodic,
+          .kernel = kernel,
+          .h_over_dx = h_over_dx,
+          .spacing = s.dx,
+          .xi = xi,
+          .material = s.material,
+          .scheme = s.options,
+          .kick = kick};
 }
-
-template <int Dim>
-std::shared_ptr<const Discretisation<Dim>> make_rate_form_discretisation(const RateFormSetup& s, KernelType type,
-                                                                         double h_over_dx) {
-  const Kernel<Dim> kernel(type);
-  const double h = h_over_dx * s.dx;
-  const ParticleSet<Dim> set =
-      make_lattice<Dim>(s.lattice, s.n,
-                        {.spacing = s.dx,
-                         .support_radius = rate_form_layer_supports(s.options) * kernel.support_radius(h),
-                         .periodic = s.periodic});
-  return make_discretisation(set, kernel, h);
-}
-
-template std::shared_ptr<const Discretisation<1>> make_rate_form_discretisation<1>(const RateFormSetup&, KernelType,
-                                                                                   double);
-template std::shared_ptr<const Discretisation<2>> make_rate_form_discretisation<2>(const RateFormSetup&, KernelType,
-                                                                                   double);
 
 void require_run_length(double t_end, double dt, long particles, const std::string& who) {
   const double steps = std::ceil(t_end / dt - 1e-9);

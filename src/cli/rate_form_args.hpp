@@ -14,6 +14,7 @@
 #include "sphstab/integrate/rate_form_run.hpp"
 #include "sphstab/kernel/kernel.hpp"
 #include "sphstab/particles/lattice.hpp"
+#include "sphstab/problems/rate_form_block.hpp"
 
 namespace sphstab::cli {
 
@@ -56,17 +57,10 @@ struct RateFormSetup {
 RateFormSetup parse_rate_form_args(const RateFormArgs& a, const std::string& command, bool lists, long min_n,
                                    long max_n_1d, long max_n_2d);
 
-/// Thickness of the fixed layers in kernel supports that makes the uniform lattice an exact equilibrium of the
-/// formulation (as the Swegle scene, problems/swegle.hpp, and studies/swegle-rate-form choose it): 1 for the plain
-/// gradient with the symmetric momentum; 2 for NCSPH, the antisymmetrised momentum and C_ij, which read neighbours
-/// of neighbours; 3 for S-SPH.
-int rate_form_layer_supports(const RateFormOptions& options);
-
-/// The lattice of `setup` with spacing dx, h = h_over_dx dx, fixed layers of rate_form_layer_supports() supports
-/// (none when periodic), and its discretisation (neighbour list of radius 2h).
-template <int Dim>
-std::shared_ptr<const Discretisation<Dim>> make_rate_form_discretisation(const RateFormSetup& setup, KernelType kernel,
-                                                                         double h_over_dx);
+/// The block of problems/rate_form_block.hpp with `setup`'s lattice, spacing, material and terms, this kernel, h/dx
+/// and volume strain, and the kick V0 (the library builds the lattice, the scheme and the kick).
+RateFormBlockOptions block_options(const RateFormSetup& setup, KernelType kernel, double h_over_dx, double xi = 1.0,
+                                   double kick = 0.0);
 
 /// Particle-steps above which a run is refused before it starts: 1e11, about a day at the scheme's ~1 µs per
 /// particle-step on one core (results/gms-speed), so a --t-end or --dt that cannot finish is an error, not a hang.

@@ -1,5 +1,5 @@
 // `sphstab run`: the rate-form SPH scheme (forms/rate_form.hpp) run in time on a lattice (integrate/rate_form_run.hpp),
-// its time series printed as CSV. The scene is a Swegle block (fixed layers, problems/swegle.hpp: the free particle
+// its time series printed as CSV. The scene is the library's Swegle block (problems/rate_form_block.hpp: fixed layers, the free particle
 // nearest the centre gets the velocity V0 along x) or a periodic lattice (a sinusoidal velocity V0 sin(k (x - x_lo))
 // along x at the shortest wavelength the box holds). A run that stops (non-finite state, density <= 0, kinetic-energy
 // growth beyond --energy-growth: rate_form_run's statuses; a particle moved beyond --max-displacement: this command's
@@ -131,32 +131,6 @@ double default_time_step(const RateFormScheme<Dim>& scheme, const Eigen::VectorX
                  format_number(ts.predictor_corrector).c_str(),
                  format_number(heun_amplification(dt * ts.dominant), 8).c_str());
   return dt;
-}
-
-/// The initial velocity: the block's centre particle (the free particle nearest the middle of the free block, lowest
-/// index on ties, as make_swegle_scene) gets (V0, 0); a periodic lattice gets v_x = V0 sin(k (x - x_lo)),
-/// k = 2 pi m / L_x with m = floor(L_x / (2 dx)) (wavelength 2 dx when the box holds an even number of spacings).
-template <int Dim>
-void kick(const RateFormScheme<Dim>& scheme, double v0, bool periodic, Eigen::VectorXd& y) {
-  const Discretisation<Dim>& d = scheme.discretisation();
-  const ParticleSet<Dim>& p = d.particles;
-  Eigen::Matrix<double, Dim, 1> v = Eigen::Matrix<double, Dim, 1>::Zero();
-  if (periodic) {
-    const double L = p.box_hi[0] - p.box_lo[0];
-    const double m = std::max(1.0, std::floor(L / (2 * p.spacing) + 1e-9));
-    for (int i : d.free) {
-      v[0] = v0 * std::sin(2 * M_PI * m / L * (p.x(i, 0) - p.box_lo[0]));
-      scheme.set_velocity(y, i, v);
-    }
-    return;
-  }
-  const Eigen::MatrixXd x = d.free_positions();
-  const Eigen::RowVectorXd centre = 0.5 * (x.colwise().minCoeff() + x.colwise().maxCoeff());
-  int best = 0;
-  for (int f = 1; f < d.free_count(); ++f)
-    if ((x.row(f) - centre).norm() < (x.row(best) - centre).norm() - 1e-12 * p.spacing) best = f;
-  v[0] = v0;
-  scheme.set_velocity(y, d.free[best], v);
 }
 
 double worst_max(double m, double v) { return (std::isnan(v) || v > m) ? v : m; }
@@ -359,9 +333,11 @@ template <int Dim>
 void run_scheme(const RunSetup& r) {
   const RateFormSetup& s = r.scheme;
   require_run_memory(r);
-  const auto disc = make_rate_form_discretisation<Dim>(s, s.kernels.front(), s.h_over_dx.front());
-  const RateFormScheme<Dim> scheme(disc, s.material, s.options, s.material.density / s.xi.front());
-  Eigen::VectorXd y = scheme.uniform_state();
+  // The scene of problems/rate_form_block.hpp: the Swegle block (or periodic lattice) with its kick.
+  const Scene<Dim> scene =
+      rate_form_block_scene<Dim>(block_options(s, s.kernels.front(), s.h_over_dx.front(), s.xi.front(), r.kick));
+  const RateFormScheme<Dim>& scheme = *scene.scheme;
+  Eigen::VectorXd y = scheme.uniform_state();  // at rest: the default dt's spectrum
   const double dt_asked = std::isnan(r.dt) ? default_time_step(scheme, y, r) : r.dt;
   const double t_end = std::isnan(r.t_end) ? 1000 * dt_asked : r.t_end;
   require_run_length(t_end, dt_asked, scheme.discretisation().particles.size(), "run");
@@ -372,7 +348,7 @@ void run_scheme(const RunSetup& r) {
   const double dt = t_end / static_cast<double>(nsteps);
   require_memory(16.0 * (static_cast<double>(nsteps) / r.record_every + 2) + 64.0 * scheme.size(),
                  "run: " + std::to_string(nsteps) + " steps recorded every " + std::to_string(r.record_every));
-  kick(scheme, r.kick, s.periodic, y);
+  y = scene.y0;
   if (!std::isfinite(scheme.kinetic_energy(y)))  // e.g. --kick 1e200: m v0^2 / 2 overflows before the first step
     throw std::invalid_argument("run: --kick " + format_number(r.kick) +
                                 ": the initial kinetic energy m v0^2 / 2 overflows a double; use a smaller kick");

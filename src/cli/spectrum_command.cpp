@@ -45,7 +45,7 @@ void run(const RateFormSetup& setup, const VerdictSetup& verdict) {
   out += "\n";
   for (KernelType kt : setup.kernels)
     for (double h : setup.h_over_dx) {
-      const auto disc = make_rate_form_discretisation<Dim>(setup, kt, h);
+      const auto disc = rate_form_block_discretisation<Dim>(block_options(setup, kt, h));
       for (double xi : setup.xi) {
         const double rho = material.density / xi;
         const RateFormScheme<Dim> scheme(disc, material, setup.options, rho);

@@ -92,7 +92,7 @@ TEST(JacobianCommand, RateFormJacobianMatchesCentralDifferences) {
   cli::RateFormArgs a;
   a.n = "4", a.xsph = "0.5", a.artificial_stress = "0.3", a.continuity = "divergence";
   const cli::RateFormSetup s = cli::parse_rate_form_args(a, "test", false, 1, 1000, 1000);
-  const auto disc = cli::make_rate_form_discretisation<2>(s, s.kernels.front(), s.h_over_dx.front());
+  const auto disc = rate_form_block_discretisation<2>(cli::block_options(s, s.kernels.front(), s.h_over_dx.front()));
   const RateFormScheme<2> scheme(disc, s.material, s.options, s.material.density / s.xi.front());
   ASSERT_EQ(J.rows(), scheme.size());
   const Eigen::VectorXd y = scheme.uniform_state();
