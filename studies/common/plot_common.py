@@ -99,3 +99,51 @@ def frozen_modes(out, title, path="frozen.png"):
     fig.savefig(os.path.join(out, path), dpi=110)
     plt.close(fig)
     return True
+
+
+def ke_panels(ke, runs, suptitle, path, mark_stops=False):
+    """The Swegle studies' kinetic-energy figure (Powell Fig. 4.2 style): one log panel per formulation, one line per
+    xi, from ke.csv (formulation, xi, t, kinetic) and runs.csv (formulation, xi, status, t_stop). A stopped run says
+    where in its label (and with mark_stops an x at its last record). Returns (series, forms, xis, info): the
+    (formulation, xi) -> (t, KE) lists, the formulations in order of appearance, the sorted xi and the runs by key."""
+    from collections import defaultdict
+    series = defaultdict(lambda: ([], []))
+    for r in ke:
+        s = series[(r["formulation"], num(r["xi"]))]
+        s[0].append(num(r["t"]))
+        s[1].append(num(r["kinetic"]))
+    forms = list(dict.fromkeys(r["formulation"] for r in runs))
+    xis = sorted({num(r["xi"]) for r in runs})
+    info = {(r["formulation"], num(r["xi"])): r for r in runs}
+    ncol = 3
+    nrow = math.ceil(len(forms) / ncol)
+    fig, axes = plt.subplots(nrow, ncol, figsize=(5.0 * ncol, 3.6 * nrow), sharex=True, sharey=True, squeeze=False)
+    for k, form in enumerate(forms):
+        ax = axes[k // ncol][k % ncol]
+        for xi in xis:
+            t, e = series.get((form, xi), ([], []))
+            if not t:
+                continue
+            r = info[(form, xi)]
+            stopped = r["status"] != "completed"
+            label = f"xi = {xi:g}" + (f" (stop {num(r['t_stop']):.3g})" if stopped else "")
+            ax.semilogy(t, e, color=xi_colour(xi, xis), lw=1.2, label=label)
+            if stopped and mark_stops:
+                ax.plot(t[-1], e[-1], "x", color=xi_colour(xi, xis), ms=6)
+        ax.set_title(form)
+        ax.grid(True, which="major", alpha=0.3)
+        ax.legend(fontsize=7, loc="upper left")
+    for k in range(len(forms), nrow * ncol):
+        axes[k // ncol][k % ncol].axis("off")
+    for row in axes:
+        for ax in row:
+            ax.tick_params(labelbottom=True)
+    for ax in axes[-1]:
+        ax.set_xlabel("t (us)")
+    for row in axes:
+        row[0].set_ylabel("kinetic energy (g cm^2/us^2 per cm)")
+    fig.suptitle(suptitle)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return series, forms, xis, info

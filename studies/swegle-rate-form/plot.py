@@ -5,48 +5,16 @@ ke.csv and runs.csv)."""
 import math
 import os
 import sys
-from collections import defaultdict
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from plot_common import num, plt, read, xi_colour  # noqa: E402
+from plot_common import ke_panels, num, plt, read, xi_colour  # noqa: E402
 
 
 def main(out):
     ke, runs = read(os.path.join(out, "ke.csv")), read(os.path.join(out, "runs.csv"))
-    series = defaultdict(lambda: ([], []))
-    for r in ke:
-        s = series[(r["formulation"], num(r["xi"]))]
-        s[0].append(num(r["t"]))
-        s[1].append(num(r["kinetic"]))
-    forms = list(dict.fromkeys(r["formulation"] for r in runs))
-    xis = sorted({num(r["xi"]) for r in runs})
-    info = {(r["formulation"], num(r["xi"])): r for r in runs}
-
-    ncol = 3
-    nrow = math.ceil(len(forms) / ncol)
-    fig, axes = plt.subplots(nrow, ncol, figsize=(5.0 * ncol, 3.6 * nrow), sharex=True, sharey=True, squeeze=False)
-    for k, form in enumerate(forms):
-        ax = axes[k // ncol][k % ncol]
-        for xi in xis:
-            t, e = series.get((form, xi), ([], []))
-            if not t:
-                continue
-            r = info[(form, xi)]
-            label = f"xi = {xi:g}" + ("" if r["status"] == "completed" else f" (stop {num(r['t_stop']):.3g})")
-            ax.semilogy(t, e, color=xi_colour(xi, xis), lw=1.2, label=label)
-        ax.set_title(form)
-        ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=7, loc="upper left")
-    for k in range(len(forms), nrow * ncol):
-        axes[k // ncol][k % ncol].axis("off")
-    for ax in axes[-1]:
-        ax.set_xlabel("t (us)")
-    for row in axes:
-        row[0].set_ylabel("kinetic energy (g cm^2/us^2 per cm)")
-    fig.suptitle("Swegle test, rate-form scheme (continuity, EOS, Jaumann rate); runs stop at KE = 1e10 KE0")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "ke_all.png"), dpi=110)
-    plt.close(fig)
+    series, forms, xis, info = ke_panels(
+        ke, runs, "Swegle test, rate-form scheme (continuity, EOS, Jaumann rate); runs stop at KE = 1e10 KE0",
+        os.path.join(out, "ke_all.png"))
 
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 4.6))
     markers = "osD^v<>"

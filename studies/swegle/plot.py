@@ -8,57 +8,15 @@ import sys
 from collections import defaultdict
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from plot_common import num, plt, read, xi_colour  # noqa: E402
+from plot_common import ke_panels, num, plt, read, xi_colour  # noqa: E402
 
 
 def main(out):
     ke = read(os.path.join(out, "ke.csv"))
     runs = read(os.path.join(out, "runs.csv"))
-    series = defaultdict(lambda: ([], []))
-    for r in ke:
-        key = (r["formulation"], num(r["xi"]))
-        series[key][0].append(num(r["t"]))
-        series[key][1].append(num(r["kinetic"]))
-    forms = []
-    for r in runs:
-        if r["formulation"] not in forms:
-            forms.append(r["formulation"])
-    xis = sorted({num(r["xi"]) for r in runs})
-    info = {(r["formulation"], num(r["xi"])): r for r in runs}
-
-    # One panel per formulation (Powell Fig. 4.2 style).
-    ncol = 3
-    nrow = math.ceil(len(forms) / ncol)
-    fig, axes = plt.subplots(nrow, ncol, figsize=(5.0 * ncol, 3.6 * nrow), sharex=True, sharey=True, squeeze=False)
-    for k, form in enumerate(forms):
-        ax = axes[k // ncol][k % ncol]
-        for xi in xis:
-            t, e = series.get((form, xi), ([], []))
-            if not t:
-                continue
-            r = info[(form, xi)]
-            label = f"xi = {xi:g}"
-            if r["status"] != "completed":
-                label += f" (stop {num(r['t_stop']):.3g})"
-            ax.semilogy(t, e, color=xi_colour(xi, xis), lw=1.2, label=label)
-            if r["status"] != "completed":
-                ax.plot(t[-1], e[-1], "x", color=xi_colour(xi, xis), ms=6)
-        ax.set_title(form)
-        ax.grid(True, which="major", alpha=0.3)
-        ax.legend(fontsize=7, loc="upper left")
-    for k in range(len(forms), nrow * ncol):
-        axes[k // ncol][k % ncol].axis("off")
-    for row in axes:
-        for ax in row:
-            ax.tick_params(labelbottom=True)
-    for ax in axes[-1]:
-        ax.set_xlabel("t (us)")
-    for row in axes:
-        row[0].set_ylabel("kinetic energy (g cm^2/us^2 per cm)")
-    fig.suptitle("Swegle test, 21 x 21 free particles, v0 = 1e-10 cm/us at the centre (x: run stopped, max |u| > 0.1 dx)")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "ke_all.png"), dpi=110)
-    plt.close(fig)
+    series, forms, xis, info = ke_panels(
+        ke, runs, "Swegle test, 21 x 21 free particles, v0 = 1e-10 cm/us at the centre (x: run stopped, max |u| > 0.1 dx)",
+        os.path.join(out, "ke_all.png"), mark_stops=True)
     # And one file per formulation.
     for form in forms:
         fig, ax = plt.subplots(figsize=(6.4, 4.2))
