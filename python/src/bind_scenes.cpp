@@ -9,6 +9,7 @@
 
 #include "bindings.hpp"
 #include "sphstab/forms/rate_form_state.hpp"
+#include "sphstab/integrate/linear_step_map.hpp"
 #include "sphstab/integrate/rate_form_run.hpp"
 #include "sphstab/integrate/run.hpp"
 #include "sphstab/integrate/run_observer.hpp"
@@ -78,12 +79,7 @@ RateFormRunResult run_scene(const Scene2& s, double dt, double cfl, double t_end
   o.energy_growth = energy_growth;
   o.yield_stress = s.yield_stress;
   o.neighbour_skin = s.neighbour_skin;
-  if (integrator == "pc1")
-    o.reuse_corrector_rate = true;
-  else if (integrator == "leapfrog")
-    o.integrator = RateFormIntegrator::Leapfrog;
-  else if (integrator != "pc")
-    throw std::invalid_argument("run: unknown integrator '" + integrator + "' (valid: pc, pc1, leapfrog)");
+  select_rate_form_integrator(o, integrator);
   std::optional<PythonObserver> py_observer;
   if (!observer.is_none()) {
     if (!PyCallable_Check(observer.ptr())) throw std::invalid_argument("run: observer must be callable");

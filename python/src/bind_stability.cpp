@@ -256,13 +256,7 @@ void bind_stability(py::module_& m) {
         o.kernel = parse_kernel_type(kernel);
         o.material = {.density = rho0, .bulk_modulus = bulk_modulus, .shear_modulus = shear_modulus};
         o.scheme = scheme;
-        if (integrator == "pc1")
-          o.run.reuse_corrector_rate = true;
-        else if (integrator == "leapfrog")
-          o.run.integrator = RateFormIntegrator::Leapfrog;
-        else if (integrator != "pc")
-          throw std::invalid_argument("state_stability: unknown integrator '" + integrator +
-                                      "' (valid: pc, pc1, leapfrog)");
+        select_rate_form_integrator(o.run, integrator);
         o.run.leapfrog_xsph = leapfrog_xsph;
         o.dt = dt;
         o.floor = floor;

@@ -179,12 +179,7 @@ VerdictSetup parse_verdict_args(const VerdictArgs& a, const std::string& command
     return v;
   }
   v.on = true;
-  if (a.integrator == "pc1")
-    v.run.reuse_corrector_rate = true;
-  else if (a.integrator == "leapfrog")
-    v.run.integrator = RateFormIntegrator::Leapfrog;
-  else if (a.integrator != "pc")
-    throw std::invalid_argument(c + "unknown --integrator '" + a.integrator + "' (valid: pc, pc1, leapfrog)");
+  select_rate_form_integrator(v.run, a.integrator);
   if (a.dt.empty() || a.t_end.empty())
     throw std::invalid_argument(c + "--integrator needs --dt and --t-end (the verdict is for that run)");
   const double dt = positive(a.dt, c + "--dt"), t_end = positive(a.t_end, c + "--t-end");

@@ -27,6 +27,7 @@
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/memory_budget.hpp"
 #include "sphstab/growth/rate_form_time_step.hpp"
+#include "sphstab/integrate/linear_step_map.hpp"
 #include "sphstab/integrate/rate_form_run.hpp"
 #include "sphstab/integrate/time_step.hpp"
 #include "sphstab/io/csv.hpp"
@@ -77,11 +78,10 @@ RunSetup parse_run_args(const RunArgs& a) {
   r.scheme = parse_rate_form_args(a.scheme, "run", false, 3, 10'000'000, 10'000);
   if (a.block && a.scheme.periodic) throw std::invalid_argument("run: --block and --periodic exclude each other");
   r.kick = parse_double(a.kick, "run: --kick");
-  if (a.integrator == "pc" || a.integrator == "predictor-corrector" || a.integrator == "pc1")
-    r.integrator = RateFormIntegrator::PredictorCorrector;
-  else if (a.integrator != "leapfrog")
-    throw std::invalid_argument("run: unknown --integrator '" + a.integrator + "' (valid: pc, pc1, leapfrog)");
-  r.reuse_rate = a.integrator == "pc1";
+  RateFormRunOptions chosen;
+  select_rate_form_integrator(chosen, a.integrator);
+  r.integrator = chosen.integrator;
+  r.reuse_rate = chosen.reuse_corrector_rate;
   if (!a.dt.empty()) r.dt = positive(a.dt, "run: --dt");
   r.cfl = positive(a.cfl, "run: --cfl");
   if (!a.t_end.empty()) r.t_end = positive(a.t_end, "run: --t-end");

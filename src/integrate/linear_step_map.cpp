@@ -146,6 +146,13 @@ Eigen::MatrixXd linear_step_map(const Eigen::MatrixXd& J, const StateLayout& lay
   return predictor_corrector_map(J, layout, o.dt, o.positions);
 }
 
+void select_rate_form_integrator(RateFormRunOptions& o, const std::string& name) {
+  if (name != "pc" && name != "predictor-corrector" && name != "pc1" && name != "leapfrog")
+    throw std::invalid_argument("unknown integrator '" + name + "' (valid: pc, pc1, leapfrog)");
+  o.integrator = name == "leapfrog" ? RateFormIntegrator::Leapfrog : RateFormIntegrator::PredictorCorrector;
+  o.reuse_corrector_rate = name == "pc1";
+}
+
 std::string rate_form_integrator_name(const RateFormRunOptions& o) {
   if (o.integrator == RateFormIntegrator::Leapfrog) return "leapfrog";
   const std::string base = o.reuse_corrector_rate ? "pc1" : "pc";

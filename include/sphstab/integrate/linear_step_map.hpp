@@ -88,4 +88,9 @@ Eigen::MatrixXd linear_step_map(const Eigen::MatrixXd& J, const StateLayout& lay
 /// A short name of the integrator `options` selects: "pc", "pc-trapezoid", "pc1", "pc1-trapezoid" or "leapfrog".
 std::string rate_form_integrator_name(const RateFormRunOptions& options);
 
+/// Selects the integrator named "pc" (or "predictor-corrector"), "pc1" (reuse_corrector_rate) or "leapfrog" in
+/// `options` (integrator and reuse_corrector_rate; the rest untouched). Throws std::invalid_argument("unknown
+/// integrator '<name>' (valid: pc, pc1, leapfrog)") otherwise.
+void select_rate_form_integrator(RateFormRunOptions& options, const std::string& name);
+
 }  // namespace sphstab
