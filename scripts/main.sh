@@ -13,6 +13,7 @@ py=${PYTHON:-/usr/bin/python3}
 if [ ! -x "$py" ]; then bash scripts/install-deps.sh; fi
 targets=$("$py" scripts/run_studies.py --targets "$@")
 for a in "$@"; do [ "$a" = "--list" ] && exec "$py" scripts/run_studies.py "$@"; done
-bash scripts/install-deps.sh
+needs=$("$py" scripts/run_studies.py --needs "$@")
+bash scripts/install-deps.sh ${needs:+$(printf -- '--%s ' $needs)}
 SPHSTAB_TARGETS="$targets" bash scripts/build.sh
 exec "$py" scripts/run_studies.py "$@"

@@ -23,7 +23,7 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RESULTS = os.path.join(ROOT, "results")
 OUT = os.path.join(RESULTS, "README.md")
-FAMILIES = ["stability analysis", "Swegle", "GMS scenes", "finite strain", "non-reflecting boundaries", "scale",
+FAMILIES = ["stability analysis", "Swegle", "impact problems", "GMS scenes", "finite strain", "non-reflecting boundaries", "scale",
             "speed"]
 REQUIRED = ("family", "question", "sources", "headline")
 

@@ -50,7 +50,7 @@ def load_index():
     with open(os.path.join(ROOT, "studies", "index.toml"), "rb") as f:
         index = tomllib.load(f)
     for name, entry in index.items():
-        unknown = set(entry) - {"family", "main", "after", "alone", "estimate_min",
+        unknown = set(entry) - {"family", "main", "after", "alone", "needs", "estimate_min",
                                "question", "sources", "headline", "extract", "summary"}  # the last five: results map
         if unknown:
             sys.exit(f"run_studies: studies/index.toml [{name}]: unknown field(s) {', '.join(sorted(unknown))}")
@@ -190,6 +190,8 @@ def main():
     ap.add_argument("--list", action="store_true", help="print the plan and the estimate, run nothing")
     ap.add_argument("--targets", action="store_true",
                     help="print the CMake targets the plan needs (one line) and exit: main.sh builds only those")
+    ap.add_argument("--needs", action="store_true",
+                    help="print the optional dependency groups the plan needs (e.g. 'fe': the FE reference) and exit")
     ap.add_argument("--bin", default=os.path.join(os.environ.get("BUILD_DIR", "build"), "bin"))
     args = ap.parse_args()
     if args.jobs < 1:
@@ -210,6 +212,9 @@ def main():
     else:
         chosen = [(n, index[n]["main"] == "quick") for n in index if "main" in index[n]]
     tasks = [Task(n, index[n], q, bin_dir, build_dir) for n, q in chosen]
+    if args.needs:
+        print(" ".join(sorted({g for t in tasks for g in index[t.name].get("needs", [])})))
+        return 0
     if args.targets:
         if any(os.path.exists(t.script) for t in tasks):
             print("sphstab_cli sphstab_studies sphstab_benchmarks")  # run.sh studies drive benchmarks and the CLI
