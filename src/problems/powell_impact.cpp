@@ -8,6 +8,7 @@
 
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/length_scale.hpp"
+#include "sphstab/core/memory_budget.hpp"
 #include "sphstab/forms/rate_form_state.hpp"
 #include "sphstab/kernel/kernel.hpp"
 #include "sphstab/system/force_function.hpp"
@@ -127,6 +128,9 @@ ParticleSet<2> impact_particles(const PowellImpactOptions& o) {
   // Free particles first, clamped columns last (the TL form and the DOF order want free first).
   ParticleSet<2> p;
   const long total = static_cast<long>(nx) * ny;
+  // Before allocating: the particle set (positions, volume, role, depth, order) and the rate-form state and its
+  // neighbour list (about 13 neighbours within 2h = 2.6 dx, 8 state values per particle), a lower bound.
+  require_memory(static_cast<double>(total) * (8 * 3 + 4 * 3 + 8 * 8 + 4 * 25), std::string(who) + " particles");
   p.x.resize(total, 2);
   p.volume = Eigen::VectorXd::Constant(total, dx * dx);
   p.role.resize(total);

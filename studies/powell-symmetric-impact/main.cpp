@@ -159,6 +159,8 @@ int main(int argc, char** argv) try {
   app.add_option("--threads", cfg.threads, "concurrent runs")->check(CLI::Range(1, 64));
   app.add_flag("--quick", quick, "one coarse resolution (dx 0.05), to t = 2 us");
   CLI11_PARSE(app, argc, argv);
+  if (!std::isfinite(cfg.t_end) || !(cfg.t_end > 0))  // NaN would mean the scene's default t_end
+    throw std::invalid_argument("--t-end must be finite and > 0");
   if (quick) cfg.spacings = {0.05}, cfg.snapshot_spacing = 0.05, cfg.t_end = 2;
   std::filesystem::create_directories(cfg.out);
   set_threads(1);  // cases run side by side; each on one thread (CPU seconds are per run)

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "sphstab/core/memory_budget.hpp"
 #include "sphstab/forms/rate_form_state.hpp"
 #include "sphstab/integrate/rate_form_run.hpp"
 
@@ -167,6 +168,8 @@ TEST(PowellImpact, BadOptionsAreOneLineErrors) {
             "powell_impact_scene: the beam's section (25 columns) must leave an even number of columns to centre it "
             "in 250");
   EXPECT_NE(error_of({.spacing = 1e300}), "");
+  // 1e6 x 1e6 particles: refused by the memory estimate before anything is allocated.
+  EXPECT_THROW(powell_impact_scene({.spacing = 1e-6}), MemoryLimitError);
   EXPECT_EQ(parse_impact_problem("beam"), ImpactProblem::Beam);
   EXPECT_EQ(impact_problem_name(parse_impact_problem("bar")), "bar");
   EXPECT_THROW(parse_impact_problem("plate"), std::invalid_argument);

@@ -85,7 +85,8 @@ PowellImpactOptions problem_defaults(PowellImpactOptions options);
 RateFormOptions powell_formulation_options(const std::string& formulation);
 
 /// The scene (name "symmetric-impact", "bar-impact" or "clamped-beam"). Throws std::invalid_argument for a spacing or
-/// size outside check_length's range, sizes that are not whole multiples of dx (2 dx: the symmetric height), a split outside (0, 1) or off the
+/// size outside check_length's range, sizes that are not whole multiples of dx (2 dx: the symmetric height), MemoryLimitError for
+/// a block whose estimated memory exceeds the limit (before allocating), a split outside (0, 1) or off the
 /// particle rows, a non-finite speed or t_end <= 0, clamp layers < 1 or leaving no free particle, and as the scheme.
 Scene<2> powell_impact_scene(const PowellImpactOptions& options);
 
