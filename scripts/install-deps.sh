@@ -3,7 +3,7 @@
 #   --fe   also the finite-element reference of the impact studies (python3-dolfinx 0.5 and its 85 packages; about
 #          30 s on this 2-core machine): only the studies that name `needs = ["fe"]` in studies/index.toml use it
 set -euo pipefail
-packages=(cmake g++ make libeigen3-dev libspectra-dev libsuitesparse-dev liblapack-dev liblapacke-dev
+packages=(cmake g++ make ninja-build libeigen3-dev libspectra-dev libsuitesparse-dev liblapack-dev liblapacke-dev
           libfftw3-dev libgtest-dev libbenchmark-dev libcli11-dev python3-matplotlib python3-numpy python3-scipy
           pkg-config time python3-dev pybind11-dev python3-pytest petsc-dev libslepc-real-dev openmpi-bin libopenmpi-dev)
 for a in "$@"; do

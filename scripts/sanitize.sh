@@ -12,7 +12,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${SANITIZE_BUILD_DIR:-build-sanitize}
 flags="-fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all -fno-omit-frame-pointer"
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_CXX_FLAGS_SANITIZE="-O1 -g1 -DNDEBUG" -DCMAKE_CXX_FLAGS="$flags" \
+gen=()  # Ninja for a new build directory, as scripts/build.sh
+if [ ! -f "$build/CMakeCache.txt" ] && command -v ninja >/dev/null; then gen=(-G Ninja); fi
+t_build=$SECONDS
+cmake -S . -B "$build" "${gen[@]}" -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_CXX_FLAGS_SANITIZE="-O1 -g1 -DNDEBUG" -DCMAKE_CXX_FLAGS="$flags" \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DSPHSTAB_BUILD_STUDIES=OFF \
   -DSPHSTAB_BUILD_BENCHMARKS=OFF -DSPHSTAB_WITH_PETSC=OFF -DSPHSTAB_WITH_PYTHON=OFF \
   -DSPHSTAB_TEST_REGISTRATION=program "$@" >/dev/null
@@ -20,5 +23,6 @@ cmake --build "$build" -j "$(nproc)"
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=0:abort_on_error=0:halt_on_error=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 t0=$SECONDS
+echo "sanitize.sh: build $((t0 - t_build)) s"
 ctest --test-dir "$build" --output-on-failure -j "$(nproc)" --timeout 1200
 echo "sanitize.sh: tests $((SECONDS - t0)) s"

@@ -40,9 +40,6 @@ namespace {
 
 using Triplets = std::vector<Eigen::Triplet<double>>;
 
-double divergence_alpha(StressDivergence d) {
-  return d == StressDivergence::Plus ? 1.0 : (d == StressDivergence::Minus ? -1.0 : 0.0);
-}
 
 }  // namespace
 

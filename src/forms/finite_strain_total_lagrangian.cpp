@@ -14,7 +14,7 @@
 namespace sphstab {
 
 namespace {
-const char* kWho = "FiniteStrainTotalLagrangian";
+const char* kFiniteStrainWho = "FiniteStrainTotalLagrangian";
 }
 
 template <int Dim>
@@ -22,15 +22,15 @@ FiniteStrainTotalLagrangian<Dim>::FiniteStrainTotalLagrangian(std::shared_ptr<co
                                                               std::shared_ptr<const HyperelasticModel<Dim>> material,
                                                               const Eigen::VectorXd& density,
                                                               FiniteStrainOptions<Dim> options)
-    : HyperelasticBody<Dim>(std::move(discretisation), std::move(material), density, kWho),
+    : HyperelasticBody<Dim>(std::move(discretisation), std::move(material), density, kFiniteStrainWho),
       m_options(std::move(options)) {
   const Discretisation<Dim>& d = *m_disc;
   if (!(d.h > 0) || !std::isfinite(d.h))
-    throw std::invalid_argument(std::string(kWho) + ": smoothing length h must be finite and > 0 (got " +
+    throw std::invalid_argument(std::string(kFiniteStrainWho) + ": smoothing length h must be finite and > 0 (got " +
                                 format_number(d.h) + ")");
   this->m_difference = m_options.strain_sum == StrainSum::Difference;
   if (m_options.divergence == StressDivergence::Adjoint)
-    throw std::invalid_argument(std::string(kWho) +
+    throw std::invalid_argument(std::string(kFiniteStrainWho) +
                                 ": the adjoint divergence is not offered; use plain, plus or minus");
 
   // Reference operators, assembled once at X (Ismail's SPH matrices X, Y).
@@ -45,9 +45,9 @@ FiniteStrainTotalLagrangian<Dim>::FiniteStrainTotalLagrangian(std::shared_ptr<co
   m_K = m_plain_strain ? m_G : std::make_shared<const std::array<SparseMatrix<>, Dim>>(std::move(K));
 
   // Hourglass control [Ganzenmueller2015]: the pair coefficients, once at the reference positions.
-  m_hg =
-      HourglassControl<Dim>(d, m_options.hourglass > 0 ? m_material->lame().young() : 0.0, m_rho,
-                            {.coefficient = m_options.hourglass, .projection = m_options.hourglass_projection}, kWho);
+  m_hg = HourglassControl<Dim>(d, m_options.hourglass > 0 ? m_material->lame().young() : 0.0, m_rho,
+                               {.coefficient = m_options.hourglass, .projection = m_options.hourglass_projection},
+                               kFiniteStrainWho);
 }
 
 template <int Dim>
@@ -72,8 +72,9 @@ bool FiniteStrainTotalLagrangian<Dim>::conservative() const {
 template <int Dim>
 std::unique_ptr<ForceFunction> FiniteStrainTotalLagrangian<Dim>::with_load(double load) const {
   if (load != 0)
-    throw std::invalid_argument(std::string(kWho) + "::with_load: the finite-strain form has no affine load (got " +
-                                format_number(load) + "); prescribe displacements with set_fixed_displacement");
+    throw std::invalid_argument(std::string(kFiniteStrainWho) +
+                                "::with_load: the finite-strain form has no affine load (got " + format_number(load) +
+                                "); prescribe displacements with set_fixed_displacement");
   return std::make_unique<FiniteStrainTotalLagrangian<Dim>>(*this);
 }
 

@@ -23,9 +23,6 @@ constexpr int sidx(int a, int b) {
   return Dim + (a == 0 ? (b == 1 ? 0 : 1) : 2);
 }
 
-double divergence_alpha(StressDivergence d) {
-  return d == StressDivergence::Plus ? 1.0 : (d == StressDivergence::Minus ? -1.0 : 0.0);
-}
 
 }  // namespace
 

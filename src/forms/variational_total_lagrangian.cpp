@@ -13,7 +13,7 @@
 namespace sphstab {
 
 namespace {
-const char* kWho = "VariationalTotalLagrangian";
+const char* kVariationalWho = "VariationalTotalLagrangian";
 }
 
 template <int Dim>
@@ -22,12 +22,12 @@ VariationalTotalLagrangian<Dim>::VariationalTotalLagrangian(std::shared_ptr<cons
                                                             const Eigen::VectorXd& density,
                                                             std::shared_ptr<const GradientProvider<Dim>> gradient,
                                                             HourglassOptions hourglass)
-    : HyperelasticBody<Dim>(std::move(discretisation), std::move(material), density, kWho),
+    : HyperelasticBody<Dim>(std::move(discretisation), std::move(material), density, kVariationalWho),
       m_gradient(std::move(gradient)) {
   const Discretisation<Dim>& d = *m_disc;
   const int N = d.size();
   if (m_gradient && !m_gradient->keeps_pattern())
-    throw std::invalid_argument(std::string(kWho) + ": gradient '" + m_gradient->name() +
+    throw std::invalid_argument(std::string(kVariationalWho) + ": gradient '" + m_gradient->name() +
                                 "' is non-local (dense); use a local correction such as ncsph");
   // reference operators, once at X
   const OperatorRequest request = detail::form_request<Dim>(m_gradient.get(), false);
@@ -41,7 +41,8 @@ VariationalTotalLagrangian<Dim>::VariationalTotalLagrangian(std::shared_ptr<cons
     for (int i = 0; i < N; ++i)
       for (SparseMatrix<>::InnerIterator it(K[b], i); it; ++it) m_rowsum(i, b) += it.value();
   m_K = std::make_shared<const std::array<SparseMatrix<>, Dim>>(std::move(K));
-  m_hg = HourglassControl<Dim>(d, hourglass.coefficient > 0 ? m_material->lame().young() : 0.0, m_rho, hourglass, kWho);
+  m_hg = HourglassControl<Dim>(d, hourglass.coefficient > 0 ? m_material->lame().young() : 0.0, m_rho, hourglass,
+                               kVariationalWho);
 }
 
 template <int Dim>
@@ -57,8 +58,8 @@ std::string VariationalTotalLagrangian<Dim>::name() const {
 template <int Dim>
 std::unique_ptr<ForceFunction> VariationalTotalLagrangian<Dim>::with_load(double load) const {
   if (load != 0)
-    throw std::invalid_argument(std::string(kWho) + "::with_load: no affine load (got " + format_number(load) +
-                                "); prescribe displacements with set_fixed_displacement");
+    throw std::invalid_argument(std::string(kVariationalWho) + "::with_load: no affine load (got " +
+                                format_number(load) + "); prescribe displacements with set_fixed_displacement");
   return std::make_unique<VariationalTotalLagrangian<Dim>>(*this);
 }
 

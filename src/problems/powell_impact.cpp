@@ -9,8 +9,10 @@
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/length_scale.hpp"
 #include "sphstab/core/memory_budget.hpp"
+#include "sphstab/forms/finite_strain_total_lagrangian.hpp"
 #include "sphstab/forms/rate_form_state.hpp"
 #include "sphstab/kernel/kernel.hpp"
+#include "sphstab/models/st_venant_kirchhoff.hpp"
 #include "sphstab/system/force_function.hpp"
 
 namespace sphstab {
@@ -37,7 +39,7 @@ PowellImpactOptions problem_defaults(PowellImpactOptions o) {
   };
   const Defaults d = o.problem == ImpactProblem::Symmetric ? Defaults{1.0, 1.0, 0.06, 0.5, 6.0}
                      : o.problem == ImpactProblem::Bar     ? Defaults{4.0, 0.4, 0.06, 0.25, 40.0}
-                                                           : Defaults{5.0, 0.5, 0.3, 0.08, 20.0};
+                                                           : Defaults{4.0, 0.4, 0.3, 0.1, 20.0};
   if (std::isnan(o.length)) o.length = d.length;
   if (std::isnan(o.height)) o.height = d.height;
   if (std::isnan(o.speed)) o.speed = d.speed;
@@ -107,7 +109,8 @@ ParticleSet<2> impact_particles(const PowellImpactOptions& o) {
   if (!std::isfinite(o.speed))
     throw std::invalid_argument(std::string(who) + ": speed must be finite (got " + format_number(o.speed) + ")");
   if (!(o.t_end > 0) || !std::isfinite(o.t_end))
-    throw std::invalid_argument(std::string(who) + ": t_end must be finite and > 0 (got " + format_number(o.t_end) + ")");
+    throw std::invalid_argument(std::string(who) + ": t_end must be finite and > 0 (got " + format_number(o.t_end) +
+                                ")");
   if (!(o.split > 0 && o.split < 1))
     throw std::invalid_argument(std::string(who) + ": split must be in (0, 1) (got " + format_number(o.split) + ")");
   // The split plane (bar) or the section's edges (beam) between particle columns.
@@ -213,7 +216,13 @@ Scene<2> powell_impact_scene(const PowellImpactOptions& options) {
   return s;
 }
 
-ImpactTotalLagrangian impact_total_lagrangian(const Scene<2>& scene) {
+ImpactTLModel parse_impact_tl_model(const std::string& name) {
+  if (name == "linear") return ImpactTLModel::Linear;
+  if (name == "svk") return ImpactTLModel::StVenantKirchhoff;
+  throw std::invalid_argument("unknown TL-SPH model '" + name + "' (valid: linear, svk)");
+}
+
+ImpactTotalLagrangian impact_total_lagrangian(const Scene<2>& scene, ImpactTLModel model) {
   if (!scene.scheme) throw std::invalid_argument("impact_total_lagrangian: scene without a scheme");
   const RateFormScheme<2>& scheme = *scene.scheme;
   // Aliasing: the discretisation lives as long as the scheme that owns it.
@@ -223,23 +232,33 @@ ImpactTotalLagrangian impact_total_lagrangian(const Scene<2>& scene) {
                                  .mu = m.shear_modulus,
                                  .rho = m.density};
   ImpactTotalLagrangian tl;
-  auto form = std::make_shared<const TotalLagrangianForm2D>(disc, material);
-  tl.form = form;
-  tl.system.acceleration = acceleration_function(form);
-  tl.system.strain_energy = [form](const Eigen::VectorXd& u) { return form->strain_energy(u); };
+  if (model == ImpactTLModel::Linear) {
+    auto form = std::make_shared<const TotalLagrangianForm2D>(disc, material);
+    tl.form = form;
+    tl.system.strain_energy = [form](const Eigen::VectorXd& u) { return form->strain_energy(u); };
+  } else {
+    const auto svk = std::make_shared<const StVenantKirchhoff<2>>(LameParameters{material.lambda, material.mu});
+    auto form = std::make_shared<const FiniteStrainTotalLagrangian<2>>(disc, svk, m.density);
+    tl.form = form;
+    // Not thread-safe (scratch arrays): one form per run, as here.
+    tl.system.strain_energy = [form](const Eigen::VectorXd& u) { return form->strain_energy(u); };
+  }
+  tl.system.acceleration = acceleration_function(tl.form);
   tl.system.dofs_per_particle = 2;
   tl.system.mass = m.density * disc->particles.volume(disc->free);
   tl.system.reference_positions = disc->free_positions().transpose().reshaped();
   const Eigen::Matrix2Xd v = rate_form_velocities(scheme, scene.y0);
   const double K = m.bulk_modulus;
-  tl.pressure = [disc, K](const Eigen::VectorXd& u, int i) {
+  const bool finite = model == ImpactTLModel::StVenantKirchhoff;
+  tl.pressure = [disc, K, finite](const Eigen::VectorXd& u, int i) {
     if (i < 0 || i >= disc->size())
       throw std::invalid_argument("impact_total_lagrangian: particle " + std::to_string(i) + " out of range");
     const auto at = [&](int j) -> Eigen::Vector2d {
       const int f = disc->free_slot[j];
       return f < 0 ? Eigen::Vector2d::Zero() : Eigen::Vector2d(u.segment<2>(2 * f));
     };
-    double div = 0;
+    Eigen::Matrix2d grad = Eigen::Matrix2d::Zero();
+    double div = 0;  // summed pair by pair, as tr(grad) in another order
     const Eigen::Vector2d ui = at(i);
     for (long k = disc->neighbours.offsets[i]; k < disc->neighbours.offsets[i + 1]; ++k) {
       const int j = disc->neighbours.indices[k];
@@ -248,8 +267,10 @@ ImpactTotalLagrangian impact_total_lagrangian(const Scene<2>& scene) {
       if (j == i || d == 0) continue;
       const Eigen::Vector2d g = disc->kernel.d1(d, disc->h) / d * r;  // grad_i W(x0_i - x0_j)
       div += disc->particles.volume[j] * (at(j) - ui).dot(g);
+      if (finite) grad += disc->particles.volume[j] * (at(j) - ui) * g.transpose();
     }
-    return -K * div;
+    if (!finite) return -K * div;
+    return K * (1 / (Eigen::Matrix2d::Identity() + grad).determinant() - 1);
   };
   tl.v0.resize(disc->dofs());
   for (int f = 0; f < disc->free_count(); ++f) tl.v0.segment<2>(2 * f) = v.col(disc->free[f]);

@@ -15,17 +15,17 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-struct LatticeSums {
+struct KernelLatticeSums1D {
   std::vector<double> w1, w2;  // W'(m dx) dx, W''(m dx) dx for m = 1..M
   double h_scale = 0;          // sum |H_m|
 };
 
-LatticeSums lattice_sums(const Kernel<1>& kernel, double h, double dx, const char* who) {
+KernelLatticeSums1D kernel_lattice_sums_1d(const Kernel<1>& kernel, double h, double dx, const char* who) {
   if (!(h > 0) || !std::isfinite(h))
     throw std::invalid_argument(std::string(who) + ": h must be finite and > 0 (got " + format_number(h) + ")");
   if (!(dx > 0) || !std::isfinite(dx))
     throw std::invalid_argument(std::string(who) + ": dx must be finite and > 0 (got " + format_number(dx) + ")");
-  LatticeSums s;
+  KernelLatticeSums1D s;
   const double support = kernel.support_radius(h);
   checked_floor_count(support / dx, 1L << 29, std::string(who) + ": lattice terms (support / dx)");
   for (int m = 1; m * dx < support; ++m) {  // strict, like find_neighbours
@@ -36,7 +36,7 @@ LatticeSums lattice_sums(const Kernel<1>& kernel, double h, double dx, const cha
   return s;
 }
 
-FourierSymbol1D symbol(const LatticeSums& s, double kdx) {
+FourierSymbol1D symbol(const KernelLatticeSums1D& s, double kdx) {
   double g = 0, l = 0;
   for (size_t i = 0; i < s.w1.size(); ++i) {
     const double m = double(i + 1);
@@ -49,11 +49,11 @@ FourierSymbol1D symbol(const LatticeSums& s, double kdx) {
 }  // namespace
 
 FourierSymbol1D fourier_symbol_1d(const Kernel<1>& kernel, double h, double dx, double k) {
-  return symbol(lattice_sums(kernel, h, dx, "fourier_symbol_1d"), k * dx);
+  return symbol(kernel_lattice_sums_1d(kernel, h, dx, "fourier_symbol_1d"), k * dx);
 }
 
 SymbolCriticalTension critical_tension_infinite_1d(const Kernel<1>& kernel, double h, double dx, int n, int grid) {
-  const LatticeSums s = lattice_sums(kernel, h, dx, "critical_tension_infinite_1d");
+  const KernelLatticeSums1D s = kernel_lattice_sums_1d(kernel, h, dx, "critical_tension_infinite_1d");
   if (n < 0)
     throw std::invalid_argument("critical_tension_infinite_1d: n must be >= 0 (got " + std::to_string(n) + ")");
   if (grid < 16)
@@ -129,7 +129,7 @@ SymbolCriticalTension critical_tension_infinite_1d(const Kernel<1>& kernel, doub
 
 SymbolCriticalTension critical_tension_periodic_symbol_1d(const Kernel<1>& kernel, double h, double dx, int particles,
                                                           int n) {
-  const LatticeSums s = lattice_sums(kernel, h, dx, "critical_tension_periodic_symbol_1d");
+  const KernelLatticeSums1D s = kernel_lattice_sums_1d(kernel, h, dx, "critical_tension_periodic_symbol_1d");
   if (particles < 2)
     throw std::invalid_argument("critical_tension_periodic_symbol_1d: need N >= 2 particles (got " +
                                 std::to_string(particles) + ")");

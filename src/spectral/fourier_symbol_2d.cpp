@@ -15,7 +15,7 @@ namespace sphstab {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kInf2D = std::numeric_limits<double>::infinity();
 
 /// Positive real roots of c0 + c1 e + c2 e^2 (appended to `roots`).
 void positive_roots(double c0, double c1, double c2, std::vector<double>& roots) {
@@ -31,7 +31,7 @@ void positive_roots(double c0, double c1, double c2, std::vector<double>& roots)
   const double disc = c1 * c1 - 4 * c2 * c0;
   if (disc < 0) return;
   const double q = -0.5 * (c1 + std::copysign(std::sqrt(disc), c1));
-  for (double r : {q / c2, q != 0 ? c0 / q : kInf})
+  for (double r : {q / c2, q != 0 ? c0 / q : kInf2D})
     if (r > 0 && std::isfinite(r)) roots.push_back(r);
 }
 
@@ -116,7 +116,7 @@ CriticalStrain2x2 critical_strain_2x2(const Eigen::Matrix2d& a0, const Eigen::Ma
   const double sgn = sign == LoadDirection::Tension ? 1.0 : -1.0;
   const Eigen::Matrix2d a1 = sgn * a1_in;  // search e' = sgn e > 0
   CriticalStrain2x2 out;
-  out.e = sgn * kInf;
+  out.e = sgn * kInf2D;
   if (a0.cwiseAbs().maxCoeff() <= zero_tol) {
     // A = e' a1: stable for small e' > 0 iff both eigenvalues of a1 are real and positive.
     const TwoByTwo v = invariants(a1);
@@ -147,7 +147,7 @@ CriticalStrain2x2 critical_strain_2x2(const Eigen::Matrix2d& a0, const Eigen::Ma
   std::sort(roots.begin(), roots.end());
   double left = 0;
   for (size_t i = 0; i <= roots.size(); ++i) {
-    const double right = i < roots.size() ? roots[i] : kInf;
+    const double right = i < roots.size() ? roots[i] : kInf2D;
     if (right <= left) continue;
     const double mid = std::isinf(right) ? 2 * left + 1 : 0.5 * (left + right);
     const Eigen::Matrix2d m = a0 + mid * a1;
@@ -197,7 +197,7 @@ namespace {
 /// is 0 and stability is undefined).
 SymbolCriticalStrain initial_result(const ElasticSymbol2D& sym, double sgn) {
   SymbolCriticalStrain out;
-  out.e = sgn * kInf;
+  out.e = sgn * kInf2D;
   if (sym.stencil_size() == 0) {
     out.e = SymbolCriticalStrain::nan;
     out.reason = "no lattice neighbour inside the kernel support (h too small)";
@@ -246,7 +246,7 @@ SymbolCriticalStrain critical_strain_infinite_2d(const ElasticSymbol2D& sym, Loa
     const Eigen::Vector2d frac2 = 2 * w;
     if ((w.array().abs() < 1e-13).all() ||
         ((frac2.array() - frac2.array().round()).abs() < 1e-12).all())  // k = 0 or a zone-boundary zero
-      return kInf;
+      return kInf2D;
     const PointResult p = evaluate(sym, b * u, sign, false);
     if (mech) *mech = p.r.mechanism;
     return std::abs(p.r.e);
@@ -271,7 +271,7 @@ SymbolCriticalStrain critical_strain_infinite_2d(const ElasticSymbol2D& sym, Loa
   const size_t keep = std::min<size_t>(4, best.size());
   std::partial_sort(best.begin(), best.begin() + keep, best.end(),
                     [](const Best& x, const Best& y) { return x.e < y.e; });
-  double e_best = kInf;
+  double e_best = kInf2D;
   Eigen::Vector2d u_best = best[0].u;
   for (size_t t = 0; t < keep; ++t) {
     Best cur = best[t];

@@ -58,7 +58,6 @@ int probe_lattice_size(double support_over_dx) { return 2 * static_cast<int>(std
 
 namespace {
 
-std::string num(double v) { return format_number(v, 12); }
 
 template <int Dim>
 double support_of(const ElasticLatticeProblem<Dim>& p) {
@@ -93,7 +92,7 @@ double matrix_free_3d_bytes(int n, double support) {
 template <int Dim>
 std::string default_label(const ElasticLatticeProblem<Dim>& p, CriticalLoadRoute route) {
   return "critical_load: " + std::to_string(Dim) + "D " + lattice_name(p.lattice) + " n = " + std::to_string(p.n) +
-         " h/dx = " + num(p.h) + " " + critical_load_route_name(route) + " route";
+         " h/dx = " + format_number(p.h, 12) + " " + critical_load_route_name(route) + " route";
 }
 
 bool fits(double bytes) {
@@ -114,7 +113,8 @@ void require_route_memory(const ElasticLatticeProblem<Dim>& p, CriticalLoadRoute
 template <int Dim>
 void validate(const ElasticLatticeProblem<Dim>& p) {
   if (p.n < 1) throw std::invalid_argument("critical_load: n = " + std::to_string(p.n) + " (need >= 1)");
-  if (!(p.h > 0) || !std::isfinite(p.h)) throw std::invalid_argument("critical_load: h/dx = " + num(p.h) + " (> 0)");
+  if (!(p.h > 0) || !std::isfinite(p.h))
+    throw std::invalid_argument("critical_load: h/dx = " + format_number(p.h, 12) + " (> 0)");
   if (Dim == 3 && (p.lattice != LatticeType::Cubic || p.periodic))
     throw std::invalid_argument("critical_load: 3D problems are cubic lattices with fixed layers");
   if (Dim == 2 && p.lattice != LatticeType::Square && p.lattice != LatticeType::Hexagonal &&
@@ -200,9 +200,10 @@ void solve_matrix_free(const ElasticLatticeProblem<Dim>& p, LoadDirection direct
   r.backend = "matrix-free";
   r.mechanism = std::isfinite(m.load) ? InstabilityMechanism::RealCrossing : InstabilityMechanism::None;
   r.status = m.status;
-  r.reason = m.status == Status::Successful ? "block LOBPCG, preconditioner " + m.preconditioner + ": " +
-                                                  std::to_string(m.iterations) + " steps, residual " + num(m.residual)
-                                            : m.reason;
+  r.reason = m.status == Status::Successful
+                 ? "block LOBPCG, preconditioner " + m.preconditioner + ": " + std::to_string(m.iterations) +
+                       " steps, residual " + format_number(m.residual, 12)
+                 : m.reason;
   if (dropped) {
     r.fallback = true;
     r.route_reason += "; fallback: no preconditioner (the lattice symbol has no positive L/K ratio)";
@@ -236,7 +237,7 @@ void solve_distributed(const Linearisation& lin, LoadDirection direction, const 
   r.status = d.status;
   r.reason = d.status == Status::Successful
                  ? "distributed on " + std::to_string(d.ranks) + " rank(s) by " + d.solver + ": " +
-                       std::to_string(d.iterations) + " iterations; residual " + num(d.residual)
+                       std::to_string(d.iterations) + " iterations; residual " + format_number(d.residual, 12)
                  : d.reason;
   r.distributed = d;
 }

@@ -13,7 +13,6 @@
 namespace sphstab {
 
 namespace {
-std::string num(double v) { return format_number(v, 12); }
 
 CriticalTensionCase make_case(KernelType kernel, MomentumForm form, double h) {
   CriticalTensionCase c;
@@ -41,7 +40,8 @@ std::vector<CriticalTensionCase> critical_tension_sweep(const CriticalTensionSwe
         "translation null mode of a periodic lattice)");
   for (double h : s.hs)  // before the memory estimates, which a NaN would turn into "needs ~nan bytes"
     if (!(h > 0) || !std::isfinite(h))
-      throw std::invalid_argument("critical_tension_sweep: h/dx must be finite and > 0 (got " + num(h) + ")");
+      throw std::invalid_argument("critical_tension_sweep: h/dx must be finite and > 0 (got " + format_number(h, 12) +
+                                  ")");
   for (double h : s.hs) {
     const double support = Kernel<1>(s.kernels[0]).support_radius(h);
     const bool dense = s.method != CriticalLoadMethod::Bisection &&
@@ -50,7 +50,7 @@ std::vector<CriticalTensionCase> critical_tension_sweep(const CriticalTensionSwe
     require_memory(
         critical_tension_1d_memory_bytes(s.n, support, plain ? 1 : s.corrected_layer_supports, s.periodic, dense),
         s.memory_label ? s.memory_label(h)
-                       : "critical_tension_sweep: n = " + std::to_string(s.n) + ", h/dx = " + num(h));
+                       : "critical_tension_sweep: n = " + std::to_string(s.n) + ", h/dx = " + format_number(h, 12));
   }
   auto with_routes = [&](CriticalLoadOptions o) {
     o.method = s.method;
@@ -96,7 +96,7 @@ std::vector<CriticalTensionCase> critical_tension_sweep(const CriticalTensionSwe
           c.result.status = Status::NumericalIssue;
           c.backend = "none";
           c.criterion = "none";
-          c.reason = "no neighbour inside the kernel support (2h = " + num(kernel.support_radius(h)) +
+          c.reason = "no neighbour inside the kernel support (2h = " + format_number(kernel.support_radius(h), 12) +
                      " <= dx): every operator is diagonal";
           c.mode_k_over_pi = c.result.reported_wavenumber().k_projection;
           cases.push_back(std::move(c));
@@ -114,7 +114,8 @@ std::vector<CriticalTensionCase> critical_tension_sweep(const CriticalTensionSwe
         std::string note = "corrected " + force.name().substr(force.name().rfind('/') + 1) + "; fixed layers " +
                            std::to_string(s.corrected_layer_supports) + " supports";
         if (load.residual_relative > 1e-10)
-          note += "; WARNING u = 0 is not an equilibrium (max|a(0)|/max|A0| = " + num(load.residual_relative) + ")";
+          note += "; WARNING u = 0 is not an equilibrium (max|a(0)|/max|A0| = " +
+                  format_number(load.residual_relative, 12) + ")";
         for (const CriticalLoad& r : load.results) {
           CriticalTensionCase c = make_case(type, form, h);
           c.result = r;

@@ -1,8 +1,12 @@
 """Headline claims of powell-symmetric-impact (results/powell-symmetric-impact/), run by tests/scripts/claims_test.py."""
 import bisect
 import math
+import os
+import sys
 
-from claims import approx, check
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+import impact_claims as ic  # noqa: E402
+from claims import approx, check  # noqa: E402
 
 FORMS = ("sph", "ncsph", "ssph", "tl")
 LABEL = {"sph": "basic SPH", "ncsph": "NCSPH", "ssph": "S-SPH", "tl": "TL-SPH"}
@@ -19,6 +23,12 @@ def claim_completed_counts_follow_runs_csv(r):
             check(r.key(f"{case}_{f}_completed") == want, f"{case} {f}: summary "
                   f"'{r.key(f'{case}_{f}_completed')}', runs.csv {want}")
     return f"{len(runs)} runs"
+
+
+def claim_first_stops_follow_runs_csv(r):
+    """Each formulation's 'first stop' per case is the status and time of its run that stopped first (runs.csv)."""
+    return ", ".join(ic.first_stops(r, FORMS, case, "{case}_{form}_first_stop")
+                     for case in ("compression", "expansion"))
 
 
 def claim_least_error_is_the_named_run(r):

@@ -22,6 +22,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "common"))
 sys.path.insert(0, HERE)
+from impact_post import CLUMP, GAP, SHARE, clumped_share, first_stop, rms, write_csv  # noqa: E402
 from plot_common import num, plt, read  # noqa: E402
 
 FORMS = ["sph", "ncsph", "ssph", "tl"]
@@ -32,18 +33,6 @@ COLOUR = {"sph": "tab:red", "ncsph": "tab:orange", "ssph": "tab:blue", "tl": "ta
 FE_MESHES = (100, 200, 400)  # elements per side of the 1 x 1 block (h_e 0.01, 0.005, 0.0025 cm)
 FE_SVK_MESH = 200
 RECORD_DT = 0.01  # us, FE record interval
-
-
-def write_csv(path, header, rows):
-    with open(path, "w") as f:
-        f.write(",".join(header) + "\n")
-        for r in rows:
-            f.write(",".join(x if isinstance(x, str) else f"{x:.10g}" for x in r) + "\n")
-
-
-def rms(x):
-    x = np.asarray(x)
-    return float(np.sqrt(np.mean(x * x))) if len(x) else math.nan
 
 
 def run_fe(summary, runs, snaps):
@@ -233,7 +222,6 @@ def extend_summary(out, summary, runs, err, fe, fe_err):
     g = lambda v: "-" if v is None or (isinstance(v, float) and math.isnan(v)) else f"{v:.3g}"  # noqa: E731
     finest = FE_MESHES[-1]
     dxs = sorted({num(r["dx"]) for r in runs})
-    table = {}
     for c in ("compression", "expansion"):
         lines = []
         for f in FORMS:
@@ -253,8 +241,7 @@ def extend_summary(out, summary, runs, err, fe, fe_err):
             fr = [r for r in runs if r["formulation"] == f and r["case"] == c]
             failed = [r for r in fr if r["status"] != "completed"]
             summary[f"{c}_{f}_completed"] = f"{len(fr) - len(failed)} of {len(fr)}"
-            summary[f"{c}_{f}_first_stop"] = (f"{failed[0]['status']} at t = {min(num(q['t_stop']) for q in failed):.2f} us"
-                                               if failed else "none")
+            summary[f"{c}_{f}_first_stop"] = first_stop(fr)
             fine = max(num(r["dx"]) for r in fr if num(r["dx"]) == min(dxs))
             summary[f"{c}_{f}_e_ke_finest"] = g(err[(f, c, fine)][0])
         for (m, n, cc), e in fe_err.items():
@@ -267,14 +254,7 @@ def extend_summary(out, summary, runs, err, fe, fe_err):
     summary["fe_seconds"] = f"{sum(r['seconds'] for r in fe.values()):.0f}"
 
 
-CLUMP, SHARE, GAP, LATE, OSCILLATES = 0.5, 0.01, 2.0, 2 / 3, 0.1  # thresholds of the statement table (README.md)
-
-
-def clumped_share(x, dx):
-    """Share of the particles whose nearest neighbour is closer than CLUMP dx."""
-    from scipy.spatial import cKDTree
-    d, _ = cKDTree(x).query(x, k=2)
-    return float(np.mean(d[:, 1] < CLUMP * dx))
+LATE, OSCILLATES = 2 / 3, 0.1  # thresholds of the statement table (README.md), with impact_post's
 
 
 def half_gap(x, x0):

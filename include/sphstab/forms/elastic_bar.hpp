@@ -57,6 +57,12 @@ namespace sphstab {
 
 enum class StrainGradient { Plain, Minus, Corrected };
 enum class StressDivergence { Plain, Plus, Minus, Adjoint };
+
+/// alpha of the divergence a_i = (1/rho) sum_j (sigma_j + alpha sigma_i) G_ij: Plus +1, Minus -1, Plain (and Adjoint,
+/// which the forms that take alpha reject first) 0.
+inline double divergence_alpha(StressDivergence d) {
+  return d == StressDivergence::Plus ? 1.0 : (d == StressDivergence::Minus ? -1.0 : 0.0);
+}
 enum class BarBoundary { Mirror, None };
 enum class LagrangianFrame { Total, Updated };
 

@@ -74,7 +74,8 @@ struct PowellImpactOptions {
 
 /// The problem's defaults for the NaN fields (the choices listed above):
 ///   symmetric: 1 x 1 cm, v0 0.06, t_end 6 us;  bar: 4 x 0.4 cm, split 0.25, v0 0.06, t_end 40 us;
-///   beam: 5 x 0.5 cm, section 0.08 (0.4 cm), v0 0.3, t_end 20 us.
+///   beam: 4 x 0.4 cm ("the physical dimensions and discretisation are as in figure 4.10": the bar's, Fig. 4.13),
+///   section 0.1 (0.4 cm), v0 0.3, t_end 20 us.
 PowellImpactOptions problem_defaults(PowellImpactOptions options);
 
 /// MCM's rate form for a formulation name [Powell2012, ch. 4]: "sph" (plain gradient, symmetric momentum (1.36)),
@@ -85,26 +86,41 @@ PowellImpactOptions problem_defaults(PowellImpactOptions options);
 RateFormOptions powell_formulation_options(const std::string& formulation);
 
 /// The scene (name "symmetric-impact", "bar-impact" or "clamped-beam"). Throws std::invalid_argument for a spacing or
-/// size outside check_length's range, sizes that are not whole multiples of dx (2 dx: the symmetric height), MemoryLimitError for
-/// a block whose estimated memory exceeds the limit (before allocating), a split outside (0, 1) or off the
-/// particle rows, a non-finite speed or t_end <= 0, clamp layers < 1 or leaving no free particle, and as the scheme.
+/// size outside check_length's range, sizes that are not whole multiples of dx (2 dx: the symmetric height),
+/// MemoryLimitError for a block whose estimated memory exceeds the limit (before allocating), a split outside (0, 1) or
+/// off the particle rows, a non-finite speed or t_end <= 0, clamp layers < 1 or leaving no free particle, and as the
+/// scheme.
 Scene<2> powell_impact_scene(const PowellImpactOptions& options);
 
 /// Particle A of the scene powell_impact_scene(options) builds (its index; throws as the scene).
 int impact_particle_a(const PowellImpactOptions& options);
 
-/// TL-SPH [Powell2012, ch. 4 §2.2] on a scene's particles: the linear total-Lagrangian form (forms/total_lagrangian.hpp)
-/// on the scheme's discretisation, with the scene's material (lambda = K - 2 mu / 3, plane strain) and initial
-/// velocities. The run is run_leapfrog(system, 0, v0, ...); positions are x0 + u. Throws std::invalid_argument for a
-/// scene whose fixed particles do not come last.
+/// Material model of TL-SPH on an impact scene.
+///   Linear            Powell's TL-SPH: small-strain linear elasticity, the kernel frozen at the initial positions
+///                     (forms/total_lagrangian.hpp); a rigid rotation strains it
+///   StVenantKirchhoff the same operators with finite strain, S = lambda tr(E) I + 2 mu E, P = F S
+///                     (forms/finite_strain_total_lagrangian.hpp: difference strain sum, Plus divergence; with Hooke's
+///                     law it is the linear form exactly): for the clamped beam's large deflection, where rotations
+///                     are not small
+enum class ImpactTLModel { Linear, StVenantKirchhoff };
+
+/// "linear" | "svk"; throws std::invalid_argument naming the valid choices.
+ImpactTLModel parse_impact_tl_model(const std::string& name);
+
+/// TL-SPH [Powell2012, ch. 4 §2.2] on a scene's particles: a total-Lagrangian form on the scheme's discretisation
+/// (`model`), with the scene's material (lambda = K - 2 mu / 3, plane strain) and initial velocities. The run is
+/// run_leapfrog(system, 0, v0, ...); positions are x0 + u (fixed particles stay at x0). Throws std::invalid_argument
+/// for a scene whose fixed particles do not come last.
 struct ImpactTotalLagrangian {
-  std::shared_ptr<const TotalLagrangianForm2D> form;
+  std::shared_ptr<const ForceFunction> form;
   SecondOrderSystem system;
   Eigen::VectorXd v0;  ///< free-particle velocities in DOF order
-  /// p = -K tr(grad u)_i of particle i with the TL gradient (grad u)_i = sum_j (u_j - u_i) V_j grad W(x0_i - x0_j):
-  /// the linear pressure, comparable with the rate form's K (rho / rho0 - 1) to first order in the strain.
+  /// Pressure of particle i with the TL gradient (Grad u)_i = sum_j (u_j - u_i) V_j grad W(x0_i - x0_j), F = I + Grad
+  /// u: Linear, p = -K tr(Grad u) (the linear pressure, comparable with the rate form's K (rho / rho0 - 1) to first
+  /// order in the strain); StVenantKirchhoff, p = K (1 / det F - 1), the rate form's K (rho / rho0 - 1) with rho / rho0
+  /// = 1 / det F.
   std::function<double(const Eigen::VectorXd& u, int particle)> pressure;
 };
-ImpactTotalLagrangian impact_total_lagrangian(const Scene<2>& scene);
+ImpactTotalLagrangian impact_total_lagrangian(const Scene<2>& scene, ImpactTLModel model = ImpactTLModel::Linear);
 
 }  // namespace sphstab

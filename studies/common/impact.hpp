@@ -1,0 +1,235 @@
+#pragma once
+// The runs of Powell's impact studies [Powell2012, ch. 4 §4] (powell-symmetric-impact, powell-bar-impact,
+// powell-clamped-beam): one case is a formulation on one scene (problems/powell_impact.hpp), run to its end or to its
+// first stop, with the scene's measures recorded at every step and snapshots of every particle at given times.
+//
+// Formulations: "sph", "ncsph", "ssph" (MCM's rate forms, powell_formulation_options) run with the staggered leap-frog
+// (algorithm 1.1) and the velocity smoothing (2.71); "tl" (Powell's linear TL-SPH) and "tl-svk" (the same operators
+// with St Venant-Kirchhoff finite strain) with the velocity-Verlet leap-frog; all at dt = TSSFAC h / c_P.
+//
+// Writes signals.csv (t, global KE and the study's measures per run), runs.csv (status, steps, CPU seconds),
+// snapshots.csv (every particle's initial and current position and pressure at the snapshot times) and order.csv
+// (every Settings::order_every: the share of clumped particles, those with a neighbour closer than 0.5 dx, and the
+// fragments of the bonds shorter than 1.5 dx, analysis/fragments.hpp: numerical fracture as a count).
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "common/study.hpp"
+#include "sphstab/analysis/fragments.hpp"
+#include "sphstab/forms/rate_form_state.hpp"
+#include "sphstab/integrate/leapfrog.hpp"
+#include "sphstab/integrate/rate_form_run.hpp"
+#include "sphstab/io/csv.hpp"
+#include "sphstab/problems/powell_impact.hpp"
+
+namespace sphstab::study::impact {
+
+struct Case {
+  std::string form;                    ///< sph | ncsph | ssph | tl | tl-svk
+  std::string name;                    ///< the case column (e.g. "compression")
+  PowellImpactOptions scene;           ///< problem, spacing, speed, t_end, ...; the scheme is set from `form`
+  std::vector<double> snapshot_times;  ///< empty: no snapshots
+};
+
+struct Settings {
+  std::vector<std::string> measures;  ///< scene measures recorded per step (signals.csv columns, in this order)
+  double tssfac = 0.8;                ///< MCM deck, card 2: dt = TSSFAC h / c_P
+  double xsph = 0.1;                  ///< Powell (2.71)
+  double order_every = 1.0;           ///< us between the particle-order records (order.csv)
+};
+
+/// The particle order of a state at one time: clumped share and fragments.
+struct Order {
+  double t = 0, clumped = 0, largest = 0;  ///< largest: the largest fragment's share of the particles
+  int fragments = 0;
+};
+
+inline Order particle_order(const Eigen::Matrix2Xd& x, double dx, double t) {
+  const double n = static_cast<double>(x.cols());
+  const Fragments near = find_fragments(x, 0.5 * dx);  // a particle with a neighbour closer than 0.5 dx is clumped
+  long single = 0;
+  for (int size : near.sizes) single += size == 1;
+  const Fragments bonds = find_fragments(x, 1.5 * dx);
+  return {.t = t,
+          .clumped = (n - static_cast<double>(single)) / n,
+          .largest = bonds.largest() / n,
+          .fragments = bonds.count()};
+}
+
+struct Snapshot {
+  double t = 0;
+  Eigen::Matrix2Xd x;
+  Eigen::VectorXd p;
+};
+
+struct Outcome {
+  RunResult run;
+  int particles = 0, particle_a = -1;
+  Eigen::Vector2d x_a = Eigen::Vector2d::Zero();
+  Eigen::Matrix2Xd x0;  ///< initial positions (runs with snapshots)
+  double cpu = 0;
+  std::vector<double> t, ke;
+  std::vector<std::vector<double>> values;  ///< per record, one value per Settings::measures
+  std::vector<Snapshot> snaps;
+  std::vector<Order> order;
+};
+
+inline bool is_tl(const std::string& form) { return form == "tl" || form == "tl-svk"; }
+
+/// Records the particle order at the first record at or after each multiple of `every` (not of a non-finite state,
+/// which the run reports as its stop).
+inline void maybe_order(Outcome& o, const Eigen::Matrix2Xd& x, double dx, double t, double every) {
+  if (t >= every * static_cast<double>(o.order.size()) - 1e-9 * every && x.allFinite())
+    o.order.push_back(particle_order(x, dx, t));
+}
+
+/// Takes a snapshot at the record nearest each wanted time (within dt / 2).
+template <class Fields>
+void maybe_snapshot(Outcome& o, const std::vector<double>& wanted, double t, double dt, Fields fields) {
+  for (double w : wanted)
+    if (t >= w - 0.5 * dt && t < w + 0.5 * dt) {
+      Snapshot s{t, {}, {}};
+      fields(s);
+      o.snaps.push_back(std::move(s));
+    }
+}
+
+inline Outcome run_case(const Case& c, const Settings& settings) {
+  Outcome o;
+  const bool tl = is_tl(c.form);
+  PowellImpactOptions po = c.scene;
+  po.scheme = powell_formulation_options(tl ? "sph" : c.form);
+  const Scene<2> scene = powell_impact_scene(po);
+  const int a = impact_particle_a(po);
+  const auto& disc = scene.scheme->discretisation();
+  o.particle_a = a;
+  o.particles = disc.size();
+  o.x_a = disc.particles.x.row(a).transpose();
+  if (!c.snapshot_times.empty()) o.x0 = disc.particles.x.transpose();
+  std::vector<const SceneMeasure<2>*> measures;
+  for (const std::string& m : settings.measures) measures.push_back(&scene.measure(m));
+  const double dt = scene.time_step(settings.tssfac);
+  const double cpu0 = thread_cpu_seconds();
+  if (!tl) {
+    const RateFormScheme<2>& scheme = *scene.scheme;
+    RateFormRunOptions ro{.dt = dt,
+                          .t_end = scene.t_end,
+                          .integrator = RateFormIntegrator::Leapfrog,
+                          .leapfrog_xsph = settings.xsph,
+                          .neighbour_skin = scene.neighbour_skin};
+    ro.observer = [&](long, double t, const Eigen::VectorXd& y) {
+      const Eigen::Matrix2Xd x = rate_form_positions(scheme, y);
+      o.t.push_back(t);
+      std::vector<double> row;
+      for (const auto* m : measures) row.push_back(m->value(x, y));
+      o.values.push_back(std::move(row));
+      maybe_order(o, x, c.scene.spacing, t, settings.order_every);
+      maybe_snapshot(o, c.snapshot_times, t, ro.dt, [&](Snapshot& s) {
+        s.x = x;
+        s.p = scheme.material().bulk_modulus *
+              (rate_form_densities(scheme, y).array() / scheme.material().density - 1).matrix();
+      });
+    };
+    const RateFormRunResult r = run_rate_form(scheme, scene.y0, ro);
+    o.run = r;
+    o.ke = r.kinetic_energy;
+  } else {
+    const ImpactTotalLagrangian m =
+        impact_total_lagrangian(scene, c.form == "tl" ? ImpactTLModel::Linear : ImpactTLModel::StVenantKirchhoff);
+    const Eigen::Matrix2Xd x0 = disc.particles.x.transpose();
+    LeapfrogOptions lo;
+    lo.dt = dt;
+    lo.t_end = scene.t_end;
+    lo.record_every = 1;
+    lo.observe_every = 1;
+    // The TL state as the scene's measures read it: positions x0 + u, the velocity of A, and TL's own pressure at A
+    // (the rate-form state's density is not a TL variable).
+    lo.observer = [&](const StepView& v) {
+      Eigen::Matrix2Xd x = x0;
+      for (int i = 0; i < disc.size(); ++i)
+        if (disc.free_slot[i] >= 0) x.col(i) += v.u.segment<2>(2 * disc.free_slot[i]);
+      o.t.push_back(v.time);
+      std::vector<double> row;
+      for (const std::string& name : settings.measures) {
+        if (name == "pressure_A")
+          row.push_back(m.pressure(v.u, a));
+        else if (name == "speed_A")
+          row.push_back(v.v.segment<2>(2 * disc.free_slot[a]).norm());
+        else
+          row.push_back(scene.measure(name).value(x, scene.y0));  // length, deflection: positions only
+      }
+      o.values.push_back(std::move(row));
+      maybe_order(o, x, c.scene.spacing, v.time, settings.order_every);
+      maybe_snapshot(o, c.snapshot_times, v.time, lo.dt, [&](Snapshot& s) {
+        s.x = x;
+        s.p.resize(disc.size());
+        for (int i = 0; i < disc.size(); ++i) s.p[i] = m.pressure(v.u, i);
+      });
+    };
+    const LeapfrogResult r = run_leapfrog(m.system, Eigen::VectorXd::Zero(m.form->dofs()), m.v0, lo);
+    o.run = r;
+    for (const Diagnostics& d : r.history) o.ke.push_back(d.kinetic);
+  }
+  o.cpu = thread_cpu_seconds() - cpu0;
+  if (o.ke.size() != o.t.size())
+    throw std::runtime_error(c.form + " " + c.name + ": " + std::to_string(o.ke.size()) + " energy records for " +
+                             std::to_string(o.t.size()) + " observed states");
+  return o;
+}
+
+/// Runs every case side by side on `threads` threads (each run on one), printing a line per run.
+inline std::vector<Outcome> run_cases(const std::vector<Case>& cases, const Settings& settings, int threads) {
+  std::vector<Outcome> outcomes(cases.size());
+  parallel_for(cases.size(), threads, [&](std::size_t k) {
+    const Case& c = cases[k];
+    outcomes[k] = run_case(c, settings);
+    std::fprintf(stderr, "  %-6s %-11s dx %-7g: %s (%.1f s CPU)\n", c.form.c_str(), c.name.c_str(), c.scene.spacing,
+                 outcomes[k].run.message.c_str(), outcomes[k].cpu);
+  });
+  return outcomes;
+}
+
+/// signals.csv, runs.csv, snapshots.csv and order.csv in `out`; returns the number of completed runs.
+inline int write_runs(const std::string& out, const std::vector<Case>& cases, const std::vector<Outcome>& outcomes,
+                      const Settings& settings) {
+  std::vector<std::string> columns{"formulation", "case", "dx", "t", "kinetic_energy"};
+  columns.insert(columns.end(), settings.measures.begin(), settings.measures.end());
+  CsvWriter signals(out + "/signals.csv", columns, false);
+  CsvWriter runs(out + "/runs.csv", {"formulation", "case", "dx", "v0", "particles", "particle_A", "x_A", "y_A", "dt",
+                                     "steps", "status", "t_stop", "cpu_seconds", "message"});
+  CsvWriter snaps(out + "/snapshots.csv",
+                  {"formulation", "case", "dx", "t", "particle", "x0", "y0", "x", "y", "pressure"}, false);
+  CsvWriter order(out + "/order.csv",
+                  {"formulation", "case", "dx", "t", "clumped_share", "fragments", "largest_fragment_share"});
+  int completed = 0;
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const Case& c = cases[k];
+    const Outcome& o = outcomes[k];
+    const double dx = c.scene.spacing;
+    for (std::size_t r = 0; r < o.t.size(); ++r) {
+      std::vector<CsvCell> row{c.form, c.name, dx, o.t[r], o.ke[r]};
+      for (double v : o.values[r]) row.push_back(v);
+      signals.row(row);
+    }
+    runs.row({c.form, c.name, dx, c.scene.speed, o.particles, o.particle_a, o.x_a.x(), o.x_a.y(), o.run.dt, o.run.steps,
+              run_status_name(o.run.status), o.run.time, o.cpu, o.run.message});
+    completed += o.run.completed();
+    for (const Order& q : o.order) order.row({c.form, c.name, dx, q.t, q.clumped, q.fragments, q.largest});
+    for (const Snapshot& s : o.snaps)
+      for (int i = 0; i < s.x.cols(); ++i)
+        snaps.row({c.form, c.name, dx, s.t, i, o.x0(0, i), o.x0(1, i), s.x(0, i), s.x(1, i), s.p[i]});
+  }
+  return completed;
+}
+
+/// "0.05, 0.025, ..." for the summary.
+inline std::string list(const std::vector<double>& values) {
+  std::string t;
+  for (double v : values) t += (t.empty() ? "" : ", ") + sig(v);
+  return t;
+}
+
+}  // namespace sphstab::study::impact

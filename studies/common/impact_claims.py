@@ -1,0 +1,106 @@
+"""Claims shared by the impact studies' claims.py (powell-bar-impact, powell-clamped-beam): each takes the study's
+committed Results and the names of its signal and error columns."""
+import bisect
+import math
+
+from claims import approx, check
+
+LABEL = {"sph": "basic SPH", "ncsph": "NCSPH", "ssph": "S-SPH", "tl": "TL-SPH", "tl-svk": "TL-SPH (SVK)"}
+
+
+def completed_counts(r, forms):
+    """summary '<form>_completed' = 'k of n' with k the runs of status 'completed' in runs.csv."""
+    runs = r.csv("runs.csv")
+    for f in forms:
+        rows = [x for x in runs if x["formulation"] == f]
+        want = f"{sum(x['status'] == 'completed' for x in rows)} of {len(rows)}"
+        key = f"{f.replace('-', '_')}_completed"
+        check(r.key(key) == want, f"{f}: summary '{r.key(key)}', runs.csv {want}")
+    return f"{len(runs)} runs"
+
+
+def first_stops(r, forms, case=None, key="{form}_first_stop"):
+    """summary '<form>_first_stop' names the status and time of the run that stopped first in runs.csv ('none' when
+    all completed)."""
+    runs = r.csv("runs.csv")
+    n = 0
+    for f in forms:
+        failed = [x for x in runs if x["formulation"] == f and x["status"] != "completed"
+                  and (case is None or x["case"] == case)]
+        first = min(failed, key=lambda x: x["t_stop"]) if failed else None
+        want = f"{first['status']} at t = {first['t_stop']:.2f} us" if first else "none"
+        k = key.format(form=f.replace("-", "_"), case=case)
+        check(r.key(k) == want, f"{k}: summary '{r.key(k)}', runs.csv {want}")
+        n += first is not None
+    return f"{n} formulations with a stopped run"
+
+
+def least_error_named(r, error):
+    """summary 'best_<error>' names the completed run of least <error> in errors.csv, and its value."""
+    done = [x for x in r.csv("errors.csv") if x["status"] == "completed" and not math.isnan(x[error])]
+    best = min(done, key=lambda x: x[error])
+    want = f"{LABEL[best['formulation']]} at dx = {best['dx']:g}"
+    check(r.key(f"best_{error}") == want, f"summary names '{r.key(f'best_{error}')}', errors.csv {want}")
+    approx(r.num(f"best_{error}_value"), best[error], f"least {error}", rel=5e-3)
+    return f"{want}: {best[error]:.3g}"
+
+
+def fe_error_below_sph(r, error, model, sides):
+    """The FE reference's own error (fe_errors.csv, the mesh `sides[1]` against the finest; a bound on the finest's
+    own error for a converging mesh) is below every completed SPH run's (a run that stopped is measured over its
+    shorter window only), and the coarser mesh `sides[0]` has the larger one."""
+    fe = r.csv("fe_errors.csv")
+    coarse, mid = (next(x[error] for x in fe if x["model"] == model and abs(x["element_side"] - s) < 1e-12)
+                   for s in sides)
+    least = min(x[error] for x in r.csv("errors.csv") if x["status"] == "completed" and not math.isnan(x[error]))
+    check(mid < least, f"FE {model} h_e {sides[1]} {error} {mid} >= least SPH {error} {least}")
+    check(coarse > mid, f"FE {error} does not decrease with the mesh: {sides[0]}: {coarse}, {sides[1]}: {mid}")
+    return f"FE {mid:.3g} < SPH {least:.3g}"
+
+
+def _interp(ts, ys, t):
+    k = bisect.bisect_left(ts, t)
+    if k == 0:
+        return ys[0]
+    if k >= len(ts):
+        return ys[-1]
+    w = (t - ts[k - 1]) / (ts[k] - ts[k - 1])
+    return ys[k - 1] + w * (ys[k] - ys[k - 1])
+
+
+def error_recomputed(r, error, signal, fe_model, fe_signal, change=False):
+    """<error> of every run at the snapshot resolution, recomputed from signals.csv (column `signal`) and the FE
+    reference's series in fe_signals.csv (column `fe_signal`, formatted with particle A's position), scaled by the
+    FE series' largest magnitude, equals errors.csv's (to 1e-6). change: compare signal(t) - signal(0)."""
+    dx = r.num("snapshot_spacing")
+    runs = {x["formulation"]: x for x in r.csv("runs.csv") if abs(x["dx"] - dx) < 1e-12}
+    sig = r.csv("signals.csv")
+    fe = [q for q in r.csv("fe_signals.csv") if q["model"] == fe_model]
+    side = min(q["element_side"] for q in fe)
+    fe = [q for q in fe if q["element_side"] == side]
+    n = 0
+    for x in r.csv("errors.csv"):
+        if abs(x["dx"] - dx) > 1e-12:
+            continue
+        a = runs[x["formulation"]]
+        column = fe_signal.format(x=f"{a['x_A']:g}", y=f"{a['y_A']:g}")
+        ts, ys = [q["t"] for q in fe], [q[column] for q in fe]
+        if change:
+            ys = [y - ys[0] for y in ys]
+        s = [q for q in sig if q["formulation"] == x["formulation"] and abs(q["dx"] - dx) < 1e-12
+             and q["t"] <= x["t_stop"] + 1e-12]
+        y0 = s[0][signal] if change else 0.0
+        e = math.sqrt(sum((q[signal] - y0 - _interp(ts, ys, q["t"])) ** 2 for q in s) / len(s)) / max(map(abs, ys))
+        approx(e, x[error], f"{x.where()} {error}", rel=1e-6)
+        n += 1
+    return f"{n} runs"
+
+
+def mcm_time_step(r):
+    """Every run's dt is TSSFAC h / c_P (rounded down to t_end / steps: within 1 %), h = 1.3 dx, c_P of steel."""
+    cp = math.sqrt((2.1 * 0.3 / (1.3 * 0.4) + 2 * 2.1 / 2.6) / 7.8)
+    tssfac = r.num("tssfac")
+    for x in r.csv("runs.csv"):
+        dt = tssfac * 1.3 * x["dx"] / cp
+        check(dt / 1.01 <= x["dt"] <= dt * (1 + 1e-9), f"{x.where()}: dt {x['dt']}, TSSFAC h / c_P = {dt}")
+    return f"c_P = {cp:.4f} cm/us"
