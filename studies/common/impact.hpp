@@ -232,4 +232,20 @@ inline std::string list(const std::vector<double>& values) {
   return t;
 }
 
+/// The summary keys every impact study writes: the runs, the resolutions, the speed and the integrator settings.
+inline void set_run_keys(Summary& s, std::size_t runs, int completed, const std::vector<double>& spacings,
+                         double snapshot_spacing, double speed, const Settings& settings, double t_end, bool quick,
+                         Clock::time_point wall0) {
+  s.set("runs", static_cast<long>(runs));
+  s.set("completed", completed);
+  s.set("spacings", list(spacings));
+  s.set("snapshot_spacing", snapshot_spacing);
+  s.set("speed", speed);
+  s.set("tssfac", settings.tssfac);
+  s.set("xsph", settings.xsph);
+  s.set("t_end", t_end);
+  s.set("quick", quick ? "yes" : "no");
+  s.set("wall_seconds", seconds_since(wall0));
+}
+
 }  // namespace sphstab::study::impact

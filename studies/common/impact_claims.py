@@ -45,6 +45,21 @@ def least_error_named(r, error):
     return f"{want}: {best[error]:.3g}"
 
 
+def pareto_front_recomputed(r, error):
+    """summary 'pareto_front' lists exactly the completed runs of errors.csv that no other completed run beats in
+    both CPU seconds and <error>, cheapest first."""
+    done = sorted((x for x in r.csv("errors.csv") if x["status"] == "completed"),
+                  key=lambda x: (x["cpu_seconds"], x[error]))
+    front, best = [], math.inf
+    for x in done:
+        if x[error] < best:
+            front.append(f"{LABEL[x['formulation']]} dx {x['dx']:g} ({x['cpu_seconds']:.2g} s, {x[error]:.3g})")
+            best = x[error]
+    want = "; ".join(front)
+    check(r.key("pareto_front") == want, f"summary '{r.key('pareto_front')}', errors.csv '{want}'")
+    return f"{len(front)} runs on the front"
+
+
 def fe_error_below_sph(r, error, model, sides):
     """The FE reference's own error (fe_errors.csv, the mesh `sides[1]` against the finest; a bound on the finest's
     own error for a converging mesh) is below every completed SPH run's (a run that stopped is measured over its
@@ -58,7 +73,8 @@ def fe_error_below_sph(r, error, model, sides):
     return f"FE {mid:.3g} < SPH {least:.3g}"
 
 
-def _interp(ts, ys, t):
+def interp(ts, ys, t):
+    """ys(t) by linear interpolation in the sorted ts, constant beyond the ends."""
     k = bisect.bisect_left(ts, t)
     if k == 0:
         return ys[0]
@@ -90,7 +106,7 @@ def error_recomputed(r, error, signal, fe_model, fe_signal, change=False):
         s = [q for q in sig if q["formulation"] == x["formulation"] and abs(q["dx"] - dx) < 1e-12
              and q["t"] <= x["t_stop"] + 1e-12]
         y0 = s[0][signal] if change else 0.0
-        e = math.sqrt(sum((q[signal] - y0 - _interp(ts, ys, q["t"])) ** 2 for q in s) / len(s)) / max(map(abs, ys))
+        e = math.sqrt(sum((q[signal] - y0 - interp(ts, ys, q["t"])) ** 2 for q in s) / len(s)) / max(map(abs, ys))
         approx(e, x[error], f"{x.where()} {error}", rel=1e-6)
         n += 1
     return f"{n} runs"

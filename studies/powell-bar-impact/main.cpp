@@ -58,20 +58,12 @@ int main(int argc, char** argv) try {
   const int completed = study::impact::write_runs(out, cases, outcomes, settings);
   const PowellImpactOptions bar = problem_defaults({.problem = ImpactProblem::Bar});
   study::Summary s;
-  s.set("runs", static_cast<long>(cases.size()));
-  s.set("completed", completed);
-  s.set("spacings", study::impact::list(spacings));
-  s.set("snapshot_spacing", snapshot_spacing);
+  study::impact::set_run_keys(s, cases.size(), completed, spacings, snapshot_spacing, speed, settings, t_end, quick,
+                              wall0);
   s.set("snapshot_times", study::impact::list(snapshot_times));
   s.set("length", bar.length);
   s.set("height", bar.height);
   s.set("split", bar.split);
-  s.set("speed", speed);
-  s.set("tssfac", settings.tssfac);
-  s.set("xsph", settings.xsph);
-  s.set("t_end", t_end);
-  s.set("quick", quick ? "yes" : "no");
-  s.set("wall_seconds", study::seconds_since(wall0));
   s.write(out);
   return 0;
 } catch (const std::exception& e) {

@@ -35,6 +35,11 @@ def claim_deflection_error_recomputed(r):
     return ic.error_recomputed(r, "e_defl", "deflection", "linear", "deflection_at_{x}_{y}")
 
 
+def claim_pareto_front_recomputed(r):
+    """The named fastest run for each attainable e_defl is the Pareto front of errors.csv."""
+    return ic.pareto_front_recomputed(r, "e_defl")
+
+
 def claim_rate_form_runs_are_mcms_configuration(r):
     """dt = TSSFAC h / c_P in every run."""
     return ic.mcm_time_step(r)

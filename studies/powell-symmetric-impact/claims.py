@@ -1,5 +1,4 @@
 """Headline claims of powell-symmetric-impact (results/powell-symmetric-impact/), run by tests/scripts/claims_test.py."""
-import bisect
 import math
 import os
 import sys
@@ -56,16 +55,6 @@ def claim_fe_error_is_below_every_sph_difference(r):
     return f"FE {worst_fe:.3g} < SPH {least_sph:.3g}"
 
 
-def _interp(ts, ys, t):
-    k = bisect.bisect_left(ts, t)
-    if k == 0:
-        return ys[0]
-    if k >= len(ts):
-        return ys[-1]
-    w = (t - ts[k - 1]) / (ts[k] - ts[k - 1])
-    return ys[k - 1] + w * (ys[k] - ys[k - 1])
-
-
 def claim_kinetic_energy_error_recomputed(r):
     """e_ke of every run at the snapshot resolution, recomputed here from signals.csv and the FE reference's own
     series in fe_signals.csv (every second FE record: agreement to 1 %), equals errors.csv's."""
@@ -83,7 +72,7 @@ def claim_kinetic_energy_error_recomputed(r):
         ts, ys = [q["t"] for q in fe], [q["kinetic_energy"] for q in fe]
         s = [q for q in sig if q["formulation"] == x["formulation"] and q["case"] == x["case"]
              and abs(q["dx"] - dx) < 1e-12 and q["t"] <= x["t_stop"] + 1e-12]
-        e = math.sqrt(sum((q["kinetic_energy"] - _interp(ts, ys, q["t"])) ** 2 for q in s) / len(s)) / ke0
+        e = math.sqrt(sum((q["kinetic_energy"] - ic.interp(ts, ys, q["t"])) ** 2 for q in s) / len(s)) / ke0
         approx(e, x["e_ke"], f"{x.where()} e_ke", rel=1e-2)
         n += 1
     return f"{n} runs"
@@ -91,9 +80,4 @@ def claim_kinetic_energy_error_recomputed(r):
 
 def claim_rate_form_runs_are_mcms_configuration(r):
     """Every run's dt is TSSFAC h / c_P (rounded down to t_end / steps: within 1 %), h = 1.3 dx, c_P of steel."""
-    cp = math.sqrt((2.1 * 0.3 / (1.3 * 0.4) + 2 * 2.1 / 2.6) / 7.8)
-    tssfac = r.num("tssfac")
-    for x in r.csv("runs.csv"):
-        dt = tssfac * 1.3 * x["dx"] / cp
-        check(dt / 1.01 <= x["dt"] <= dt * (1 + 1e-9), f"{x.where()}: dt {x['dt']}, TSSFAC h / c_P = {dt}")
-    return f"c_P = {cp:.4f} cm/us"
+    return ic.mcm_time_step(r)

@@ -58,16 +58,8 @@ int main(int argc, char** argv) try {
   const auto outcomes = study::impact::run_cases(cases, settings, threads);
   const int completed = study::impact::write_runs(out, cases, outcomes, settings);
   study::Summary s;
-  s.set("runs", static_cast<long>(cases.size()));
-  s.set("completed", completed);
-  s.set("spacings", study::impact::list(spacings));
-  s.set("snapshot_spacing", snapshot_spacing);
-  s.set("speed", speed);
-  s.set("tssfac", settings.tssfac);
-  s.set("xsph", settings.xsph);
-  s.set("t_end", t_end);
-  s.set("quick", quick ? "yes" : "no");
-  s.set("wall_seconds", study::seconds_since(wall0));
+  study::impact::set_run_keys(s, cases.size(), completed, spacings, snapshot_spacing, speed, settings, t_end, quick,
+                              wall0);
   s.write(out);
   return 0;
 } catch (const std::exception& e) {
