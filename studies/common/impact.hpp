@@ -153,13 +153,13 @@ inline Outcome run_case(const Case& c, const Settings& settings) {
         if (disc.free_slot[i] >= 0) x.col(i) += v.u.segment<2>(2 * disc.free_slot[i]);
       o.t.push_back(v.time);
       std::vector<double> row;
-      for (const std::string& name : settings.measures) {
-        if (name == "pressure_A")
+      for (const SceneMeasure<2>* measure : measures) {  // looked up once, before the run
+        if (measure->name == "pressure_A")
           row.push_back(m.pressure(v.u, a));
-        else if (name == "speed_A")
+        else if (measure->name == "speed_A")
           row.push_back(v.v.segment<2>(2 * disc.free_slot[a]).norm());
         else
-          row.push_back(scene.measure(name).value(x, scene.y0));  // length, deflection: positions only
+          row.push_back(measure->value(x, scene.y0));  // length, deflection: positions only
       }
       o.values.push_back(std::move(row));
       maybe_order(o, x, c.scene.spacing, v.time, settings.order_every);
