@@ -40,6 +40,7 @@ from ._sphstab import (  # noqa: F401  (re-exported)
     material_from_youngs,
     max_memory,
     neighbours,
+    powell_impact_scene,
     read_particle_state,
     run,
     set_max_memory,
@@ -51,7 +52,7 @@ __all__ = [
     "rate_form_dispersion",
     "critical_tension", "CriticalTensionCase", "detection_floor", "fourier_symbol_1d", "gms_plate_scene",
     "gms_rings_scene", "gms_slab_scene", "Kernel", "kernel_names", "lattice", "material_from_youngs", "MemoryLimitError",
-    "NeighbourList", "neighbours", "operators", "ParticleSet1D", "ParticleSet2D", "ParticleSet3D",
+    "NeighbourList", "neighbours", "operators", "ParticleSet1D", "ParticleSet2D", "ParticleSet3D", "powell_impact_scene",
     "RateFormOptions", "RateFormTimeStep", "read_particle_state", "run", "RunResult", "Scene2D", "StabilityVerdict",
     "state_stability", "StateStability", "table", "write_modes_vtk",
 ]

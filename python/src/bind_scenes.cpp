@@ -1,4 +1,5 @@
-// Scenes (problems/scene.hpp: the GMS plate, rings and slab of problems/gms_scenes.hpp) and the run loop
+// Scenes (problems/scene.hpp: the GMS plate, rings and slab of problems/gms_scenes.hpp, Powell's impact problems of
+// problems/powell_impact.hpp) and the run loop
 // (integrate/rate_form_run.hpp, run_rate_form) with a Python observer: progress, diagnostics and early stop.
 #include <cmath>
 #include <limits>
@@ -14,6 +15,7 @@
 #include "sphstab/integrate/run.hpp"
 #include "sphstab/integrate/run_observer.hpp"
 #include "sphstab/problems/gms_scenes.hpp"
+#include "sphstab/problems/powell_impact.hpp"
 #include "sphstab/problems/scene.hpp"
 
 namespace sphstab::python {
@@ -70,7 +72,7 @@ class PythonObserver final : public RunObserver {
 };
 
 RateFormRunResult run_scene(const Scene2& s, double dt, double cfl, double t_end, const std::string& integrator,
-                            int record_every, double energy_growth, py::object observer) {
+                            int record_every, double energy_growth, double xsph, py::object observer) {
   RateFormRunOptions o;
   if (!std::isnan(dt) && !std::isnan(cfl)) throw std::invalid_argument("run: give dt or cfl, not both");
   o.dt = !std::isnan(dt) ? dt : s.time_step(std::isnan(cfl) ? 0.5 : cfl);
@@ -80,6 +82,7 @@ RateFormRunResult run_scene(const Scene2& s, double dt, double cfl, double t_end
   o.yield_stress = s.yield_stress;
   o.neighbour_skin = s.neighbour_skin;
   select_rate_form_integrator(o, integrator);
+  o.leapfrog_xsph = xsph;  // run_rate_form refuses it off the leap-frog, or negative
   std::optional<PythonObserver> py_observer;
   if (!observer.is_none()) {
     if (!PyCallable_Check(observer.ptr())) throw std::invalid_argument("run: observer must be callable");
@@ -171,6 +174,30 @@ void bind_scenes(py::module_& m) {
       py::arg("acceleration") = 5e-6, py::arg("yield_stress") = 0.03, py::arg("eps") = 0.3,
       "GMS 2001 §7.3: a von Mises slab pulled at both ends (driven end zones) until it necks.");
 
+  m.def(
+      "powell_impact_scene",
+      [](const std::string& problem, double spacing, const std::string& formulation, double speed, double t_end) {
+        PowellImpactOptions o;
+        o.problem = parse_impact_problem(problem);
+        o.spacing = spacing;
+        o.speed = speed;
+        o.t_end = t_end;
+        o.scheme = powell_formulation_options(formulation);
+        if (o.problem == ImpactProblem::Beam) {  // the 0.1 cm clamp of the clamped-beam study, in whole layers
+          const double layers = 0.1 / spacing;
+          if (!(std::abs(layers - std::round(layers)) <= 1e-9 * layers) || std::round(layers) < 1)
+            throw std::invalid_argument("powell_impact_scene: spacing " + std::to_string(spacing) +
+                                        " does not divide the beam's 0.1 cm clamp");
+          o.clamp_layers = static_cast<int>(std::lround(layers));
+        }
+        return powell_impact_scene(o);
+      },
+      py::arg("problem"), py::arg("spacing") = 0.02, py::arg("formulation") = "ssph",
+      py::arg("speed") = std::nan(""), py::arg("t_end") = std::nan(""),
+      "Powell 2012 ch. 4 §4: 'symmetric', 'bar' or 'beam' in g-cm-us (steel), with MCM's rate form 'sph', 'ncsph' "
+      "or 'ssph' (speed, t_end: NaN for the problem's defaults). Run it as Powell did: run(scene, cfl=0.8, "
+      "integrator='leapfrog', xsph=0.1).");
+
   py::class_<RateFormRunResult>(m, "RunResult", "A run's outcome (integrate/run.hpp): status, series, last state.")
       .def_property_readonly("status", [](const RateFormRunResult& r) { return run_status_name(r.status); })
       .def_readonly("message", &RateFormRunResult::message)
@@ -184,9 +211,11 @@ void bind_scenes(py::module_& m) {
       .def_readonly("y", &RateFormRunResult::y);
   m.def("run", &run_scene, py::arg("scene"), py::arg("dt") = std::nan(""), py::arg("cfl") = std::nan(""),
         py::arg("t_end") = std::nan(""), py::arg("integrator") = "pc", py::arg("record_every") = 1,
-        py::arg("energy_growth") = std::numeric_limits<double>::infinity(), py::arg("observer") = py::none(),
+        py::arg("energy_growth") = std::numeric_limits<double>::infinity(), py::arg("xsph") = 0.0,
+        py::arg("observer") = py::none(),
         "Runs a scene with the run loop (run_rate_form): dt, or cfl (default 0.5) times h / c_P; t_end (default the "
-        "scene's); observer(step, time, y) at every record, a truthy return (or a reason string) stops the run.");
+        "scene's); integrator 'pc', 'pc1' or 'leapfrog' (xsph: Powell's velocity smoothing (2.71) on the leap-frog); "
+        "observer(step, time, y) at every record, a truthy return (or a reason string) stops the run.");
 }
 
 }  // namespace sphstab::python

@@ -193,7 +193,9 @@ void bind_stability(py::module_& m) {
                 return "ssph";
             }
           },
-          [](RateFormOptions& o, const std::string& s) { o.momentum = parse_rate_form_momentum(s); });
+          [](RateFormOptions& o, const std::string& s) { o.momentum = parse_rate_form_momentum(s); })
+      .def_readwrite("first_step_shepard", &RateFormOptions::first_step_shepard,
+                     "S-SPH: the means of the first-step Shepard gradient, Powell (4.18)");
 
   py::class_<StabilityVerdict>(m, "StabilityVerdict",
                                "Semi-discrete growth gamma_J, the integrator's map growth gamma_M at dt, the detection "

@@ -1,4 +1,4 @@
-"""Scenes and the run loop from Python: the run is the CLI's `sphstab scene` run, the observer sees every record and
+"""Scenes and the run loop from Python (GMS's and Powell's): the run is the CLI's `sphstab scene` run, the observer sees every record and
 can stop the run, an exception in it stops the run and reaches the caller, and a scene's state goes straight into
 state_stability."""
 import numpy as np
@@ -19,6 +19,24 @@ def test_rings_run_equals_the_cli_scene(cli):
     assert np.array_equal(np.array(r.times), np.array([float(x["t"]) for x in rows]))
     # The same scene, scheme, integrator and step: the same bits (the CLI prints shortest round-trip decimals).
     assert np.array_equal(np.array(r.kinetic_energy), np.array([float(x["kinetic"]) for x in rows]))
+
+
+def test_powell_bar_impact_equals_the_cli_scene(cli):
+    # Powell's bar impact with basic SPH at dx = 0.1 cm, as the CLI runs it: leap-frog, XSPH (2.71) 0.1, TSSFAC 0.8.
+    rc, out, err = cli("scene", "bar-impact", "--formulation", "sph", "--dp", 0.1, "--t-end", 2, "--record-every", 1)
+    assert rc == 0, err
+    rows = [r for r in csv_rows(out) if r["status"] == ""]
+    scene = sphstab.powell_impact_scene("bar", spacing=0.1, formulation="sph", t_end=2.0)
+    assert scene.name == "bar-impact" and scene.measures[0] == "length"
+    r = sphstab.run(scene, cfl=0.8, integrator="leapfrog", xsph=0.1)
+    assert r.status == "completed"
+    assert np.array_equal(np.array(r.kinetic_energy), np.array([float(x["kinetic"]) for x in rows]))
+    with pytest.raises(ValueError, match="clamp"):
+        sphstab.powell_impact_scene("beam", spacing=0.03)
+    with pytest.raises(ValueError, match="formulation"):
+        sphstab.powell_impact_scene("bar", formulation="tl")
+    with pytest.raises(ValueError):
+        sphstab.run(scene, integrator="pc", xsph=0.1)  # Powell's XSPH belongs to the leap-frog
 
 
 def test_observer_sees_every_record_and_stops_the_run():

@@ -56,9 +56,12 @@ void add_rate_form_options(CLI::App& cmd, RateFormArgs& a, bool lists) {
   cmd.add_option("--momentum", a.momentum,
                  "momentum equation: symmetric (Powell 1.36) | antisymmetric | cij (4.10) | ssph (S-SPH, algorithm "
                  "4.2) (default " +
-                     a.momentum + "; fixed layers: 2 supports for ncsph, antisymmetric, cij, 3 for ssph)");
+                     a.momentum + "; fixed layers: 2 supports for ncsph, antisymmetric, cij, 3 for ssph, 4 with "
+                     "--first-step-shepard)");
   cmd.add_option("--switch-rule", a.switch_rule,
                  "S-SPH switch: tension (4.15-4.17) | as-printed | always | never (default " + a.switch_rule + ")");
+  cmd.add_flag("--first-step-shepard", a.first_step_shepard,
+               "S-SPH: the means of algorithm 4.1 of the first-step Shepard gradient, Powell (4.18) (MCM's; default off)");
   cmd.add_option("--counting", a.counting,
                  "n_i of the cij/ssph means: actual | boundary-level (Powell Fig. 4.3) (default " + a.counting + ")");
   cmd.add_option("--pair-loop", a.pair_loop,
@@ -123,6 +126,8 @@ RateFormSetup parse_rate_form_args(const RateFormArgs& a, const std::string& com
   refuse_if_idle(a, c, "--alpha", viscous, "with --viscosity off");
   refuse_if_idle(a, c, "--beta", viscous, "with --viscosity off");
   refuse_if_idle(a, c, "--switch-rule", o.momentum == RateFormMomentum::StabilisedSph, "without --momentum ssph");
+  o.first_step_shepard = a.first_step_shepard;
+  refuse_if_idle(a, c, "--first-step-shepard", o.momentum == RateFormMomentum::StabilisedSph, "without --momentum ssph");
   refuse_if_idle(a, c, "--counting",
                  o.momentum == RateFormMomentum::Cij || o.momentum == RateFormMomentum::StabilisedSph,
                  "without --momentum cij or ssph");

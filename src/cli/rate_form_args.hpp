@@ -26,6 +26,7 @@ struct RateFormArgs {
               artificial_stress = "0", continuity = "summation", gradient = "plain", momentum = "symmetric",
               switch_rule = "tension", counting = "actual", pair_loop = "auto", bulk_viscosity = "0,0";
   bool periodic = false;
+  bool first_step_shepard = false;  ///< --first-step-shepard: the means of Powell's (4.18) in S-SPH
   /// Whether an option was typed (set by add_rate_form_options): an option that does nothing in the combination
   /// given is refused by parse_rate_form_args.
   std::function<bool(const std::string&)> given;

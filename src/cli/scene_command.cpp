@@ -1,11 +1,17 @@
-// `sphstab scene plate|rings|slab`: the test cases of Gray, Monaghan & Swift [GMS2001, §7] run with their scheme
+// `sphstab scene plate|rings|slab|symmetric-impact|bar-impact|clamped-beam`.
+// plate, rings, slab: the test cases of Gray, Monaghan & Swift [GMS2001, §7] run with their scheme
 // (forms/rate_form.hpp: continuity -rho tr L, XSPH 1/2, viscosity alpha = 1, beta = 2 with the compression switch,
 // artificial stress eps, n = 4; GMS predictor-corrector with a Verlet neighbour list), GMS units (rho0 = K = 1), its
 // time series printed as CSV: step, t, kinetic energy, bond-graph fragments (analysis/fragments.hpp, bonds < 1.5 dp)
 // and the scene's measure (plate: tip deflection; rings: largest fragment count of one ring; slab: narrowest width
 // between the driven zones, analysis/neck.hpp). A run that fractures is a result; one that stops (non-finite state,
 // density <= 0) keeps its rows and VTK frames and ends with a row naming the status, step, time and particle.
-// The studies gms-plate, gms-rings and gms-slab hold the validated runs; this command is for one-off runs.
+// symmetric-impact, bar-impact, clamped-beam: Powell's impact problems [Powell2012, ch. 4 §4] (problems/powell_impact.hpp)
+// in g-cm-us, one rate-form formulation (--formulation sph | ncsph | ssph: MCM's, powell_formulation_options) run as
+// Powell ran them: the staggered leap-frog (algorithm 1.1) with the velocity smoothing (2.71), eps 0.1, at dt = TSSFAC
+// h / c_P (--cfl, default the deck's 0.8); the measure is the problem's (pressure at A; the bar's length; the beam's
+// midline deflection). TL-SPH runs on u'' = a(u), not this scheme: the impact studies run it.
+// The studies gms-plate, gms-rings, gms-slab and powell-* hold the validated runs; this command is for one-off runs.
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
@@ -33,6 +39,7 @@
 #include "sphstab/io/run_output.hpp"
 #include "sphstab/io/vtk.hpp"
 #include "sphstab/problems/gms_scenes.hpp"
+#include "sphstab/problems/powell_impact.hpp"
 
 namespace sphstab::cli {
 
@@ -44,9 +51,32 @@ std::string num(double v) { return format_csv_cell(CsvCell(v)); }  // shortest r
 
 struct SceneArgs {
   std::string scene, dp, across = "10", thickness = "2", length = "20", mu, nu, eps = "0.3", tip_speed = "0.01",
-                         speed = "0.059", yield, t_end, skin = "0.5", cfl = "0.5", record_every = "100", out,
-                         pair_loop = "auto";
+                         speed, yield, t_end, skin = "0.5", cfl, record_every = "100", out, pair_loop = "auto",
+                         formulation;
 };
+
+bool is_impact(const std::string& scene) {
+  return scene == "symmetric-impact" || scene == "bar-impact" || scene == "clamped-beam";
+}
+
+/// Powell's impact problem with the command's parameters (its defaults: problem_defaults, dx 0.02).
+Scene<2> make_impact_scene(const SceneArgs& a) {
+  PowellImpactOptions o;
+  o.problem = a.scene == "symmetric-impact" ? ImpactProblem::Symmetric
+              : a.scene == "bar-impact"     ? ImpactProblem::Bar
+                                            : ImpactProblem::Beam;
+  o.scheme = powell_formulation_options(a.formulation.empty() ? "ssph" : a.formulation);
+  if (!a.dp.empty()) o.spacing = parse_double(a.dp, "scene: --dp");
+  if (!a.speed.empty()) o.speed = parse_double(a.speed, "scene: --speed");
+  if (!a.t_end.empty()) o.t_end = parse_double(a.t_end, "scene: --t-end");
+  if (o.problem == ImpactProblem::Beam) {  // the clamp is 0.1 cm (the study's): whole layers of dx
+    const double layers = 0.1 / o.spacing;
+    if (!(std::abs(layers - std::round(layers)) <= 1e-9 * layers) || std::round(layers) < 1)
+      throw std::invalid_argument("scene: --dp " + a.dp + " does not divide the clamped beam's 0.1 cm clamp");
+    o.clamp_layers = static_cast<int>(std::lround(layers));
+  }
+  return powell_impact_scene(o);
+}
 
 double checked(const std::string& text, const std::string& what, double lo, bool lo_open, double hi, bool hi_open) {
   const double v = parse_double(text, "scene: " + what);
@@ -61,8 +91,10 @@ double positive(const std::string& text, const std::string& what) { return check
 /// The library's scene (problems/gms_scenes.hpp) with the command's parameters; out-of-range values are one error line.
 Scene<2> make_scene(const SceneArgs& a) {
   const std::string& s = a.scene;
+  if (is_impact(s)) return make_impact_scene(a);
   if (s != "plate" && s != "rings" && s != "slab")
-    throw std::invalid_argument("scene: unknown scene '" + s + "' (valid: plate, rings, slab)");
+    throw std::invalid_argument("scene: unknown scene '" + s +
+                                "' (valid: plate, rings, slab, symmetric-impact, bar-impact, clamped-beam)");
   if (!a.mu.empty() && !a.nu.empty()) throw std::invalid_argument("scene: give --mu or --nu, not both");
   double mu = s == "slab" ? 0.3 : 0.22;  // GMS §7.2, §7.3; the plate's Table 1 first row
   if (!a.mu.empty()) mu = checked(a.mu, "--mu", 0, false, kInf, true);
@@ -87,7 +119,8 @@ Scene<2> make_scene(const SceneArgs& a) {
     sc = gms_plate_scene({.length = L, .thickness = H, .across = across}, vf, o);
   } else if (s == "rings") {
     const double dp = a.dp.empty() ? 0.1 : positive(a.dp, "--dp");
-    sc = gms_rings_scene({.spacing = dp, .speed = parse_double(a.speed, "scene: --speed")}, o);
+    sc = gms_rings_scene({.spacing = dp, .speed = parse_double(a.speed.empty() ? "0.059" : a.speed, "scene: --speed")},
+                         o);
   } else {
     const double dp = a.dp.empty() ? 0.04 : positive(a.dp, "--dp");
     sc = gms_slab_scene({.spacing = dp}, a.yield.empty() ? 0.03 : yield, o);  // GMS §7.3: Y = 0.03
@@ -101,7 +134,8 @@ void run_scene(const SceneArgs& a) {
   const RateFormScheme<2>& scheme = *sc.scheme;
   const double t_end = a.t_end.empty() ? sc.t_end : positive(a.t_end, "--t-end");
   const double skin = positive(a.skin, "--skin") * sc.spacing;
-  const double dt = sc.time_step(positive(a.cfl, "--cfl"));
+  const bool impact = is_impact(a.scene);
+  const double dt = sc.time_step(positive(a.cfl.empty() ? (impact ? "0.8" : "0.5") : a.cfl, "--cfl"));
   const int every = static_cast<int>(parse_integer(a.record_every, 1, 1'000'000'000, "scene: --record-every"));
   require_run_length(t_end, dt, scheme.discretisation().particles.size(), "scene");
   std::vector<std::pair<double, std::string>> frames;
@@ -111,6 +145,7 @@ void run_scene(const SceneArgs& a) {
   std::printf("%s", csv_line({"step", "t", "kinetic", "fragments", measure.name, "status", "particle"}).c_str());
   RateFormRunOptions o{
       .dt = dt, .t_end = t_end, .record_every = every, .yield_stress = sc.yield_stress, .neighbour_skin = skin};
+  if (impact) o.integrator = RateFormIntegrator::Leapfrog, o.leapfrog_xsph = 0.1;  // algorithm 1.1 with (2.71)
   o.observer = [&](long step, double t, const Eigen::VectorXd& y) {
     const Eigen::Matrix2Xd x = rate_form_positions(scheme, y);
     std::printf("%s", csv_line({std::to_string(step), num(t), num(scheme.kinetic_energy(y)),
@@ -139,10 +174,15 @@ void register_scene_command(CLI::App& app) {
   auto a = std::make_shared<SceneArgs>();
   auto* cmd = app.add_subcommand(
       "scene",
-      "Run a GMS 2001 test case (plate | rings | slab) with GMS's scheme in GMS units; CSV rows of step, t, kinetic "
+      "Run a GMS 2001 test case (plate | rings | slab) with GMS's scheme in GMS units, or one of Powell's impact "
+      "problems (symmetric-impact | bar-impact | clamped-beam) with MCM's scheme in g-cm-us; CSV rows of step, t, kinetic "
       "energy, fragments and the scene's measure, and a final row with the run's status and particle");
-  cmd->add_option("scene", a->scene, "plate (§7.1 cantilever) | rings (§7.2) | slab (§7.3, von Mises)")->required();
-  cmd->add_option("--dp", a->dp, "rings / slab: grid spacing > 0 (default 0.1 / 0.04)");
+  cmd->add_option("scene", a->scene,
+                  "plate (§7.1 cantilever) | rings (§7.2) | slab (§7.3, von Mises) | symmetric-impact | bar-impact | "
+                  "clamped-beam (Powell ch. 4 §4.1-4.3)")
+      ->required();
+  cmd->add_option("--dp", a->dp, "rings / slab / impacts: grid spacing > 0 (default 0.1 / 0.04 / 0.02 cm)");
+  cmd->add_option("--formulation", a->formulation, "impacts: sph | ncsph | ssph (MCM's rate forms; default ssph)");
   cmd->add_option("--across", a->across, "plate: particles across H (default 10; dp = H / across)");
   cmd->add_option("--thickness", a->thickness, "plate: H > 0 (default 2)");
   cmd->add_option("--length", a->length, "plate: L > 0 (default 20)");
@@ -150,11 +190,12 @@ void register_scene_command(CLI::App& app) {
   cmd->add_option("--nu", a->nu, "or Poisson's ratio in (-1, 0.5) (mu = 3 (1 - 2 nu) / (2 (1 + nu)))");
   cmd->add_option("--eps", a->eps, "artificial stress >= 0 (default 0.3)");
   cmd->add_option("--tip-speed", a->tip_speed, "plate: V_f of (7.3)-(7.4) (default 0.01)");
-  cmd->add_option("--speed", a->speed, "rings: speed of each ring over c0 (default 0.059)");
+  cmd->add_option("--speed", a->speed,
+                  "rings: speed of each ring over c0 (default 0.059); impacts: v0 in cm/us (default 0.06; beam 0.3)");
   cmd->add_option("--yield", a->yield, "von Mises yield stress > 0 (slab default 0.03; others elastic)");
   cmd->add_option("--t-end", a->t_end, "run length > 0 (default plate 1.25 thin-plate periods, rings 100, slab 200)");
   cmd->add_option("--skin", a->skin, "Verlet skin of the neighbour list in dp, > 0 (default 0.5)");
-  cmd->add_option("--cfl", a->cfl, "dt = cfl h / c_P, > 0 (default 0.5)");
+  cmd->add_option("--cfl", a->cfl, "dt = cfl h / c_P, > 0 (default 0.5; impacts 0.8, the MCM deck's TSSFAC)");
   cmd->add_option("--record-every", a->record_every, "a row every k steps, and the last (default 100)");
   cmd->add_option("--pair-loop", a->pair_loop,
                   "auto = pairs (each pair once, about twice as fast; results/gms-speed) | rows (every pair from both "
@@ -165,10 +206,19 @@ void register_scene_command(CLI::App& app) {
     const std::vector<std::pair<const char*, const char*>> only = {{"--across", "plate"},   {"--thickness", "plate"},
                                                                    {"--length", "plate"},   {"--tip-speed", "plate"},
                                                                    {"--speed", "rings"}};
+    const bool impact = is_impact(a->scene);
     for (const auto& [option, scene] : only)
-      if (cmd->count(option) > 0 && a->scene != scene)
-        throw std::invalid_argument(std::string("scene: ") + option + " applies to the " + scene + " only (not to " +
+      if (cmd->count(option) > 0 && a->scene != scene && !(impact && std::string(option) == "--speed"))
+        throw std::invalid_argument(std::string("scene: ") + option + " applies to the " + scene +
+                                    (std::string(option) == "--speed" ? " and the impacts" : "") + " only (not to " +
                                     a->scene + ")");
+    // GMS's material and scheme options do not apply to the impacts (steel, MCM's scheme), nor --formulation to GMS's.
+    for (const char* option : {"--mu", "--nu", "--eps", "--yield", "--pair-loop"})
+      if (impact && cmd->count(option) > 0)
+        throw std::invalid_argument(std::string("scene: ") + option + " applies to the GMS scenes only (not to " +
+                                    a->scene + ": steel, MCM's scheme)");
+    if (!impact && cmd->count("--formulation") > 0)
+      throw std::invalid_argument("scene: --formulation applies to the impact problems only (not to " + a->scene + ")");
     run_scene(*a);
   });
 }

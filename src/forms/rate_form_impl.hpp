@@ -174,6 +174,23 @@ RateFormScheme<Dim>::RateFormScheme(std::shared_ptr<const Discretisation<Dim>> d
     m_counts = neighbour_counts(p, all ? nl : pattern, options.counting);
     if (!all) m_in_support = std::move(in);
   }
+  if (options.first_step_shepard) {
+    if (options.momentum != RateFormMomentum::StabilisedSph)
+      throw std::invalid_argument("RateFormScheme: first_step_shepard (Powell (4.18)) needs the S-SPH momentum form");
+    // Powell (4.18): the first step's Shepard sums, kernel sums over the whole list (W = 0 beyond the support).
+    const Kernel<Dim>& kernel = m_disc->kernel;
+    const double h = m_disc->h;
+    m_shepard_sum = Eigen::VectorXd::Zero(n);
+    m_shepard_grad.assign(n, Eigen::Matrix<double, Dim, 1>::Zero());
+    for (int i = 0; i < n; ++i)
+      for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
+        const int j = nl.indices[k];
+        const Eigen::Matrix<double, Dim, 1> r = p.separation(i, j).transpose();
+        const double rr = r.norm();
+        m_shepard_sum[i] += p.volume[j] * kernel.value(rr, h);
+        if (j != i) m_shepard_grad[i] += (p.volume[j] * kernel.d1(rr, h) / rr) * r;
+      }
+  }
   if (options.momentum == RateFormMomentum::StabilisedSph) {
     if (options.excluded_depth < -1)
       throw std::invalid_argument("RateFormScheme: excluded_depth must be >= -1 (got " +
@@ -421,6 +438,8 @@ RateFormScheme<Dim> RateFormScheme<Dim>::rebuilt(const Eigen::VectorXd& y, doubl
   s.m_first = m_first;
   s.m_last = m_last;
   s.m_exchange = m_exchange;
+  s.m_shepard_sum = m_shepard_sum;  // (4.18): the first step's sums
+  s.m_shepard_grad = m_shepard_grad;
   return s;
 }
 
@@ -1119,7 +1138,7 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
     // The corrected gradient (NCSPH) and the local means of C_ij / S-SPH: per-pair arrays, as later passes read them:
     // grad W (always), r (NCSPH or viscosity), r^2 (viscosity), W (NCSPH, XSPH or artificial stress).
     const bool keep_r = !plain || viscous, keep_r2 = viscous;
-    const bool keep_w = !plain || o.xsph > 0 || o.artificial_stress > 0;
+    const bool keep_w = !plain || o.xsph > 0 || o.artificial_stress > 0 || o.first_step_shepard;
     const long nnz = nl.nonzeros();
     std::vector<Vec>&rij = ws.rij, &grad = ws.grad, &gh = ws.gh;
     std::vector<Scalar>&w = ws.w, &r2s = ws.r2s;
@@ -1229,12 +1248,28 @@ void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1
 #pragma omp parallel for schedule(static) num_threads(threads)
       for (int i = 0; i < n; ++i) {
         Vec gs = Vec::Zero();
-        for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
-          row_mean[i] += gh[k];
-          gs += grad[k];
+        if (!o.first_step_shepard) {
+          for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
+            row_mean[i] += gh[k];
+            gs += grad[k];
+          }
+          row_mean[i] /= m_counts[i];
+          col_mean[i] = (-vol[i] / m_counts[i]) * gs;
+          continue;
         }
-        row_mean[i] /= m_counts[i];
-        col_mean[i] = (-vol[i] / m_counts[i]) * gs;
+        // Powell (4.18): P~_ij = V_j (grad W_ij S0_i - W_ij G0_i) / S0_i^2. Row mean: sum_j P~_ij = (sum_j V_j grad
+        // W_ij S0_i - sum_j V_j W_ij G0_i) / S0_i^2; column mean of column i: sum_j P~_ji with grad W_ji = -grad W_ij.
+        Scalar wsum(0);
+        const double s0 = m_shepard_sum[i];
+        for (long k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
+          const int j = nl.indices[k];
+          row_mean[i] += gh[k];
+          wsum += vol[j] * w[k];
+          const double sj = m_shepard_sum[j];
+          gs -= (grad[k] * sj + w[k] * m_shepard_grad[j].template cast<Scalar>()) / (sj * sj);
+        }
+        row_mean[i] = (row_mean[i] * s0 - wsum * m_shepard_grad[i].template cast<Scalar>()) / (s0 * s0 * m_counts[i]);
+        col_mean[i] = (vol[i] / m_counts[i]) * gs;
       }
 #pragma omp parallel for schedule(static) num_threads(threads)
       for (int i = 0; i < n; ++i) {

@@ -60,6 +60,7 @@ RateFormOptions powell_formulation_options(const std::string& formulation) {
   if (formulation == "ssph") {
     o.momentum = RateFormMomentum::StabilisedSph;  // algorithm 4.2
     o.counting = NeighbourCounting::BoundaryLevel;  // Fig. 4.3
+    o.first_step_shepard = true;                    // (4.18): the means of the first-step Shepard gradient
     return o;
   }
   throw std::invalid_argument("unknown rate-form formulation '" + formulation + "' (valid: sph, ncsph, ssph)");

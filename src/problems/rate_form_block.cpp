@@ -9,7 +9,9 @@
 namespace sphstab {
 
 int rate_form_layer_supports(const RateFormOptions& o) {
-  if (o.momentum == RateFormMomentum::StabilisedSph) return 3;
+  // (4.18)'s first-step sums differ from the interior's within one support of the edge; c_j, m_i and the pair (i, f)
+  // carry them three supports in.
+  if (o.momentum == RateFormMomentum::StabilisedSph) return o.first_step_shepard ? 4 : 3;
   if (o.gradient == RateFormGradient::Ncsph || o.momentum != RateFormMomentum::Symmetric) return 2;
   return 1;
 }

@@ -11,6 +11,21 @@
 // snapshots.csv (every particle's initial and current position and pressure at the snapshot times) and order.csv
 // (every Settings::order_every: the share of clumped particles, those with a neighbour closer than 0.5 dx, and the
 // fragments of the bonds shorter than 1.5 dx, analysis/fragments.hpp: numerical fracture as a count).
+//
+// Verdicts (Case::verdict_times): the stability verdict (growth/stability_verdict.hpp) of the run's state at given
+// times (its initial state, t = 0, and a mid-run one): the state's configuration, densities and stresses AT REST
+// (velocities set to zero), the semi-discrete growth gamma_J = max Re lambda(J) of the system linearised there, the
+// one-step map's growth gamma_M of the run's integrator at the run's dt, the detection floor ln(energy_ratio) /
+// (2 t_end) of the run, and the class S / U / I / B. Why at rest: linearised with its velocities, the state's own flow
+// enters J (the continuity equation's d(rho')/d(rho) = -tr L is a "growth" of |tr L| ~ v0 / dx at the impact
+// plane, the compression of the base flow, not an instability of the scheme); at rest what remains is the stiffness
+// of the stressed, deformed configuration, where the tensile instability lives. The state is not an equilibrium:
+// acceleration_max says how far from one, and J is frozen there (how perturbations of that stressed configuration
+// grow, not what the run did). Rate forms: the scheme rebuilt on the neighbour list of the state's positions
+// (RateFormScheme::rebuilt), at rest both rates from the exact reduction (growth/rate_form_spectrum.hpp, the
+// leap-frog with the velocity smoothing (2.71)). TL-SPH: J = [0 I; -A 0] with A = -da/du at the state's
+// displacement (complex step; the velocities do not enter), the leap-frog's map in closed form (dense). Written to
+// verdicts.csv.
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -20,6 +35,8 @@
 #include "common/study.hpp"
 #include "sphstab/analysis/fragments.hpp"
 #include "sphstab/forms/rate_form_state.hpp"
+#include "sphstab/growth/stability_verdict.hpp"
+#include "sphstab/jacobian/complex_step_jacobian.hpp"
 #include "sphstab/integrate/leapfrog.hpp"
 #include "sphstab/integrate/rate_form_run.hpp"
 #include "sphstab/io/csv.hpp"
@@ -32,6 +49,7 @@ struct Case {
   std::string name;                    ///< the case column (e.g. "compression")
   PowellImpactOptions scene;           ///< problem, spacing, speed, t_end, ...; the scheme is set from `form`
   std::vector<double> snapshot_times;  ///< empty: no snapshots
+  std::vector<double> verdict_times;   ///< the verdict of the state at these times (empty: none)
 };
 
 struct Settings {
@@ -39,6 +57,9 @@ struct Settings {
   double tssfac = 0.8;                ///< MCM deck, card 2: dt = TSSFAC h / c_P
   double xsph = 0.1;                  ///< Powell (2.71)
   double order_every = 1.0;           ///< us between the particle-order records (order.csv)
+  /// The verdicts' detection floor is ln(energy_ratio) / (2 t_end): the slowest amplitude growth that raises the
+  /// kinetic energy by this factor within the run.
+  double verdict_energy_ratio = 100;
 };
 
 /// The particle order of a state at one time: clumped share and fragments.
@@ -65,6 +86,15 @@ struct Snapshot {
   Eigen::VectorXd p;
 };
 
+/// The verdict of the state nearest a wanted time (reached = false: the run stopped before it).
+struct VerdictRecord {
+  double wanted = 0, t = 0;
+  bool reached = false;
+  StabilityVerdict verdict;
+  Eigen::Vector2d mode_position = Eigen::Vector2d::Constant(std::nan(""));  ///< the semi-discrete mode's particle
+  double acceleration_max = 0;  ///< max |dv_i/dt| at the state at rest: how far it is from an equilibrium
+};
+
 struct Outcome {
   RunResult run;
   int particles = 0, particle_a = -1;
@@ -75,6 +105,7 @@ struct Outcome {
   std::vector<std::vector<double>> values;  ///< per record, one value per Settings::measures
   std::vector<Snapshot> snaps;
   std::vector<Order> order;
+  std::vector<VerdictRecord> verdicts;
 };
 
 inline bool is_tl(const std::string& form) { return form == "tl" || form == "tl-svk"; }
@@ -113,6 +144,12 @@ inline Outcome run_case(const Case& c, const Settings& settings) {
   for (const std::string& m : settings.measures) measures.push_back(&scene.measure(m));
   const double dt = scene.time_step(settings.tssfac);
   const double cpu0 = thread_cpu_seconds();
+  const double floor = detection_floor(scene.t_end, settings.verdict_energy_ratio);
+  std::vector<std::pair<double, Eigen::VectorXd>> states;  // (t, y) at the verdict times
+  const auto keep_state = [&](double t, double step, const auto& y) {
+    for (double w : c.verdict_times)
+      if (t >= w - 0.5 * step && t < w + 0.5 * step) states.emplace_back(t, y);
+  };
   if (!tl) {
     const RateFormScheme<2>& scheme = *scene.scheme;
     RateFormRunOptions ro{.dt = dt,
@@ -132,10 +169,30 @@ inline Outcome run_case(const Case& c, const Settings& settings) {
         s.p = scheme.material().bulk_modulus *
               (rate_form_densities(scheme, y).array() / scheme.material().density - 1).matrix();
       });
+      keep_state(t, ro.dt, y);
     };
     const RateFormRunResult r = run_rate_form(scheme, scene.y0, ro);
     o.run = r;
     o.ke = r.kinetic_energy;
+    RateFormRunOptions vo = ro;  // the verdict's integrator: the run's, on the list built at the state
+    vo.dt = r.dt;
+    vo.neighbour_skin = 0;
+    vo.observer = {};
+    for (const auto& [t, y] : states) {
+      Eigen::VectorXd rest = y;  // the state's configuration, densities and stresses, at rest (see the file comment)
+      for (int i = 0; i < disc.size(); ++i)
+        if (scheme.velocity_offset(i) >= 0) rest.segment<2>(scheme.velocity_offset(i)).setZero();
+      const RateFormScheme<2> at = scheme.rebuilt(rest);
+      VerdictRecord v{.t = t, .reached = true, .verdict = stability_verdict(at, rest, vo, {.floor = floor})};
+      const int particle = v.verdict.semi_discrete_mode.particle;
+      if (particle >= 0) v.mode_position = rate_form_positions(at, rest).col(particle);
+      Eigen::VectorXd f;
+      at.rate(rest, f);
+      for (int i = 0; i < disc.size(); ++i)
+        if (at.velocity_offset(i) >= 0)
+          v.acceleration_max = std::max(v.acceleration_max, f.segment<2>(at.velocity_offset(i)).norm());
+      o.verdicts.push_back(std::move(v));
+    }
   } else {
     const ImpactTotalLagrangian m =
         impact_total_lagrangian(scene, c.form == "tl" ? ImpactTLModel::Linear : ImpactTLModel::StVenantKirchhoff);
@@ -168,12 +225,52 @@ inline Outcome run_case(const Case& c, const Settings& settings) {
         s.p.resize(disc.size());
         for (int i = 0; i < disc.size(); ++i) s.p[i] = m.pressure(v.u, i);
       });
+      if (!c.verdict_times.empty()) {
+        Eigen::VectorXd uv(2 * v.u.size());
+        uv << v.u, v.v;
+        keep_state(v.time, lo.dt, uv);
+      }
     };
     const LeapfrogResult r = run_leapfrog(m.system, Eigen::VectorXd::Zero(m.form->dofs()), m.v0, lo);
     o.run = r;
     for (const Diagnostics& d : r.history) o.ke.push_back(d.kinetic);
+    // y = (u, v), y' = J y with J = [0 I; -A 0]; the velocity Verlet leap-frog has the staggered leap-frog's map
+    // (the same recurrence for u, sampled half a step apart in v).
+    const int n = m.form->dofs();
+    StateLayout layout{.size = 2 * n};
+    for (int k = 0; k < n; ++k) layout.position.push_back(k), layout.velocity.push_back(n + k);
+    const RateFormRunOptions vo{.dt = r.dt, .t_end = scene.t_end, .integrator = RateFormIntegrator::Leapfrog};
+    for (const auto& [t, uv] : states) {
+      Eigen::VectorXd a;
+      m.form->acceleration(uv.head(n), a);
+      Eigen::MatrixXd J = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+      J.topRightCorner(n, n).setIdentity();
+      J.bottomLeftCorner(n, n) = -Eigen::MatrixXd(jacobian(*m.form, uv.head(n)));
+      VerdictRecord v{.t = t, .reached = true, .verdict = stability_verdict(J, layout, vo, floor)};
+      for (int k = 0; k < n; k += 2) v.acceleration_max = std::max(v.acceleration_max, a.segment<2>(k).norm());
+      const int dof = v.verdict.semi_discrete_mode.particle;  // without particles: the largest velocity DOF
+      if (dof >= 0) {
+        const int slot = (dof >= n ? dof - n : dof) / 2;
+        for (int i = 0; i < disc.size(); ++i)
+          if (disc.free_slot[i] == slot) v.mode_position = x0.col(i) + uv.segment<2>(2 * slot);
+      }
+      o.verdicts.push_back(std::move(v));
+    }
   }
   o.cpu = thread_cpu_seconds() - cpu0;
+  // Match each wanted time with its state (the first within dt / 2), or record that the run stopped before it.
+  std::vector<VerdictRecord> by_time;
+  for (double w : c.verdict_times) {
+    VerdictRecord rec{.wanted = w};
+    for (const VerdictRecord& v : o.verdicts)
+      if (v.reached && std::abs(v.t - w) <= 0.5 * o.run.dt + 1e-12) {
+        rec = v;
+        rec.wanted = w;
+        break;
+      }
+    by_time.push_back(std::move(rec));
+  }
+  o.verdicts = std::move(by_time);
   if (o.ke.size() != o.t.size())
     throw std::runtime_error(c.form + " " + c.name + ": " + std::to_string(o.ke.size()) + " energy records for " +
                              std::to_string(o.t.size()) + " observed states");
@@ -223,6 +320,26 @@ inline int write_runs(const std::string& out, const std::vector<Case>& cases, co
         snaps.row({c.form, c.name, dx, s.t, i, o.x0(0, i), o.x0(1, i), s.x(0, i), s.x(1, i), s.p[i]});
   }
   return completed;
+}
+
+/// verdicts.csv: one row per case and verdict time (reached = 0: the run stopped before it; the rates are then empty).
+inline void write_verdicts(const std::string& out, const std::vector<Case>& cases,
+                           const std::vector<Outcome>& outcomes) {
+  CsvWriter w(out + "/verdicts.csv",
+              {"formulation", "case", "dx", "t_wanted", "t", "reached", "class", "semi_discrete_growth", "map_growth",
+               "integrator_excess", "floor", "lambda_max", "resolution", "map_route", "mode_particle", "mode_x",
+               "mode_y", "mode_share", "acceleration_max", "status", "reason"});
+  for (std::size_t k = 0; k < cases.size(); ++k)
+    for (const VerdictRecord& r : outcomes[k].verdicts) {
+      const StabilityVerdict& v = r.verdict;
+      const bool ok = r.reached && v.status == Status::Successful;
+      w.row({cases[k].form, cases[k].name, cases[k].scene.spacing, r.wanted, r.reached ? r.t : std::nan(""),
+             r.reached ? 1 : 0, ok ? v.letter() : std::string("-"), v.semi_discrete_growth, v.map_growth,
+             v.integrator_excess, v.floor, v.lambda_max, v.resolution, v.map_route, v.semi_discrete_mode.particle,
+             r.mode_position.x(), r.mode_position.y(), v.semi_discrete_mode.particle_share,
+             r.reached ? r.acceleration_max : std::nan(""), r.reached ? status_name(v.status) : std::string("not-reached"),
+             r.reached ? v.reason : std::string("the run stopped before this time")});
+    }
 }
 
 /// "0.05, 0.025, ..." for the summary.

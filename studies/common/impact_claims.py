@@ -120,3 +120,40 @@ def mcm_time_step(r):
         dt = tssfac * 1.3 * x["dx"] / cp
         check(dt / 1.01 <= x["dt"] <= dt * (1 + 1e-9), f"{x.where()}: dt {x['dt']}, TSSFAC h / c_P = {dt}")
     return f"c_P = {cp:.4f} cm/us"
+
+
+def verdict_class(semi_discrete, map_growth, floor):
+    """The class of growth/stability_verdict.hpp's rules, written again here: S, U, I or B."""
+    if semi_discrete > floor:
+        return "B" if map_growth - max(semi_discrete, 0.0) > floor else "U"
+    return "I" if map_growth > floor else "S"
+
+
+def verdicts_follow_csv(r):
+    """Each verdict's class follows from its row's two rates and floor by the rules (recomputed), and the summary's
+    table and class lists are verdicts.csv's."""
+    rows = r.csv("verdicts.csv")
+    check(rows, "verdicts.csv has no rows")
+    keyed = {}
+    for x in rows:
+        if x["reached"] == 1 and x["class"] != "-":
+            want = verdict_class(x["semi_discrete_growth"], x["map_growth"], x["floor"])
+            check(x["class"] == want, f"{x['formulation']} {x['case']} t = {x['t_wanted']}: class {x['class']}, "
+                  f"the rates give {want}")
+            approx(x["integrator_excess"], x["map_growth"] - max(x["semi_discrete_growth"], 0.0),
+                   "integrator excess", rel=1e-9, abs_=1e-12)
+        keyed.setdefault((x["formulation"], x["case"]), []).append(x)
+    lines = r.key("verdict_table").split("\n")
+    check(len(lines) == len(keyed), f"verdict_table has {len(lines)} rows, verdicts.csv {len(keyed)} runs")
+    for line, ((f, case), xs) in zip(lines, keyed.items()):
+        cells = [c.strip() for c in line.strip("| ").split("|")]
+        check(cells[:2] == [LABEL[f], case], f"verdict_table row '{line}' is not {LABEL[f]} {case}")
+        for cell, x in zip(cells[2:], sorted(xs, key=lambda q: q["t_wanted"])):
+            want = x["class"] if x["reached"] == 1 and x["class"] != "-" else ("not reached" if x["reached"] != 1
+                                                                              else x["status"])
+            check(cell.startswith(want), f"{LABEL[f]} {case} t = {x['t_wanted']}: summary '{cell}', csv {want}")
+    for c, name in (("S", "stable"), ("U", "semi_discrete"), ("I", "integrator"), ("B", "both")):
+        hits = [f"{LABEL[x['formulation']]} {x['case']} t = {x['t_wanted']:g}" for x in rows if x["class"] == c]
+        want = "; ".join(hits) if hits else "none"
+        check(r.key(f"verdict_{name}") == want, f"verdict_{name}: summary '{r.key(f'verdict_{name}')}', csv '{want}'")
+    return f"{len(rows)} verdicts"

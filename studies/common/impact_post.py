@@ -368,6 +368,34 @@ def common_figures(problem, ctx, out, summary, title, positions_title, head_labe
                   f"e_{problem.head}: RMS error of the {head_label} / its FE maximum")
 
 
+def verdict_text(r):
+    """'U (2.54 / 2.14)': the class and gamma_J / gamma_M (1/us) of one verdicts.csv row; else why there is none."""
+    if r["reached"] != "1":
+        return f"not reached (the run stopped before {num(r['t_wanted']):g} us)"
+    if r["class"] == "-":
+        return f"{r['status']}: {r['reason']}"
+    return f"{r['class']} ({g(num(r['semi_discrete_growth']))} / {g(num(r['map_growth']))})"
+
+
+def verdict_summary(out, summary):
+    """The verdict table of verdicts.csv (one row per formulation and case: the initial state's verdict and the
+    mid-run one's, each the class and gamma_J / gamma_M in 1/us), its floor(s) and resolution, and the runs of each
+    class."""
+    rows = read(os.path.join(out, "verdicts.csv"))
+    keys = list(dict.fromkeys((r["formulation"], r["case"]) for r in rows))
+    lines = []
+    for f, case in keys:
+        mine = sorted((r for r in rows if (r["formulation"], r["case"]) == (f, case)), key=lambda r: num(r["t_wanted"]))
+        cells = [f"{verdict_text(r)} at t = {num(r['t_wanted']):g}" for r in mine]
+        lines.append(f"| {LABEL[f]} | {case} | " + " | ".join(cells) + " |")
+    summary["verdict_table"] = "\n".join(lines)
+    summary["verdict_spacing"] = ", ".join(sorted({f"{num(r['dx']):g}" for r in rows}))
+    summary["verdict_floor"] = ", ".join(sorted({g(num(r["floor"])) for r in rows if r["reached"] == "1"}))
+    for c, name in (("S", "stable"), ("U", "semi_discrete"), ("I", "integrator"), ("B", "both")):
+        hits = [f"{LABEL[r['formulation']]} {r['case']} t = {num(r['t_wanted']):g}" for r in rows if r["class"] == c]
+        summary[f"verdict_{name}"] = "; ".join(hits) if hits else "none"
+
+
 def write_summary(out, summary):
     with open(os.path.join(out, "summary.json"), "w") as f:
         json.dump(summary, f, indent=2, sort_keys=True)

@@ -246,6 +246,7 @@ int main(int argc, char** argv) try {
   std::string out = "results/nrbc-1d";
   double cfl = 0.5, tssfac = 0.8;
   int threads = 2;
+  bool quick = false;
   std::vector<double> sweep = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8};
   std::vector<double> h_values = {1.1, 1.2, 1.3, 1.5, 1.7, 2.0, 2.5, 3.0};
   app.add_option("--out", out, "output directory");
@@ -256,7 +257,10 @@ int main(int argc, char** argv) try {
   app.add_option("--threads", threads, "concurrent runs")->check(CLI::Range(1, 64));
   app.add_option("--cfl-sweep", sweep, "CFL values of the sweep")->delimiter(',')->check(CLI::Range(0.01, 2.0));
   app.add_option("--h", h_values, "h / dx of the h-study")->delimiter(',')->check(CLI::Range(1.0, 4.0));
+  app.add_flag("--quick", quick, "pipeline check: Table 2.1 in full, the sweep at the tuned step only, h / dx 1.3 "
+               "only, and the step limits of the half-step timing with one absorbing layer and the upwind eight");
   CLI11_PARSE(app, argc, argv);
+  if (quick) sweep = {cfl}, h_values = {1.3};
   const auto t0 = study::Clock::now();
   fs::create_directories(out + "/series");
   study::Summary sum;
@@ -364,8 +368,9 @@ int main(int argc, char** argv) try {
   std::vector<BarCase> limit_cases;
   for (bool half : {true, false})
     for (Form f : forms) {
-      limit_cases.push_back({.form = f, .particles = 800, .half_step = half});
-      for (int layers = 1; layers <= 5; ++layers)
+      if (quick && !half) continue;
+      if (!quick) limit_cases.push_back({.form = f, .particles = 800, .half_step = half});
+      for (int layers = 1; layers <= (quick ? 1 : 5); ++layers)
         limit_cases.push_back({.form = f, .layers = layers, .half_step = half});
       limit_cases.push_back({.form = f, .layers = 8, .upwind = true, .half_step = half});
     }

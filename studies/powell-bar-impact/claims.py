@@ -60,3 +60,9 @@ def claim_expansion_verdicts_follow_shape_csv(r):
         row = next(line for line in table.splitlines() if f"| {label} fails and continues to expand |" in line)
         check(("| yes |" in row) == expands, f"{label}: table '{row}', data expands = {expands}")
     return f"bound {bound:.4g} cm"
+
+
+def claim_verdict_classes_follow_their_rates(r):
+    """Each stability verdict's class (S/U/I/B) follows from its two growth rates and the floor in verdicts.csv, and
+    the summary's verdict table and class lists are that file's."""
+    return ic.verdicts_follow_csv(r)

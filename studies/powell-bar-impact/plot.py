@@ -22,7 +22,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "common"))
 from impact_post import (GAP, SHARE, CLUMP, Problem, common_figures, common_summary, evaluate, g,  # noqa: E402
-                         order_summary, pct, rms, status_text, write_csv, write_summary)
+                         order_summary, pct, rms, status_text, verdict_summary, write_csv, write_summary)
 from plot_common import num  # noqa: E402
 
 FORMS = ["sph", "ncsph", "ssph", "tl"]
@@ -67,6 +67,7 @@ def main(out):
     common_summary(problem, ctx, summary)
     summary["fe_dl_max"], summary["fe_dl_min"] = g(float(fe_dl.max())), g(float(fe_dl.min()))
     statements(summary, ctx["runs"], ctx["fe"], ctx["ref_key"], shape)
+    verdict_summary(out, summary)
     write_summary(out, summary)
 
 

@@ -57,3 +57,9 @@ def claim_failure_verdict_follows_runs_and_order(r):
     row = next(line for line in r.key("statements_table").splitlines() if "| basic SPH has failed" in line)
     check(("| yes |" in row) == failed, f"table '{row}', data failed = {failed}")
     return f"clumped up to {clumped:.3g}, fragments up to {fragments}"
+
+
+def claim_verdict_classes_follow_their_rates(r):
+    """Each stability verdict's class (S/U/I/B) follows from its two growth rates and the floor in verdicts.csv, and
+    the summary's verdict table and class lists are that file's."""
+    return ic.verdicts_follow_csv(r)

@@ -26,6 +26,7 @@ int main(int argc, char** argv) try {
   std::string out = "results/powell-clamped-beam";
   std::vector<double> spacings{0.05, 0.025, 0.02, 0.0125, 0.01};  // whole layers in the 0.1 cm clamp
   double snapshot_spacing = 0.02;                                 // the MCM deck's
+  double verdict_spacing = 0.1;  // dense eigenvalues: 160 particles, one clamped layer at each end
   const std::vector<std::string> formulations{"sph", "ncsph", "ssph", "tl", "tl-svk"};
   const double speed = 0.3;  // [§4.3]
   const double clamp = 0.1;  // cm: five layers at dx = 0.02 [Fig. 4.13]
@@ -40,6 +41,9 @@ int main(int argc, char** argv) try {
       ->check(CLI::PositiveNumber);
   app.add_option("--t-end", t_end, "run length (us)")->check(CLI::PositiveNumber);
   app.add_option("--threads", threads, "concurrent runs")->check(CLI::Range(1, 64));
+  app.add_option("--verdict-spacing", verdict_spacing,
+                 "dx (cm) of the runs whose states get a stability verdict, dividing the 0.1 cm clamp")
+      ->check(CLI::Range(0.02, 0.1));
   app.add_flag("--quick", quick, "one coarse resolution (dx 0.05), to t = 5 us");
   CLI11_PARSE(app, argc, argv);
   if (!std::isfinite(t_end) || !(t_end > 0))  // NaN would mean the scene's default t_end
@@ -48,25 +52,32 @@ int main(int argc, char** argv) try {
   std::filesystem::create_directories(out);
   set_threads(1);  // cases run side by side; each on one thread (CPU seconds are per run)
 
-  std::vector<study::impact::Case> cases;
-  for (double dx : spacings) {
+  const auto make = [&](double dx, const std::string& f) {
     const double layers = clamp / dx;
     if (std::abs(layers - std::round(layers)) > 1e-9 * layers)
-      throw std::invalid_argument("--spacings: dx = " + study::sig(dx) + " does not divide the 0.1 cm clamp");
-    for (const std::string& f : formulations)
-      cases.push_back(
-          {.form = f,
-           .name = "load",
-           .scene = {.problem = ImpactProblem::Beam,
-                     .spacing = dx,
-                     .speed = speed,
-                     .t_end = t_end,
-                     .clamp_layers = static_cast<int>(std::lround(layers))},
-           .snapshot_times = std::abs(dx - snapshot_spacing) < 1e-12 ? snapshot_times : std::vector<double>{}});
+      throw std::invalid_argument("--spacings / --verdict-spacing: dx = " + study::sig(dx) + " does not divide the 0.1 cm clamp");
+    return study::impact::Case{.form = f,
+                               .name = "load",
+                               .scene = {.problem = ImpactProblem::Beam,
+                                         .spacing = dx,
+                                         .speed = speed,
+                                         .t_end = t_end,
+                                         .clamp_layers = static_cast<int>(std::lround(layers))}};
+  };
+  std::vector<study::impact::Case> cases, verdict_cases;
+  for (double dx : spacings)
+    for (const std::string& f : formulations) {
+      cases.push_back(make(dx, f));
+      if (std::abs(dx - snapshot_spacing) < 1e-12) cases.back().snapshot_times = snapshot_times;
+    }
+  for (const std::string& f : formulations) {  // the initial state and mid-run
+    verdict_cases.push_back(make(verdict_spacing, f));
+    verdict_cases.back().verdict_times = {0, 10 <= t_end ? 10 : 0.5 * t_end};
   }
   const auto wall0 = study::Clock::now();
   const auto outcomes = study::impact::run_cases(cases, settings, threads);
   const int completed = study::impact::write_runs(out, cases, outcomes, settings);
+  study::impact::write_verdicts(out, verdict_cases, study::impact::run_cases(verdict_cases, settings, threads));
   const PowellImpactOptions beam = problem_defaults({.problem = ImpactProblem::Beam});
   study::Summary s;
   study::impact::set_run_keys(s, cases.size(), completed, spacings, snapshot_spacing, speed, settings, t_end, quick,

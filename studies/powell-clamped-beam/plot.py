@@ -24,7 +24,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "common"))
 from impact_post import (SHARE, CLUMP, LABEL, Problem, common_figures, common_summary, evaluate, g,  # noqa: E402
-                         order_summary, pct, status_text, write_csv, write_summary)
+                         order_summary, pct, status_text, verdict_summary, write_csv, write_summary)
 from plot_common import num  # noqa: E402
 
 FORMS = ["sph", "ncsph", "ssph", "tl", "tl-svk"]
@@ -56,6 +56,7 @@ def main(out):
     common_summary(problem, ctx, summary)
     summary["fe_defl_min"], summary["fe_defl_end"] = g(float(d.min())), g(float(d[-1]))
     statements(summary, ctx["runs"], ctx["err"], shape, ctx["times"])
+    verdict_summary(out, summary)
     write_summary(out, summary)
 
 

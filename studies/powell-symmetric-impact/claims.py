@@ -81,3 +81,9 @@ def claim_kinetic_energy_error_recomputed(r):
 def claim_rate_form_runs_are_mcms_configuration(r):
     """Every run's dt is TSSFAC h / c_P (rounded down to t_end / steps: within 1 %), h = 1.3 dx, c_P of steel."""
     return ic.mcm_time_step(r)
+
+
+def claim_verdict_classes_follow_their_rates(r):
+    """Each stability verdict's class (S/U/I/B) follows from its two growth rates and the floor in verdicts.csv, and
+    the summary's verdict table and class lists are that file's."""
+    return ic.verdicts_follow_csv(r)

@@ -23,6 +23,7 @@ int main(int argc, char** argv) try {
   std::string out = "results/powell-symmetric-impact";
   std::vector<double> spacings{0.05, 0.025, 0.02, 0.0125, 0.01, 0.00625};
   double snapshot_spacing = 0.02;  // the MCM deck's
+  double verdict_spacing = 0.1;    // dense eigenvalues: 100 particles (J 800 x 800)
   const std::vector<std::string> formulations{"sph", "ncsph", "ssph", "tl"};
   const double speed = 0.06;  // |v0| [§4.1, Fig. 4.5]
   double t_end = 6;           // us
@@ -34,6 +35,8 @@ int main(int argc, char** argv) try {
   app.add_option("--spacings", spacings, "particle spacings dx (cm)")->check(CLI::PositiveNumber);
   app.add_option("--t-end", t_end, "run length (us)")->check(CLI::PositiveNumber);
   app.add_option("--threads", threads, "concurrent runs")->check(CLI::Range(1, 64));
+  app.add_option("--verdict-spacing", verdict_spacing, "dx (cm) of the runs whose states get a stability verdict")
+      ->check(CLI::Range(0.02, 0.5));
   app.add_flag("--quick", quick, "one coarse resolution (dx 0.05), to t = 2 us");
   CLI11_PARSE(app, argc, argv);
   if (!std::isfinite(t_end) || !(t_end > 0))  // NaN would mean the scene's default t_end
@@ -42,21 +45,29 @@ int main(int argc, char** argv) try {
   std::filesystem::create_directories(out);
   set_threads(1);  // cases run side by side; each on one thread (CPU seconds are per run)
 
-  std::vector<study::impact::Case> cases;
+  // Powell's figure times: Fig. 4.6, 3.05 us in compression; Fig. 4.8, 1.6 us in expansion.
+  const auto make = [&](double dx, double sign, const std::string& f) {
+    const double fig = sign > 0 ? 3.05 : 1.6;
+    return study::impact::Case{
+        .form = f,
+        .name = sign > 0 ? "compression" : "expansion",
+        .scene = {.problem = ImpactProblem::Symmetric, .spacing = dx, .speed = sign * speed, .t_end = t_end},
+        .snapshot_times = std::abs(dx - snapshot_spacing) < 1e-12 ? std::vector<double>{fig} : std::vector<double>{},
+        .verdict_times = {0, fig <= t_end ? fig : 0.5 * t_end}};
+  };
+  std::vector<study::impact::Case> cases, verdict_cases;
   for (double dx : spacings)
     for (double sign : {1.0, -1.0})
-      for (const std::string& f : formulations) {
-        const bool snap = std::abs(dx - snapshot_spacing) < 1e-12;
-        // Powell's figure times: Fig. 4.6, 3.05 us in compression; Fig. 4.8, 1.6 us in expansion.
-        cases.push_back(
-            {.form = f,
-             .name = sign > 0 ? "compression" : "expansion",
-             .scene = {.problem = ImpactProblem::Symmetric, .spacing = dx, .speed = sign * speed, .t_end = t_end},
-             .snapshot_times = snap ? std::vector<double>{sign > 0 ? 3.05 : 1.6} : std::vector<double>{}});
-      }
+      for (const std::string& f : formulations) cases.push_back(make(dx, sign, f)), cases.back().verdict_times.clear();
+  for (double sign : {1.0, -1.0})
+    for (const std::string& f : formulations) {
+      verdict_cases.push_back(make(verdict_spacing, sign, f));
+      verdict_cases.back().snapshot_times.clear();
+    }
   const auto wall0 = study::Clock::now();
   const auto outcomes = study::impact::run_cases(cases, settings, threads);
   const int completed = study::impact::write_runs(out, cases, outcomes, settings);
+  study::impact::write_verdicts(out, verdict_cases, study::impact::run_cases(verdict_cases, settings, threads));
   study::Summary s;
   study::impact::set_run_keys(s, cases.size(), completed, spacings, snapshot_spacing, speed, settings, t_end, quick,
                               wall0);

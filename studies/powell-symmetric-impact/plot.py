@@ -22,7 +22,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "common"))
 sys.path.insert(0, HERE)
-from impact_post import CLUMP, GAP, SHARE, clumped_share, first_stop, rms, write_csv  # noqa: E402
+from impact_post import CLUMP, GAP, SHARE, clumped_share, first_stop, rms, verdict_summary, write_csv  # noqa: E402
 from plot_common import num, plt, read  # noqa: E402
 
 FORMS = ["sph", "ncsph", "ssph", "tl"]
@@ -138,6 +138,7 @@ def main(out):
               [[f, c, *v] for (f, c), v in shape.items()])
     extend_summary(out, summary, runs, err, fe, fe_err)
     statements(summary, runs, err, shape)
+    verdict_summary(out, summary)
     with open(os.path.join(out, "summary.json"), "w") as f:
         json.dump(summary, f, indent=2, sort_keys=True)
         f.write("\n")

@@ -37,7 +37,10 @@ def claim_configuration_is_mcms(r):
                                                                           f"{x['bulk_viscosity']} in set {x['set']}")
         dt = want_tssfac * x["h_over_dx"] * 0.01 / cp
         check(dt / 1.005 <= x["dt"] <= dt * (1 + 1e-9), f"{x.where()}: dt {x['dt']}, TSSFAC h / c_P = {dt}")
-    return f"{len(r.csv('runs.csv'))} runs: TSSFAC, dt and bulk viscosity as their set states"
+        layers = {"sph": 1, "xsph": 1, "ncsph": 2, "ncxsph": 2, "cij": 2, "ssph": 4}[x["formulation"]]
+        check(x["layer_supports"] == layers, f"{x.where()}: {x['layer_supports']} supports of fixed layers, the "
+                                             f"parameters state {layers}")
+    return f"{len(r.csv('runs.csv'))} runs: TSSFAC, dt, bulk viscosity and fixed layers as their set states"
 
 
 def claim_verdicts_follow_the_rules(r):

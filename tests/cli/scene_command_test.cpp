@@ -18,6 +18,7 @@
 #include "sphstab/io/vtk.hpp"
 #include "sphstab/problems/cantilever_plate.hpp"
 #include "sphstab/problems/colliding_rings.hpp"
+#include "sphstab/problems/powell_impact.hpp"
 
 namespace sphstab {
 namespace scene_command_test {
@@ -89,6 +90,41 @@ TEST(SceneCommand, PlateSeriesIsTheLibrarysRun) {
   EXPECT_GT(std::abs(deflection.back()), 0.1);  // it has moved: V_f T / (2 pi) ~ 4 over the first quarter period
 }
 
+TEST(SceneCommand, ImpactSeriesIsPowellsRun) {
+  // Powell's bar impact [Powell2012, ch. 4 §4.2] with basic SPH at dx = 0.1 cm to 4 us: MCM's leap-frog with the
+  // velocity smoothing (2.71), eps 0.1, at dt = 0.8 h / c_P, skin 0.5 dx; the measure is the bar's length.
+  const PowellImpactOptions po{.problem = ImpactProblem::Bar, .spacing = 0.1, .t_end = 4,
+                               .scheme = powell_formulation_options("sph")};
+  const Scene<2> sc = powell_impact_scene(po);
+  std::vector<double> value;
+  const SceneMeasure<2>& m = sc.measures.front();
+  const RateFormRunResult direct =
+      run_rate_form(*sc.scheme, sc.y0,
+                    {.dt = sc.time_step(0.8),
+                     .t_end = 4,
+                     .record_every = 3,
+                     .observer = [&](long, double, const Eigen::VectorXd& y) {
+                       value.push_back(m.value(rate_form_positions(*sc.scheme, y), y));
+                     },
+                     .integrator = RateFormIntegrator::Leapfrog,
+                     .leapfrog_xsph = 0.1,
+                     .neighbour_skin = 0.05});
+  ASSERT_TRUE(direct.completed()) << direct.message;
+  const test::CliOutcome r = run({"scene", "bar-impact", "--formulation", "sph", "--dp", "0.1", "--t-end", "4",
+                                  "--record-every", "3"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const CsvTable t = read_csv(r.out_path);
+  ASSERT_EQ(t.rows.size(), direct.times.size() + 1);
+  EXPECT_EQ(t.columns[4], m.name);
+  EXPECT_EQ(t.text_column("status").back(), "completed");
+  for (std::size_t k = 0; k < direct.times.size(); ++k) {
+    EXPECT_EQ(std::stod(t.rows[k][1]), direct.times[k]) << k;
+    EXPECT_EQ(std::stod(t.rows[k][2]), direct.kinetic_energy[k]) << k;
+    EXPECT_EQ(std::stod(t.rows[k][4]), value[k]) << k;
+  }
+  EXPECT_NE(value.back(), value.front());  // the impact has changed the bar's length
+}
+
 TEST(SceneCommand, RunThatStopsKeepsRowsAndFrames) {
   // dt = 4 h / c_P is far beyond the step limit: the rings' densities collapse within a few steps.
   const std::filesystem::path dir = scratch("frames");
@@ -135,8 +171,17 @@ TEST(SceneCommand, BadInputIsOneLine) {
       {{"scene", "slab", "--thickness", "1"}, "--thickness applies to the plate only"},
       {{"scene", "rings", "--length", "5"}, "--length applies to the plate only"},
       {{"scene", "rings", "--tip-speed", "0.1"}, "--tip-speed applies to the plate only"},
-      {{"scene", "plate", "--speed", "0.1"}, "--speed applies to the rings only"},
-      {{"scene", "slab", "--speed", "0.1"}, "--speed applies to the rings only"},
+      {{"scene", "plate", "--speed", "0.1"}, "--speed applies to the rings and the impacts only"},
+      {{"scene", "slab", "--speed", "0.1"}, "--speed applies to the rings and the impacts only"},
+      // Powell's impact problems
+      {{"scene", "bar-impact", "--formulation", "tl"}, "formulation"},
+      {{"scene", "rings", "--formulation", "sph"}, "--formulation applies to the impact problems only"},
+      {{"scene", "bar-impact", "--mu", "0.3"}, "--mu applies to the GMS scenes only"},
+      {{"scene", "symmetric-impact", "--eps", "0.3"}, "--eps applies to the GMS scenes only"},
+      {{"scene", "clamped-beam", "--dp", "0.03"}, "clamp"},
+      {{"scene", "symmetric-impact", "--dp", "0"}, "spacing"},
+      {{"scene", "bar-impact", "--speed", "nan"}, "speed"},
+      {{"scene", "bar-impact", "--across", "4"}, "--across applies to the plate only"},
   };
   test::expect_one_line_errors(cases, [](const std::vector<std::string>& args) { return run(args, "bad"); });
 }

@@ -111,6 +111,41 @@ TEST(LinearStepMap, PredictorCorrectorIsHeunPlusTheUncorrectedPositionsTerm) {
 // with GMS's uncorrected positions is velocity Verlet here (x_p = x + dt v + dt^2/2 a is the final x, and the corrector
 // averages a(x) and a(x_p)): the same neutral eigenvalues. Without a position slot (the same J as a generic
 // first-order system) the PC is Heun: R(+-i dt) = 1 +- i dt - dt^2/2, |R| > 1.
+// u'' = -A u with velocity Verlet (kick, drift, kick: run_leapfrog's, the TL-SPH runs of the impact studies) has the
+// staggered leap-frog's spectrum: both produce u^{n+1} = u^n + dt v^{n+1/2}, v^{n+1/2} = v^{n-1/2} - dt A u^n, only the
+// carried velocity differs by half a kick. So the staggered map on y = (u, v), J = [0 I; -A 0] gives the verdict of a
+// velocity-Verlet run. A has a negative eigenvalue (semi-discrete growth, sqrt(0.3)) and one beyond the step limit
+// (omega dt = sqrt(20) 0.5 > 2: integrator growth); every eigenvalue of the Verlet map is one of the staggered map's.
+TEST(LinearStepMap, StaggeredLeapfrogHasVelocityVerletsSpectrum) {
+  const int n = 5;
+  const double dt = 0.5;
+  Eigen::VectorXd mu(n);
+  mu << -0.3, 0.5, 2, 9, 20;
+  const Eigen::MatrixXd Q = Eigen::HouseholderQR<Eigen::MatrixXd>(Eigen::MatrixXd::Random(n, n)).householderQ();
+  const Eigen::MatrixXd A = Q * mu.asDiagonal() * Q.transpose();
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  J.topRightCorner(n, n).setIdentity();
+  J.bottomLeftCorner(n, n) = -A;
+  StateLayout layout{.size = 2 * n};
+  for (int k = 0; k < n; ++k) layout.position.push_back(k), layout.velocity.push_back(n + k);
+  const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
+  Eigen::MatrixXd kick = Eigen::MatrixXd::Identity(2 * n, 2 * n), drift = kick;
+  kick.bottomLeftCorner(n, n) = -0.5 * dt * A;
+  drift.topRightCorner(n, n) = dt * I;
+  const Eigen::VectorXcd verlet = (kick * drift * kick).eigenvalues();
+  const Eigen::VectorXcd staggered = staggered_leapfrog_map(J, layout, dt).eigenvalues();
+  for (auto z : verlet) {
+    double best = 1e300;
+    for (auto w : staggered) best = std::min(best, std::abs(z - w));
+    EXPECT_LT(best, 1e-9 * std::abs(z)) << z;
+  }
+  const double rho = verlet.cwiseAbs().maxCoeff();
+  EXPECT_NEAR(staggered.cwiseAbs().maxCoeff(), rho, 1e-10 * rho);
+  // The growth is the step limit's, not the negative eigenvalue's: |z| + 1/|z| = |2 - omega^2 dt^2| for omega^2 = 20.
+  const double b = 20 * dt * dt - 2;
+  EXPECT_NEAR(rho, 0.5 * (b + std::sqrt(b * b - 4)), 1e-10 * rho);
+}
+
 TEST(LinearStepMap, ScalarOscillatorEigenvalues) {
   const double dt = 0.5, phi = std::acos(1 - dt * dt / 2);
   Eigen::MatrixXd J(2, 2);

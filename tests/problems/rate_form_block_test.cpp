@@ -16,7 +16,9 @@ TEST(RateFormBlock, UniformStateIsAnEquilibriumOfEveryFormulation) {
       {.continuity = ContinuityForm::Divergence, .gradient = RateFormGradient::Ncsph,
        .momentum = RateFormMomentum::Antisymmetric},
       {.momentum = RateFormMomentum::Cij},
-      {.momentum = RateFormMomentum::StabilisedSph}};
+      {.momentum = RateFormMomentum::StabilisedSph},
+      {.momentum = RateFormMomentum::StabilisedSph, .counting = NeighbourCounting::BoundaryLevel,
+       .first_step_shepard = true}};
   for (const RateFormOptions& o : forms) {
     const Scene<2> s = rate_form_block_scene<2>({.n = 7, .xi = 1.02, .scheme = o, .kick = 0.0});
     Eigen::VectorXd f;

@@ -164,6 +164,14 @@ struct RateFormOptions {
   /// StabilisedSph: particles with depth <= this never get the correction (0: the outer layer BP of algorithm 4.2;
   /// -1: none).
   int excluded_depth = 0;
+  /// StabilisedSph: the means of algorithm 4.1 taken of the first-step Shepard gradient, [Powell2012, (4.18)]:
+  /// V_j grad W~_ij = V_j (grad W_ij S0_i - W_ij G0_i) / S0_i^2 with S0_i = sum_k V_k W_ik and G0_i = sum_k V_k grad
+  /// W_ik at the discretisation's positions and volumes (the self term included), kept fixed thereafter (rebuilt()
+  /// keeps them); r_i, c_j and m_i all of it, as the displacement form's S-SPH (forms/stabilised_sph.hpp). So r_i = 0
+  /// at the first step, where the raw row mean of a particle-deficient neighbourhood at a free surface is large.
+  /// Powell prints the sums without V_k; with them W~ is a Shepard-normalised kernel of W's dimension (as NCSPH's
+  /// (1.19)) and r_i(0) = 0 exactly (tests/forms/rate_form_corrections_test.cpp). false: the means of V_j grad W_ij.
+  bool first_step_shepard = false;
   /// Plain gradient with symmetric or antisymmetric momentum: Rows or Pairs (the constructor refuses Pairs otherwise).
   PairLoop pair_loop = PairLoop::Rows;
 };
@@ -338,6 +346,8 @@ class RateFormScheme final : public SemiDiscreteSystem {
   std::vector<long> m_transpose;             // pair (i, j) -> pair (j, i) (antisymmetric momentum)
   std::vector<long> m_upper;                 // PairLoop::Pairs: per row, the first list entry with j > i
   Eigen::VectorXd m_counts;                  // n_i of the local means (Cij, StabilisedSph)
+  Eigen::VectorXd m_shepard_sum;             // S0_i of (4.18) (first_step_shepard; empty otherwise)
+  std::vector<Eigen::Matrix<double, Dim, 1>> m_shepard_grad;  // G0_i of (4.18)
   std::vector<char> m_in_support;            // per list entry: in the local means' pattern (empty: every entry is)
   std::vector<int> m_driven, m_driven_slot;  // driven particles; per particle: index into m_driven_acc or -1
   std::vector<Eigen::Matrix<double, Dim, 1>> m_driven_acc;

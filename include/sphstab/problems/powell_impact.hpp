@@ -79,7 +79,8 @@ struct PowellImpactOptions {
 PowellImpactOptions problem_defaults(PowellImpactOptions options);
 
 /// MCM's rate form for a formulation name [Powell2012, ch. 4]: "sph" (plain gradient, symmetric momentum (1.36)),
-/// "ncsph" (NCSPH gradient (1.19)), "ssph" (S-SPH momentum, algorithm 4.2 with Fig. 4.3's boundary-level counts);
+/// "ncsph" (NCSPH gradient (1.19)), "ssph" (S-SPH momentum, algorithm 4.2 with Fig. 4.3's boundary-level counts and the
+/// row mean normalised on the first step, (4.18));
 /// each with MCM's continuity -rho tr L (1.32) and the material card's bulk viscosity (QBVC 1.5, LBVC 0.06). The
 /// velocity smoothing (2.71) is the leap-frog's (RateFormRunOptions::leapfrog_xsph), not part of the scheme. Throws
 /// std::invalid_argument naming the valid names ("tl" is not a rate form: impact_total_lagrangian).

@@ -38,7 +38,8 @@ struct RateFormBlockOptions {
 
 /// Thickness of the fixed layers in kernel supports that makes the uniform lattice an exact equilibrium of the
 /// formulation: 1 for the plain gradient with the symmetric momentum; 2 for NCSPH, the antisymmetrised momentum and
-/// C_ij, which read neighbours of neighbours; 3 for S-SPH.
+/// C_ij, which read neighbours of neighbours; 3 for S-SPH; 4 for S-SPH with the first-step Shepard means (4.18),
+/// whose sums differ from the interior's within one support of the edge.
 int rate_form_layer_supports(const RateFormOptions& options);
 
 /// The block's lattice (fixed layers of rate_form_layer_supports supports, none when periodic) and its
