@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # README main job: install dependencies, build what the chosen studies need (Release), run them.
 #   bash scripts/main.sh                 the default main job: the headline studies in full into results/, and one
-#                                        short (--quick) run of the other families into build/quick/ (about 10 min)
+#                                        short (--quick) run of the other families into build/quick/ (about 14 min on a fresh clone, build included)
 #   bash scripts/main.sh --all           every study in full: regenerates the results/ tree as committed (hours)
 #   bash scripts/main.sh NAME...         the named studies in full
 #   options: --jobs N (studies side by side, default the core count), --list (print the plan and estimate only)
