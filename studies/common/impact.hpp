@@ -8,6 +8,8 @@
 // with St Venant-Kirchhoff finite strain) with the velocity-Verlet leap-frog; all at dt = TSSFAC h / c_P.
 //
 // Writes signals.csv (t, global KE and the study's measures per run), runs.csv (status, steps, CPU seconds),
+// a VTK series of every run with snapshots (Settings::vtk_dir: <form>_<case>/series.pvd, a frame every vtk_every us;
+// not kept in git),
 // snapshots.csv (every particle's initial and current position and pressure at the snapshot times) and order.csv
 // (every Settings::order_every: the share of clumped particles, those with a neighbour closer than 0.5 dx, and the
 // fragments of the bonds shorter than 1.5 dx, analysis/fragments.hpp: numerical fracture as a count).
@@ -28,6 +30,7 @@
 // verdicts.csv.
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -40,6 +43,8 @@
 #include "sphstab/integrate/leapfrog.hpp"
 #include "sphstab/integrate/rate_form_run.hpp"
 #include "sphstab/io/csv.hpp"
+#include "sphstab/io/rate_form_vtk.hpp"
+#include "sphstab/io/vtk.hpp"
 #include "sphstab/problems/powell_impact.hpp"
 
 namespace sphstab::study::impact {
@@ -60,6 +65,24 @@ struct Settings {
   /// The verdicts' detection floor is ln(energy_ratio) / (2 t_end): the slowest amplitude growth that raises the
   /// kinetic energy by this factor within the run.
   double verdict_energy_ratio = 100;
+  std::string vtk_dir;    ///< VTK series of the runs with snapshots go to vtk_dir/<form>_<case>/ (empty: none)
+  double vtk_every = 0.5;  ///< us between VTK frames
+};
+
+/// A VTK series being written: frames at the first record at or after each multiple of `every`, the .pvd kept
+/// current (a run that stops leaves a readable series).
+struct VtkSeries {
+  std::string dir;
+  double every = 0;
+  std::vector<std::pair<double, std::string>> frames;
+  template <class Write>
+  void maybe_write(double t, Write write) {
+    if (dir.empty() || t < every * static_cast<double>(frames.size()) - 1e-9 * every) return;
+    const std::string name = "frame_" + std::to_string(frames.size()) + ".vtp";
+    write(dir + "/" + name);
+    frames.emplace_back(t, name);
+    write_pvd(dir + "/series.pvd", frames);
+  }
 };
 
 /// The particle order of a state at one time: clumped share and fragments.
@@ -145,6 +168,11 @@ inline Outcome run_case(const Case& c, const Settings& settings) {
   const double dt = scene.time_step(settings.tssfac);
   const double cpu0 = thread_cpu_seconds();
   const double floor = detection_floor(scene.t_end, settings.verdict_energy_ratio);
+  VtkSeries vtk;
+  if (!settings.vtk_dir.empty() && !c.snapshot_times.empty()) {
+    vtk = {.dir = settings.vtk_dir + "/" + c.form + "_" + c.name, .every = settings.vtk_every};
+    std::filesystem::create_directories(vtk.dir);
+  }
   std::vector<std::pair<double, Eigen::VectorXd>> states;  // (t, y) at the verdict times
   const auto keep_state = [&](double t, double step, const auto& y) {
     for (double w : c.verdict_times)
@@ -170,6 +198,7 @@ inline Outcome run_case(const Case& c, const Settings& settings) {
               (rate_form_densities(scheme, y).array() / scheme.material().density - 1).matrix();
       });
       keep_state(t, ro.dt, y);
+      if (x.allFinite()) vtk.maybe_write(t, [&](const std::string& path) { write_rate_form_vtp(path, scheme, y); });
     };
     const RateFormRunResult r = run_rate_form(scheme, scene.y0, ro);
     o.run = r;
@@ -224,6 +253,15 @@ inline Outcome run_case(const Case& c, const Settings& settings) {
         s.x = x;
         s.p.resize(disc.size());
         for (int i = 0; i < disc.size(); ++i) s.p[i] = m.pressure(v.u, i);
+      });
+      vtk.maybe_write(v.time, [&](const std::string& path) {  // TL: positions, displacement, TL pressure
+        VtkField u{"displacement", 2, Eigen::VectorXd::Zero(2 * disc.size())}, p{"pressure", 1,
+                                                                                Eigen::VectorXd(disc.size())};
+        for (int i = 0; i < disc.size(); ++i) {
+          u.values.segment<2>(2 * i) = x.col(i) - x0.col(i);
+          p.values[i] = m.pressure(v.u, i);
+        }
+        write_vtp(path, x.transpose(), {u, p});
       });
       if (!c.verdict_times.empty()) {
         Eigen::VectorXd uv(2 * v.u.size());

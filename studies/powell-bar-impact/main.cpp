@@ -46,6 +46,7 @@ int main(int argc, char** argv) try {
     throw std::invalid_argument("--t-end must be finite and > 0");
   if (quick) spacings = {0.05}, snapshot_spacing = 0.05, t_end = 10, snapshot_times = {10};
   std::filesystem::create_directories(out);
+  settings.vtk_dir = out + "/vtk";
   set_threads(1);  // cases run side by side; each on one thread (CPU seconds are per run)
 
   std::vector<study::impact::Case> cases, verdict_cases;

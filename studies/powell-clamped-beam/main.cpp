@@ -50,6 +50,7 @@ int main(int argc, char** argv) try {
     throw std::invalid_argument("--t-end must be finite and > 0");
   if (quick) spacings = {0.05}, snapshot_spacing = 0.05, t_end = 5, snapshot_times = {5};
   std::filesystem::create_directories(out);
+  settings.vtk_dir = out + "/vtk";
   set_threads(1);  // cases run side by side; each on one thread (CPU seconds are per run)
 
   const auto make = [&](double dx, const std::string& f) {

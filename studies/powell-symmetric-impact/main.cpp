@@ -43,6 +43,7 @@ int main(int argc, char** argv) try {
     throw std::invalid_argument("--t-end must be finite and > 0");
   if (quick) spacings = {0.05}, snapshot_spacing = 0.05, t_end = 2;
   std::filesystem::create_directories(out);
+  settings.vtk_dir = out + "/vtk";
   set_threads(1);  // cases run side by side; each on one thread (CPU seconds are per run)
 
   // Powell's figure times: Fig. 4.6, 3.05 us in compression; Fig. 4.8, 1.6 us in expansion.
