@@ -183,13 +183,7 @@ void bind_scenes(py::module_& m) {
         o.speed = speed;
         o.t_end = t_end;
         o.scheme = powell_formulation_options(formulation);
-        if (o.problem == ImpactProblem::Beam) {  // the 0.1 cm clamp of the clamped-beam study, in whole layers
-          const double layers = 0.1 / spacing;
-          if (!(std::abs(layers - std::round(layers)) <= 1e-9 * layers) || std::round(layers) < 1)
-            throw std::invalid_argument("powell_impact_scene: spacing " + std::to_string(spacing) +
-                                        " does not divide the beam's 0.1 cm clamp");
-          o.clamp_layers = static_cast<int>(std::lround(layers));
-        }
+        if (o.problem == ImpactProblem::Beam) o.clamp_layers = impact_clamp_layers(0.1, spacing);  // the study's
         return powell_impact_scene(o);
       },
       py::arg("problem"), py::arg("spacing") = 0.02, py::arg("formulation") = "ssph",

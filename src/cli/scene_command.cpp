@@ -69,12 +69,7 @@ Scene<2> make_impact_scene(const SceneArgs& a) {
   if (!a.dp.empty()) o.spacing = parse_double(a.dp, "scene: --dp");
   if (!a.speed.empty()) o.speed = parse_double(a.speed, "scene: --speed");
   if (!a.t_end.empty()) o.t_end = parse_double(a.t_end, "scene: --t-end");
-  if (o.problem == ImpactProblem::Beam) {  // the clamp is 0.1 cm (the study's): whole layers of dx
-    const double layers = 0.1 / o.spacing;
-    if (!(std::abs(layers - std::round(layers)) <= 1e-9 * layers) || std::round(layers) < 1)
-      throw std::invalid_argument("scene: --dp " + a.dp + " does not divide the clamped beam's 0.1 cm clamp");
-    o.clamp_layers = static_cast<int>(std::lround(layers));
-  }
+  if (o.problem == ImpactProblem::Beam) o.clamp_layers = impact_clamp_layers(0.1, o.spacing);  // the study's clamp
   return powell_impact_scene(o);
 }
 

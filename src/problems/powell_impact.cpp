@@ -48,6 +48,14 @@ PowellImpactOptions problem_defaults(PowellImpactOptions o) {
   return o;
 }
 
+int impact_clamp_layers(double clamp, double spacing) {
+  const double layers = clamp / spacing;
+  if (!(std::abs(layers - std::round(layers)) <= 1e-9 * layers) || !(std::round(layers) >= 1))
+    throw std::invalid_argument("impact_clamp_layers: dx = " + format_number(spacing) + " does not divide the " +
+                                format_number(clamp) + " cm clamp into whole layers");
+  return static_cast<int>(std::lround(layers));
+}
+
 RateFormOptions powell_formulation_options(const std::string& formulation) {
   RateFormOptions o{.continuity = ContinuityForm::Divergence,  // MCM (1.32)
                     .bulk_viscosity_quadratic = 1.5,           // MCM deck: QBVC

@@ -227,5 +227,15 @@ TEST(PowellImpact, BadOptionsAreOneLineErrors) {
   EXPECT_THROW(parse_impact_problem("plate"), std::invalid_argument);
 }
 
+// The clamped-beam study's 0.1 cm clamp in whole layers: Powell's five at dx = 0.02; refused where dx does not divide
+// it or exceeds it.
+TEST(PowellImpact, ClampLayers) {
+  EXPECT_EQ(impact_clamp_layers(0.1, 0.02), 5);
+  EXPECT_EQ(impact_clamp_layers(0.1, 0.0125), 8);
+  EXPECT_EQ(impact_clamp_layers(0.1, 0.1), 1);
+  for (double dx : {0.03, 0.2, 0.0, -0.02, std::nan("")})
+    EXPECT_THROW(impact_clamp_layers(0.1, dx), std::invalid_argument) << dx;
+}
+
 }  // namespace powell_impact_test
 }  // namespace sphstab

@@ -93,6 +93,10 @@ RateFormOptions powell_formulation_options(const std::string& formulation);
 /// scheme.
 Scene<2> powell_impact_scene(const PowellImpactOptions& options);
 
+/// The beam's clamp of width `clamp` (cm) as whole vertical layers of dx (PowellImpactOptions::clamp_layers). Throws
+/// std::invalid_argument("... does not divide ...") unless dx divides the width into at least one layer (1e-9).
+int impact_clamp_layers(double clamp, double spacing);
+
 /// Particle A of the scene powell_impact_scene(options) builds (its index; throws as the scene).
 int impact_particle_a(const PowellImpactOptions& options);
 
