@@ -53,16 +53,15 @@ Eigen::MatrixXd reduced_predictor_corrector_map(const Eigen::MatrixXd& X, const 
   return M;
 }
 
-}  // namespace
+/// The state indices of the at-rest reduction: free positions x, velocities v, densities and stresses q.
+struct AtRestIndices {
+  std::vector<int> ix, iv, iq;
+};
 
 template <int Dim>
-RateFormSpectrum rate_form_spectrum(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y,
-                                    const RateFormSpectrumOptions& options) {
-  const bool want_mode = options.want_mode;
-  if (y.size() != scheme.size())
-    throw std::invalid_argument("rate_form_spectrum: state has " + std::to_string(y.size()) + " entries, expected " +
-                                std::to_string(scheme.size()));
-  std::vector<int> ix, iv, iq;
+AtRestIndices at_rest_indices(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y) {
+  AtRestIndices out;
+  std::vector<int>&ix = out.ix, &iv = out.iv, &iq = out.iq;
   for (int i = 0; i < scheme.discretisation().size(); ++i) {
     for (int a = 0; a < Dim && scheme.position_offset(i) >= 0; ++a) {
       ix.push_back(scheme.position_offset(i) + a);
@@ -74,13 +73,131 @@ RateFormSpectrum rate_form_spectrum(const RateFormScheme<Dim>& scheme, const Eig
     for (int c = 0; c < 1 + RateFormScheme<Dim>::kStress && scheme.density_offset(i) >= 0; ++c)
       iq.push_back(scheme.density_offset(i) + c);
   }
+  return out;
+}
+
+void check_map_options(const RateFormSpectrumOptions& options) {
   if (!(options.map_leapfrog_xsph >= 0) || !std::isfinite(options.map_leapfrog_xsph) ||
-      (options.map_leapfrog_xsph > 0 && (options.map_dt <= 0 || options.map_integrator != RateFormIntegrator::Leapfrog)))
-    throw std::invalid_argument("rate_form_spectrum: map_leapfrog_xsph must be finite and >= 0, and > 0 only with the "
-                                "leap-frog map (map_dt > 0; got " + format_number(options.map_leapfrog_xsph) + ")");
+      (options.map_leapfrog_xsph > 0 &&
+       (options.map_dt <= 0 || options.map_integrator != RateFormIntegrator::Leapfrog)))
+    throw std::invalid_argument(
+        "rate_form_spectrum: map_leapfrog_xsph must be finite and >= 0, and > 0 only with the "
+        "leap-frog map (map_dt > 0; got " +
+        format_number(options.map_leapfrog_xsph) + ")");
   if (!(options.map_dt >= 0) || !std::isfinite(options.map_dt))
     throw std::invalid_argument("rate_form_spectrum: map_dt must be finite and >= 0 (got " +
                                 format_number(options.map_dt) + ")");
+}
+
+/// The one-step map's largest |z| (1 for the fixed directions) from its eigen-decomposition, its mode (the first
+/// `head` entries of the eigenvector, mapped back by Q when a class basis is given) and growth ln|z| / dt.
+void set_map_result(RateFormSpectrum& out, const DenseGeneralEigen& me, long head, const Eigen::MatrixXd& Q,
+                    double dt) {
+  Eigen::Index k = 0;
+  me.values.cwiseAbs().maxCoeff(&k);
+  out.map_spectral_radius = 1;  // the fixed directions (v = 0, p = 0)
+  out.map_eigenvalue = 1;
+  if (std::abs(me.values[k]) > 1) {
+    out.map_spectral_radius = std::abs(me.values[k]);
+    out.map_eigenvalue = me.values[k];
+    Eigen::VectorXcd v = me.vectors.col(k).head(head);
+    if (Q.size()) v = Q.cast<std::complex<double>>() * v;
+    out.map_mode = real_mode_shape(v);
+  }
+  out.map_growth = std::log(out.map_spectral_radius) / dt;
+}
+
+/// The predictor-corrector's one-step map (rate_form_spectrum.hpp), reduced on the free velocities and the range of
+/// p = [Jvx Jvq] (x, q), restricted to the class Q if given. false: dgeev failed (out says so).
+bool predictor_corrector_map(RateFormSpectrum& out, const Eigen::MatrixXd& Xv, const Eigen::MatrixXd& Jvx,
+                             const Eigen::MatrixXd& Jvq, const Eigen::MatrixXd& K, const Eigen::MatrixXd& Jvv,
+                             const Eigen::MatrixXd& Q, const RateFormSpectrumOptions& options) {
+  const long nv = Jvx.rows();
+  const auto restrict = [&](const Eigen::MatrixXd& A) { return Q.size() ? Eigen::MatrixXd(Q.transpose() * A * Q) : A; };
+  Eigen::MatrixXd P(nv, Jvx.cols() + Jvq.cols());  // p = [Jvx Jvq] (x, q)
+  P << Jvx, Jvq;
+  if (Q.size()) P = Q.transpose() * P;
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(P);
+  qr.setThreshold(1e-12);
+  const Eigen::MatrixXd W = Eigen::MatrixXd(qr.householderQ()).leftCols(qr.rank());
+  const Eigen::MatrixXd Mr = reduced_predictor_corrector_map(restrict(Xv), restrict(Jvx), restrict(K), restrict(Jvv), W,
+                                                             options.map_dt, options.map_positions);
+  out.map_reduced = static_cast<int>(Mr.rows());
+  DenseGeneralEigen me = general_eigen(Mr, true);
+  if (me.status != Status::Successful) {
+    out.status = me.status;
+    out.reason = "dgeev failed on the reduced one-step map (info " + std::to_string(me.lapack_info) + ")";
+    return false;
+  }
+  set_map_result(out, me, Q.size() ? Q.cols() : nv, Q, options.map_dt);
+  return true;
+}
+
+/// Powell's leap-frog with XSPH (2.71) at rest: w_{n+1} = (I + P + dt^2 B P) w_n - P w_{n-1} (rate_form_spectrum.hpp),
+/// P the XSPH smoothing on the free velocity DOFs. false: dgeev failed (out says so).
+template <int Dim>
+bool leapfrog_xsph_map(RateFormSpectrum& out, const RateFormScheme<Dim>& scheme, const Eigen::MatrixXd& B,
+                       const Eigen::MatrixXd& Q, const RateFormSpectrumOptions& options) {
+  const long m = B.rows(), nv = Q.size() ? Q.rows() : m;
+  // Powell's XSPH: w_{n+1} = (I + P + dt^2 B P) w_n - P w_{n-1} (see the header), P on the free velocity DOFs.
+  const double dt = options.map_dt;
+  const SparseMatrix<> S =
+      xsph_smoothing_matrix(scheme.discretisation(), {.epsilon = options.map_leapfrog_xsph, .include_fixed = true});
+  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(nv, nv);
+  for (int k = 0; k < S.outerSize(); ++k)
+    for (SparseMatrix<>::InnerIterator it(S, k); it; ++it)
+      for (int a = 0; a < Dim; ++a) P(Dim * it.row() + a, Dim * it.col() + a) = it.value();
+  if (Q.size()) P = Q.transpose() * P * Q;
+  const Eigen::MatrixXd BP = B * P;
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(2 * m, 2 * m);
+  C.topLeftCorner(m, m) = P + dt * dt * BP;
+  C.topLeftCorner(m, m).diagonal().array() += 1.0;
+  C.topRightCorner(m, m) = -P;
+  C.bottomLeftCorner(m, m).setIdentity();
+  const DenseGeneralEigen ce = general_eigen(C, true);
+  if (ce.status != Status::Successful) {
+    out.status = ce.status;
+    out.reason = "dgeev failed on the leap-frog map with XSPH (info " + std::to_string(ce.lapack_info) + ")";
+    return false;
+  }
+  out.map_reduced = static_cast<int>(C.rows());
+  set_map_result(out, ce, m, Q, dt);
+  return true;
+}
+
+/// The leap-frog's map without velocity-dependent rates: z^2 - (2 + dt^2 mu) z + 1 = 0 for each mu in eig(B) (e), the
+/// larger root.
+void leapfrog_map_of(RateFormSpectrum& out, const DenseGeneralEigen& e, const Eigen::MatrixXd& Q, double dt) {
+  const long m = e.values.size();
+  out.map_spectral_radius = 1;
+  out.map_eigenvalue = 1;
+  out.map_reduced = static_cast<int>(m);
+  long arg = -1;
+  for (long k = 0; k < m; ++k) {
+    const std::complex<double> b = 2.0 + dt * dt * e.values[k], d = std::sqrt(b * b - 4.0);
+    for (const std::complex<double> z : {(b + d) / 2.0, (b - d) / 2.0})
+      if (std::abs(z) > out.map_spectral_radius) out.map_spectral_radius = std::abs(z), out.map_eigenvalue = z, arg = k;
+  }
+  out.map_growth = std::log(out.map_spectral_radius) / dt;
+  if (arg >= 0) {
+    Eigen::VectorXcd v = e.vectors.size() ? Eigen::VectorXcd(e.vectors.col(arg)) : Eigen::VectorXcd();
+    if (v.size() && Q.size()) v = Q.cast<std::complex<double>>() * v;
+    if (v.size()) out.map_mode = real_mode_shape(v);
+  }
+}
+
+}  // namespace
+
+template <int Dim>
+RateFormSpectrum rate_form_spectrum(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y,
+                                    const RateFormSpectrumOptions& options) {
+  const bool want_mode = options.want_mode;
+  if (y.size() != scheme.size())
+    throw std::invalid_argument("rate_form_spectrum: state has " + std::to_string(y.size()) + " entries, expected " +
+                                std::to_string(scheme.size()));
+  check_map_options(options);
+  const AtRestIndices at_rest = at_rest_indices(scheme, y);
+  const std::vector<int>&ix = at_rest.ix, &iv = at_rest.iv, &iq = at_rest.iq;
   const long nv = static_cast<long>(iv.size());
   require_dense_memory(nv, 8, "rate_form_spectrum");
   RateFormSpectrum out;
@@ -126,36 +243,8 @@ RateFormSpectrum rate_form_spectrum(const RateFormScheme<Dim>& scheme, const Eig
     throw std::invalid_argument("rate_form_spectrum: basis has " + std::to_string(Q.rows()) + " rows, expected " +
                                 std::to_string(nv) + " (free velocity DOFs)");
   const bool leapfrog_map = options.map_dt > 0 && options.map_integrator == RateFormIntegrator::Leapfrog;
-  if (options.map_dt > 0 && !leapfrog_map) {  // the predictor-corrector's map, before B and Jvv are restricted below
-    const auto restrict = [&](const Eigen::MatrixXd& A) { return Q.size() ? Eigen::MatrixXd(Q.transpose() * A * Q) : A; };
-    Eigen::MatrixXd P(nv, Jvx.cols() + Jvq.cols());  // p = [Jvx Jvq] (x, q)
-    P << Jvx, Jvq;
-    if (Q.size()) P = Q.transpose() * P;
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(P);
-    qr.setThreshold(1e-12);
-    const Eigen::MatrixXd W = Eigen::MatrixXd(qr.householderQ()).leftCols(qr.rank());
-    const Eigen::MatrixXd Mr = reduced_predictor_corrector_map(restrict(Xv), restrict(Jvx), restrict(K),
-                                                               restrict(Jvv), W, options.map_dt, options.map_positions);
-    out.map_reduced = static_cast<int>(Mr.rows());
-    DenseGeneralEigen me = general_eigen(Mr, true);
-    if (me.status != Status::Successful) {
-      out.status = me.status;
-      out.reason = "dgeev failed on the reduced one-step map (info " + std::to_string(me.lapack_info) + ")";
-      return out;
-    }
-    Eigen::Index k = 0;
-    me.values.cwiseAbs().maxCoeff(&k);
-    out.map_spectral_radius = 1;  // the fixed directions (v = 0, p = 0)
-    out.map_eigenvalue = 1;
-    if (std::abs(me.values[k]) > 1) {
-      out.map_spectral_radius = std::abs(me.values[k]);
-      out.map_eigenvalue = me.values[k];
-      Eigen::VectorXcd v = me.vectors.col(k).head(Q.size() ? Q.cols() : nv);
-      if (Q.size()) v = Q.cast<std::complex<double>>() * v;
-      out.map_mode = real_mode_shape(v);
-    }
-    out.map_growth = std::log(out.map_spectral_radius) / options.map_dt;
-  }
+  if (options.map_dt > 0 && !leapfrog_map)  // the predictor-corrector's map, before B and Jvv are restricted below
+    if (!predictor_corrector_map(out, Xv, Jvx, Jvq, K, Jvv, Q, options)) return out;
   if (Q.size()) {  // restrict to the invariant subspace
     const Eigen::MatrixXd BQ = B * Q, Bc = Q.transpose() * BQ;
     const double norm = std::max(B.norm(), 1e-300);
@@ -195,57 +284,9 @@ RateFormSpectrum rate_form_spectrum(const RateFormScheme<Dim>& scheme, const Eig
     }
   }
   if (leapfrog_map && !damped && options.map_leapfrog_xsph > 0) {
-    // Powell's XSPH: w_{n+1} = (I + P + dt^2 B P) w_n - P w_{n-1} (see the header), P on the free velocity DOFs.
-    const double dt = options.map_dt;
-    const SparseMatrix<> S = xsph_smoothing_matrix(scheme.discretisation(),
-                                                   {.epsilon = options.map_leapfrog_xsph, .include_fixed = true});
-    Eigen::MatrixXd P = Eigen::MatrixXd::Zero(nv, nv);
-    for (int k = 0; k < S.outerSize(); ++k)
-      for (SparseMatrix<>::InnerIterator it(S, k); it; ++it)
-        for (int a = 0; a < Dim; ++a) P(Dim * it.row() + a, Dim * it.col() + a) = it.value();
-    if (Q.size()) P = Q.transpose() * P * Q;
-    const Eigen::MatrixXd BP = B * P;
-    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(2 * m, 2 * m);
-    C.topLeftCorner(m, m) = P + dt * dt * BP;
-    C.topLeftCorner(m, m).diagonal().array() += 1.0;
-    C.topRightCorner(m, m) = -P;
-    C.bottomLeftCorner(m, m).setIdentity();
-    const DenseGeneralEigen ce = general_eigen(C, true);
-    if (ce.status != Status::Successful) {
-      out.status = ce.status;
-      out.reason = "dgeev failed on the leap-frog map with XSPH (info " + std::to_string(ce.lapack_info) + ")";
-      return out;
-    }
-    out.map_spectral_radius = 1;
-    out.map_eigenvalue = 1;
-    out.map_reduced = static_cast<int>(C.rows());
-    Eigen::Index k = 0;
-    ce.values.cwiseAbs().maxCoeff(&k);
-    if (std::abs(ce.values[k]) > 1) {
-      out.map_spectral_radius = std::abs(ce.values[k]);
-      out.map_eigenvalue = ce.values[k];
-      Eigen::VectorXcd v = ce.vectors.col(k).head(m);
-      if (Q.size()) v = Q.cast<std::complex<double>>() * v;
-      out.map_mode = real_mode_shape(v);
-    }
-    out.map_growth = std::log(out.map_spectral_radius) / dt;
-  } else if (leapfrog_map && !damped) {  // z^2 - (2 + dt^2 mu) z + 1 = 0 for each mu in eig(B): the larger root
-    const double dt = options.map_dt;
-    out.map_spectral_radius = 1;
-    out.map_eigenvalue = 1;
-    out.map_reduced = static_cast<int>(m);
-    long arg = -1;
-    for (long k = 0; k < m; ++k) {
-      const std::complex<double> b = 2.0 + dt * dt * e.values[k], d = std::sqrt(b * b - 4.0);
-      for (const std::complex<double> z : {(b + d) / 2.0, (b - d) / 2.0})
-        if (std::abs(z) > out.map_spectral_radius) out.map_spectral_radius = std::abs(z), out.map_eigenvalue = z, arg = k;
-    }
-    out.map_growth = std::log(out.map_spectral_radius) / dt;
-    if (arg >= 0) {
-      Eigen::VectorXcd v = e.vectors.size() ? Eigen::VectorXcd(e.vectors.col(arg)) : Eigen::VectorXcd();
-      if (v.size() && Q.size()) v = Q.cast<std::complex<double>>() * v;
-      if (v.size()) out.map_mode = real_mode_shape(v);
-    }
+    if (!leapfrog_xsph_map(out, scheme, B, Q, options)) return out;
+  } else if (leapfrog_map && !damped) {
+    leapfrog_map_of(out, e, Q, options.map_dt);
   }
   long best = 0;
   for (long k = 1; k < out.eigenvalues.size(); ++k)

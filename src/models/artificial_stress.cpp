@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "sphstab/models/artificial_stress_particle.hpp"
+
 namespace sphstab {
 
 namespace detail {
@@ -35,59 +37,21 @@ Scalar power_unchecked(const Scalar& x, double n) {
 
 template <class Scalar>
 PrincipalFrame<Scalar> principal_frame(const SymmetricTensor2<Scalar>& sigma) {
-  using detail::re;
-  using std::sqrt;
-  PrincipalFrame<Scalar> f;
-  const Scalar mean = 0.5 * (sigma.xx + sigma.yy);
-  const Scalar half_diff = 0.5 * (sigma.xx - sigma.yy);
-  // radius = sqrt(half_diff^2 + sxy^2): the analytic square (not |.|^2) so that complex steps pass through,
-  // scaled by the larger real magnitude against underflow and overflow.
-  const double scale = std::max(std::abs(re(half_diff)), std::abs(re(sigma.xy)));
-  if (!(scale > 0)) {  // isotropic (real parts): every direction is principal, take theta = 0
-    f.major = mean;
-    f.minor = mean;
-    return f;
-  }
-  const Scalar a = half_diff / scale, b = sigma.xy / scale;
-  const Scalar rho = sqrt(a * a + b * b);  // in [1, sqrt 2] (real part)
-  const Scalar radius = scale * rho;
-  f.major = mean + radius;
-  f.minor = mean - radius;
-  // c^2 = (r + d)/(2r), s^2 = (r - d)/(2r) with d = half_diff; r^2 - d^2 = sxy^2 removes the cancellation.
-  // Scaled quantities (a, b, rho = radius / scale) keep every product representable.
-  if (re(a) >= 0) {
-    f.cc = (rho + a) / (2.0 * rho);
-    f.ss = b * b / (2.0 * rho * (rho + a));
-  } else {
-    f.ss = (rho - a) / (2.0 * rho);
-    f.cc = b * b / (2.0 * rho * (rho - a));
-  }
-  f.sc = b / (2.0 * rho);  // sin(2 theta)/2
-  f.theta = 0.5 * std::atan2(2.0 * re(sigma.xy), re(sigma.xx - sigma.yy));
-  return f;
+  return artificial_stress_detail::principal_frame<artificial_stress_detail::Frame::Full>(sigma);
 }
 
 template <class Scalar>
 SymmetricTensor2<Scalar> rotate_from_frame(const PrincipalFrame<Scalar>& f, const Scalar& rbar_xx,
                                            const Scalar& rbar_yy) {
-  // GMS (6.5)-(6.7)
-  return {f.cc * rbar_xx + f.ss * rbar_yy, f.ss * rbar_xx + f.cc * rbar_yy, f.sc * (rbar_xx - rbar_yy)};
+  return artificial_stress_detail::back_rotate(f, rbar_xx, rbar_yy);
 }
 
 template <class Scalar>
 SymmetricTensor2<Scalar> artificial_stress(const SymmetricTensor2<Scalar>& sigma, const Scalar& density,
                                            double epsilon) {
-  using detail::re;
   detail::check_epsilon("artificial_stress", epsilon);
-  if (!(re(density) > 0) || !std::isfinite(re(density)))
-    throw std::invalid_argument("artificial_stress: density must be finite and > 0 (got " +
-                                std::to_string(re(density)) + ")");
-  const PrincipalFrame<Scalar> f = principal_frame(sigma);
-  const bool major_tensile = re(f.major) > 0, minor_tensile = re(f.minor) > 0;  // minor tensile => major tensile
-  const Scalar k = -epsilon / (density * density);
-  if (minor_tensile) return {k * sigma.xx, k * sigma.yy, k * sigma.xy};  // back-rotation of the full tensor
-  if (!major_tensile) return {};                                         // both compressive (or zero)
-  return rotate_from_frame(f, Scalar(k * f.major), Scalar(0));           // GMS (6.4)-(6.7), radius > 0 here
+  return artificial_stress_detail::particle_artificial_stress<artificial_stress_detail::Frame::Full>(sigma, density,
+                                                                                                     epsilon);
 }
 
 template <class Scalar>

@@ -361,6 +361,119 @@ std::string spectrum_failure(const Eigen::MatrixXd& a, const CriticalLoadOptions
   return "";
 }
 
+/// The eigen route of the spectrum criterion: the real crossings det A(load) = 0 from the eigenvalues nu of M =
+/// A0^-1 (sgn A1): A0 + tau sgn A1 is singular iff nu = -1/tau, so tau_real = -1/nu for the most negative real nu
+/// (+inf: none). false: dgeev failed (out says so).
+bool first_real_crossing(const Eigen::MatrixXd& a0, const Eigen::MatrixXd& a1, const CriticalLoadOptions& opt,
+                         CriticalLoad& out, double& tau_real, Eigen::VectorXcd& real_vec) {
+  const double sgn = load_sign(out.direction);
+  out.eigen_backend = "dgeev";
+  const Eigen::MatrixXd mm = a0.partialPivLu().solve(a1);
+  DenseGeneralEigen e = general_eigen(mm, opt.want_mode);
+  if (e.status != Status::Successful) {
+    out.status = Status::NumericalIssue;
+    append_reason(out.reason, "dgeev of A0^-1 A1 failed");
+    return false;
+  }
+  double nu_min = 0;
+  Eigen::Index at = -1;
+  for (Eigen::Index t = 0; t < e.values.size(); ++t)
+    if (e.values[t].imag() == 0.0 && e.values[t].real() < nu_min) nu_min = e.values[t].real(), at = t;
+  if (at >= 0) {
+    tau_real = -1.0 / nu_min;
+    if (opt.want_mode) real_vec = e.vectors.col(at);
+  }
+  out.load_eigen = sgn * tau_real;
+  if (std::isinf(tau_real)) append_reason(out.reason, "no real load of this sign makes A singular");
+  return true;
+}
+
+/// Refines [lo, hi] by bisection on the spectrum criterion and classifies the first instability (mechanism, mode);
+/// returns true when it is a complex pair (flutter). `tests` is the stability test's counter.
+template <class Stable>
+bool bisect_spectrum(Stable& stable, const int& tests, const Eigen::MatrixXd& a0, const Eigen::MatrixXd& a1,
+                     const CriticalLoadOptions& opt, CriticalLoad& out, double& lo, double& hi, double tau_real,
+                     const Eigen::VectorXcd& real_vec) {
+  const double sgn = load_sign(out.direction);
+  LoadBracket refined;
+  refined.lo = lo;
+  refined.hi = hi;
+  bisect_critical_load(refined, stable, opt.spectrum_rtol);
+  lo = refined.lo;
+  hi = refined.hi;
+  out.load_bisection = sgn * refined.critical();
+  out.lo = sgn * lo;
+  out.hi = sgn * hi;
+  // Mechanism and mode at the first unstable point.
+  DenseGeneralEigen at_hi;
+  const std::string failure = spectrum_failure(a0 + hi * a1, opt, &at_hi);
+  const double scale =
+      opt.imag_scale == ImagScale::FrobeniusNorm ? (a0 + hi * a1).norm() : at_hi.values.cwiseAbs().maxCoeff();
+  const double tol = opt.imag_tol * scale;
+  Eigen::Index worst = -1;
+  bool complex_pair = false;
+  double worst_re = kInf;
+  for (Eigen::Index t = 0; t < at_hi.values.size(); ++t) {
+    const auto mu = at_hi.values[t];
+    if (!(mu.real() > 0) && std::abs(mu.imag()) <= tol && mu.real() < worst_re) worst_re = mu.real(), worst = t;
+  }
+  if (worst < 0) {
+    double im = 0;
+    for (Eigen::Index t = 0; t < at_hi.values.size(); ++t)
+      if (std::abs(at_hi.values[t].imag()) > im) im = std::abs(at_hi.values[t].imag()), worst = t;
+    complex_pair = worst >= 0;
+  }
+  out.mechanism = complex_pair ? InstabilityMechanism::ComplexPair : InstabilityMechanism::RealCrossing;
+  append_reason(out.reason, "eigenvalue leaves the positive real axis: " + failure);
+  if (opt.want_mode) {
+    if (!complex_pair && real_vec.size() && std::isfinite(tau_real) &&
+        std::abs(tau_real - std::sqrt(lo * hi)) <= 1e-6 * tau_real)
+      out.mode = real_vec;
+    else if (worst >= 0 && at_hi.vectors.size())
+      out.mode = at_hi.vectors.col(worst);
+  }
+  if (complex_pair && std::isfinite(tau_real))
+    append_reason(out.reason, "complex pair before the real crossing at |load| = " + format_number(tau_real));
+  out.evaluations = tests;
+  return complex_pair;
+}
+
+/// The bracket [lo, hi] of the spectrum criterion from the first real crossing tau_real (see spectrum_routes).
+template <class Stable>
+void scan_from_real_crossing(Stable& stable, double tau_real, const CriticalLoadOptions& opt, CriticalLoad& out,
+                             double& lo, double& hi) {
+  const double d = 0.25 * opt.spectrum_rtol;
+  for (double f : {1.0 / 16, 1.0 / 8, 0.25, 0.5, 0.75, 0.9, 1 - d}) {
+    if (!stable(f * tau_real)) {
+      hi = f * tau_real;
+      break;
+    }
+    lo = f * tau_real;
+  }
+  if (std::isinf(hi)) {
+    if (!stable(tau_real * (1 + d))) {
+      hi = tau_real * (1 + d);
+    } else {
+      append_reason(out.reason, "spectrum stable just past the real crossing: doubling from there");
+      double tau = tau_real * (1 + d);
+      lo = tau;
+      while (std::isinf(hi)) {
+        tau *= 2;
+        if (tau > opt.max) break;
+        (stable(tau) ? lo : hi) = tau;
+      }
+    }
+  }
+  if (lo == 0) {  // unstable already at tau_real / 16: halve down
+    double tau = hi;
+    while (lo == 0) {
+      tau *= 0.5;
+      if (tau < opt.min) break;
+      (stable(tau) ? lo : hi) = tau;
+    }
+  }
+}
+
 /// Spectrum criterion (dense, any A).
 void spectrum_routes(const Linearisation& lin, const CriticalLoadOptions& opt, CriticalLoad& out) {
   const double sgn = load_sign(out.direction);
@@ -391,106 +504,14 @@ void spectrum_routes(const Linearisation& lin, const CriticalLoadOptions& opt, C
   // A0 + tau sgn A1 singular iff nu = -1/tau, so tau_real = -1/nu for the most negative real nu.
   double tau_real = kInf;
   Eigen::VectorXcd real_vec;
-  if (opt.spectrum_real_crossing) {
-    out.eigen_backend = "dgeev";
-    const Eigen::MatrixXd mm = a0.partialPivLu().solve(a1);
-    DenseGeneralEigen e = general_eigen(mm, opt.want_mode);
-    if (e.status != Status::Successful) {
-      out.status = Status::NumericalIssue;
-      append_reason(out.reason, "dgeev of A0^-1 A1 failed");
-      return;
-    }
-    double nu_min = 0;
-    Eigen::Index at = -1;
-    for (Eigen::Index t = 0; t < e.values.size(); ++t)
-      if (e.values[t].imag() == 0.0 && e.values[t].real() < nu_min) nu_min = e.values[t].real(), at = t;
-    if (at >= 0) {
-      tau_real = -1.0 / nu_min;
-      if (opt.want_mode) real_vec = e.vectors.col(at);
-    }
-    out.load_eigen = sgn * tau_real;
-    if (std::isinf(tau_real)) append_reason(out.reason, "no real load of this sign makes A singular");
-  }
-  // Refines [lo, hi] and classifies the first instability; returns true when it is a complex pair (flutter).
-  auto bisect_spectrum = [&](double& lo, double& hi, double tau_real, const Eigen::VectorXcd& real_vec) {
-    LoadBracket refined;
-    refined.lo = lo;
-    refined.hi = hi;
-    bisect_critical_load(refined, stable, opt.spectrum_rtol);
-    lo = refined.lo;
-    hi = refined.hi;
-    out.load_bisection = sgn * refined.critical();
-    out.lo = sgn * lo;
-    out.hi = sgn * hi;
-    // Mechanism and mode at the first unstable point.
-    DenseGeneralEigen at_hi;
-    const std::string failure = spectrum_failure(a0 + hi * a1, opt, &at_hi);
-    const double scale =
-        opt.imag_scale == ImagScale::FrobeniusNorm ? (a0 + hi * a1).norm() : at_hi.values.cwiseAbs().maxCoeff();
-    const double tol = opt.imag_tol * scale;
-    Eigen::Index worst = -1;
-    bool complex_pair = false;
-    double worst_re = kInf;
-    for (Eigen::Index t = 0; t < at_hi.values.size(); ++t) {
-      const auto mu = at_hi.values[t];
-      if (!(mu.real() > 0) && std::abs(mu.imag()) <= tol && mu.real() < worst_re) worst_re = mu.real(), worst = t;
-    }
-    if (worst < 0) {
-      double im = 0;
-      for (Eigen::Index t = 0; t < at_hi.values.size(); ++t)
-        if (std::abs(at_hi.values[t].imag()) > im) im = std::abs(at_hi.values[t].imag()), worst = t;
-      complex_pair = worst >= 0;
-    }
-    out.mechanism = complex_pair ? InstabilityMechanism::ComplexPair : InstabilityMechanism::RealCrossing;
-    append_reason(out.reason, "eigenvalue leaves the positive real axis: " + failure);
-    if (opt.want_mode) {
-      if (!complex_pair && real_vec.size() && std::isfinite(tau_real) &&
-          std::abs(tau_real - std::sqrt(lo * hi)) <= 1e-6 * tau_real)
-        out.mode = real_vec;
-      else if (worst >= 0 && at_hi.vectors.size())
-        out.mode = at_hi.vectors.col(worst);
-    }
-    if (complex_pair && std::isfinite(tau_real))
-      append_reason(out.reason, "complex pair before the real crossing at |load| = " + format_number(tau_real));
-    out.evaluations = tests;
-    return complex_pair;
-  };
+  if (opt.spectrum_real_crossing && !first_real_crossing(a0, a1, opt, out, tau_real, real_vec)) return;
   // Bisection on the criterion (one dgeev per test). With the first real crossing tau_real, the scan tests
   // tau_real x {1/16, 1/8, 1/4, 1/2, 3/4, 0.9, 1 - d} (d = spectrum_rtol / 4) from below, then tau_real (1 + d): an
   // instability found below tau_real is bisected; otherwise the bracket is [tau_real (1 - d), tau_real (1 + d)],
   // verified by the spectrum itself. Without tau_real: the geometric bracket from `start`.
   double lo = 0, hi = kInf;
   if (std::isfinite(tau_real) && tau_real <= opt.max) {
-    const double d = 0.25 * opt.spectrum_rtol;
-    for (double f : {1.0 / 16, 1.0 / 8, 0.25, 0.5, 0.75, 0.9, 1 - d}) {
-      if (!stable(f * tau_real)) {
-        hi = f * tau_real;
-        break;
-      }
-      lo = f * tau_real;
-    }
-    if (std::isinf(hi)) {
-      if (!stable(tau_real * (1 + d))) {
-        hi = tau_real * (1 + d);
-      } else {
-        append_reason(out.reason, "spectrum stable just past the real crossing: doubling from there");
-        double tau = tau_real * (1 + d);
-        lo = tau;
-        while (std::isinf(hi)) {
-          tau *= 2;
-          if (tau > opt.max) break;
-          (stable(tau) ? lo : hi) = tau;
-        }
-      }
-    }
-    if (lo == 0) {  // unstable already at tau_real / 16: halve down
-      double tau = hi;
-      while (lo == 0) {
-        tau *= 0.5;
-        if (tau < opt.min) break;
-        (stable(tau) ? lo : hi) = tau;
-      }
-    }
+    scan_from_real_crossing(stable, tau_real, opt, out, lo, hi);
   } else {
     const LoadBracket b = bracket_critical_load(stable, opt.start, opt.max, opt.min, opt.step);
     lo = b.lo;
@@ -515,7 +536,7 @@ void spectrum_routes(const Linearisation& lin, const CriticalLoadOptions& opt, C
     }
     return;
   } else {
-    complex_first = bisect_spectrum(lo, hi, tau_real, real_vec);
+    complex_first = bisect_spectrum(stable, tests, a0, a1, opt, out, lo, hi, tau_real, real_vec);
   }
   // The result: the real crossing when it is the first instability, else the bisection.
   out.load = (complex_first || std::isnan(out.load_eigen)) ? out.load_bisection : out.load_eigen;

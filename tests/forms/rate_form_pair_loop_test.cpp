@@ -1,5 +1,5 @@
-// The rate-form scheme's pair loop (PairLoop::Pairs: each pair once, rate_form_pair_loop.hpp) against its row loop
-// (PairLoop::Rows, every pair from both sides): the same rates to rounding for every combination of the terms, in 1D
+// The rate-form scheme's pair loop (PairLoop::Pairs: each pair once, src/forms/rate_form/pair_loop.hpp) against
+// its row loop (PairLoop::Rows, every pair from both sides): the same rates to rounding for every combination of the terms, in 1D
 // and 2D, with fixed layers or periodic, with a list longer than the support, driven particles, other kernels; and
 // what it refuses.
 #include <gtest/gtest.h>

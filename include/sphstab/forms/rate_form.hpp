@@ -141,16 +141,16 @@ struct RateFormOptions {
   ContinuityForm continuity = ContinuityForm::Summation;
   double xsph = 0;  ///< eps_x of [GMS2001, (3.6)] (GMS use 1/2), >= 0; 0: off
   ViscositySwitch viscosity = ViscositySwitch::Off;
-  double viscosity_alpha = 0.06;          ///< linear coefficient (MCM deck default 0.06)
-  double viscosity_beta = 1.5;            ///< quadratic coefficient (MCM deck default 1.5; Compression only)
+  double viscosity_alpha = 0.06;  ///< linear coefficient (MCM deck default 0.06)
+  double viscosity_beta = 1.5;    ///< quadratic coefficient (MCM deck default 1.5; Compression only)
   /// MCM's bulk viscosity ([Powell2012, appendix, MCM input deck, material card: QBVC 1.5, LBVC 0.06]), the
   /// von Neumann-Richtmyer / DYNA form on the velocity divergence d_i = tr L_i of each particle (not a pair term):
   ///   q_i = rho_i l (Q1 l d_i^2 - Q2 c0 d_i)  where d_i < 0 (compression), 0 otherwise,   l = h, c0 = sqrt(K/rho0),
   /// added to the pressure in the momentum equation (sigma = S - (p + q) I). d_i is the divergence of the particle
   /// velocities v (not of the GMS XSPH velocity) with the scheme's gradient (plain V_j grad W_ij, or NCSPH's). Both
   /// coefficients >= 0; 0 and 0: off. The switch reads the real part (a complex-step Jacobian at rest takes it off).
-  double bulk_viscosity_quadratic = 0;  ///< Q1 (QBVC; MCM deck 1.5)
-  double bulk_viscosity_linear = 0;     ///< Q2 (LBVC; MCM deck 0.06)
+  double bulk_viscosity_quadratic = 0;    ///< Q1 (QBVC; MCM deck 1.5)
+  double bulk_viscosity_linear = 0;       ///< Q2 (LBVC; MCM deck 0.06)
   double artificial_stress = 0;           ///< eps_a of [GMS2001, (6.4)] (GMS use 0.3), >= 0; 0: off
   double artificial_stress_exponent = 4;  ///< n of f^n (GMS 4)
   bool evolve_fixed = true;               ///< fixed particles integrate rho and S
@@ -185,6 +185,11 @@ RateFormGradient parse_rate_form_gradient(const std::string& name);
 RateFormMomentum parse_rate_form_momentum(const std::string& name);
 /// Parses "rows" | "pairs" (throws naming the valid choices).
 PairLoop parse_pair_loop(const std::string& name);
+
+namespace rate_form_detail {
+template <int Dim, class Scalar>
+struct Evaluation;  // one call of rate() (src/forms/rate_form/evaluation.hpp)
+}  // namespace rate_form_detail
 
 /// Not thread-safe: rate() reuses scratch buffers owned by the object (kept between calls, one set per scalar type),
 /// so one scheme object must not be evaluated from two threads at once; give each thread its own copy (a copy starts
@@ -291,6 +296,8 @@ class RateFormScheme final : public SemiDiscreteSystem {
   const Eigen::VectorXd& mass() const { return m_mass; }
 
  private:
+  template <int, class>
+  friend struct rate_form_detail::Evaluation;
   /// Overwrites the accelerations of the absorbing particles in dydt (after evaluate() on the same y); the viscous
   /// traction adds to them.
   template <class Scalar>
@@ -342,11 +349,11 @@ class RateFormScheme final : public SemiDiscreteSystem {
   double m_density = 0;
   double m_w_dp = 1;  // W(dp) of the artificial stress
   Eigen::VectorXd m_mass, m_deviator;
-  std::vector<int> m_x_off, m_rho_off;       // per particle: offset of x (free only) and of rho (or -1)
-  std::vector<long> m_transpose;             // pair (i, j) -> pair (j, i) (antisymmetric momentum)
-  std::vector<long> m_upper;                 // PairLoop::Pairs: per row, the first list entry with j > i
-  Eigen::VectorXd m_counts;                  // n_i of the local means (Cij, StabilisedSph)
-  Eigen::VectorXd m_shepard_sum;             // S0_i of (4.18) (first_step_shepard; empty otherwise)
+  std::vector<int> m_x_off, m_rho_off;  // per particle: offset of x (free only) and of rho (or -1)
+  std::vector<long> m_transpose;        // pair (i, j) -> pair (j, i) (antisymmetric momentum)
+  std::vector<long> m_upper;            // PairLoop::Pairs: per row, the first list entry with j > i
+  Eigen::VectorXd m_counts;             // n_i of the local means (Cij, StabilisedSph)
+  Eigen::VectorXd m_shepard_sum;        // S0_i of (4.18) (first_step_shepard; empty otherwise)
   std::vector<Eigen::Matrix<double, Dim, 1>> m_shepard_grad;  // G0_i of (4.18)
   std::vector<char> m_in_support;            // per list entry: in the local means' pattern (empty: every entry is)
   std::vector<int> m_driven, m_driven_slot;  // driven particles; per particle: index into m_driven_acc or -1

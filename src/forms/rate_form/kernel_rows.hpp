@@ -1,8 +1,8 @@
 #pragma once
 /// \file kernel_rows.hpp
 /// Internal to src/forms: the rate-form scheme's whole-row kernel functions (W and dW/dr / r of a row of radii: the
-/// cubic spline written out and vectorised, the kernel's own functions otherwise) and the artificial-stress pair
-/// factor f^n. Shared by the row loop (rate_form.cpp) and the pair loop (rate_form_pair_loop.hpp).
+/// cubic spline written out and vectorised, the kernel's own functions otherwise). Shared by the row loop
+/// (plain_rows.hpp) and the pair loop (pair_loop.hpp).
 #include <Eigen/Core>
 #include <cmath>
 #include <cstddef>
@@ -11,69 +11,12 @@
 #include <emmintrin.h>
 #endif
 
+#include "always_inline.hpp"
 #include "sphstab/kernel/kernel.hpp"
 #include "sphstab/kernel/kernel_shapes.hpp"
 #include "sphstab/numerics/real_part.hpp"
 
-#if defined(__GNUC__)
-#define SPHSTAB_ALWAYS_INLINE __attribute__((always_inline))
-#else
-#define SPHSTAB_ALWAYS_INLINE
-#endif
-
 namespace sphstab::rate_form_detail {
-
-// These repeat operations of other files exactly (the same expressions on the same types, in the same order), so that
-// the row loop gives bitwise the results it gave when it called those functions. Change them together with the
-// originals.
-
-/// artificial_stress_pair_factor(w, w_dp, n) (models/artificial_stress.hpp/.cpp: f^n by repeated multiplication for
-/// integer n <= 1024, exp(n log f) otherwise, 0 for f <= 0) with the exponent's test done once; n >= 0 finite is
-/// checked by the constructor.
-class PairFactor {
- public:
-  PairFactor(double w_dp, double n)
-      : m_w_dp(w_dp), m_n(n), m_integer(n == std::floor(n) && n <= 1024), m_int(m_integer ? static_cast<int>(n) : 0) {}
-  /// f[q] = (w[q] / W(dp))^n for q < len.
-  template <class Scalar>
-  void row(std::size_t len, const Scalar* __restrict w, Scalar* __restrict f) const {
-    if (m_int == 4) {
-      for (std::size_t q = 0; q < len; ++q) {
-        const Scalar x = Scalar(w[q] / m_w_dp);
-        if constexpr (std::is_same_v<Scalar, double>)
-          f[q] = (x * x) * (x * x);  // ipow(x, 4) = 1 * ((x * x) * (x * x)), and 1 * y = y for a real y
-        else
-          f[q] = detail::ipow(x, 4);
-      }
-    } else {
-      for (std::size_t q = 0; q < len; ++q) f[q] = (*this)(w[q]);
-    }
-  }
-  /// row() for the pair loop: f[q] = (w[q] (1 / W(dp)))^4 for GMS's n = 4 (within rounding of row()), row() otherwise.
-  void row_by_reciprocal(std::size_t len, const double* __restrict w, double* __restrict f) const {
-    if (m_int != 4) return row(len, w, f);
-    const double inv = 1.0 / m_w_dp;
-    for (std::size_t q = 0; q < len; ++q) {
-      const double x = w[q] * inv;
-      f[q] = (x * x) * (x * x);
-    }
-  }
-  template <class Scalar>
-  Scalar operator()(const Scalar& w) const {
-    const Scalar x = Scalar(w / m_w_dp);
-    if (m_int == 4) return detail::ipow(x, 4);  // GMS's n = 4, unrolled
-    if (m_integer) return detail::ipow(x, m_int);
-    if (detail::re(x) <= 0) return Scalar(0);
-    using std::exp;
-    using std::log;
-    return exp(m_n * log(x));
-  }
-
- private:
-  double m_w_dp, m_n;
-  bool m_integer;
-  int m_int;
-};
 
 /// W(r) and dW/dr(r) / r of a row of radii through the kernel's own functions.
 template <int Dim>
@@ -200,7 +143,7 @@ class CubicFunctions {
   double m_h, m_cw, m_cd;
 
  public:
-  /// W and dW/dr / r for the pair loop (rate_form_pair_loop.hpp), within rounding of row_slopes<true>(), not bitwise:
+  /// W and dW/dr / r for the pair loop (pair_loop.hpp), within rounding of row_slopes<true>(), not bitwise:
   /// s = r (1/h), and dW/dr / r = (c_d / h)(-3 + 2.25 s) on the inner piece (no division), -0.75 c_d (2 - s)^2 / r on
   /// the outer one. r[q] >= 0; r = 0 gives the inner piece's finite limit.
   void row_pairs(std::size_t len, const double* __restrict r, double* __restrict w, double* __restrict gf) const {

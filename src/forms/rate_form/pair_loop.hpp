@@ -1,10 +1,11 @@
 #pragma once
-/// \file rate_form_pair_loop.hpp
+/// \file pair_loop.hpp
 /// Internal to src/forms: RateFormScheme's pair loop (PairLoop::Pairs, rate_form.hpp) for the plain gradient with
-/// symmetric momentum (the antisymmetric form is the same for the plain gradient) on real states. Each pair (i, j > i) of the neighbour list is visited once; pairs at or beyond
-/// the kernel support are dropped before any kernel work. With r = x_i - x_j, g = grad_i W_ij = (dW/dr / r) r
-/// (grad_j W_ji = -g), the pair terms of rate_form.hpp are symmetric in i and j (sigma_i/rho_i^2 + sigma_j/rho_j^2,
-/// Pi_ij: v_ij . r_ij and rhobar_ij are, f_ij^n, R_i + R_j), so with T = (sigma_i/rho_i^2 + sigma_j/rho_j^2
+/// symmetric momentum (the antisymmetric form is the same for the plain gradient) on real states. Each pair (i, j > i)
+/// of the neighbour list is visited once; pairs at or beyond the kernel support are dropped before any kernel work.
+/// With r = x_i - x_j, g = grad_i W_ij = (dW/dr / r) r (grad_j W_ji = -g), the pair terms of rate_form.hpp are
+/// symmetric in i and j (sigma_i/rho_i^2 + sigma_j/rho_j^2, Pi_ij: v_ij . r_ij and rhobar_ij are, f_ij^n, R_i + R_j),
+/// so with T = (sigma_i/rho_i^2 + sigma_j/rho_j^2
 /// - Pi_ij I + f_ij^n (R_i + R_j)) g and d = vhat_j - vhat_i:
 ///   acc_i += m_j T,            acc_j -= m_i T                    [Powell2012, (1.36)], [GMS2001, (3.1)]
 ///   L_i   += V_j d g^T,        L_j   += V_i d g^T                [GMS2001, (3.10)]
@@ -19,7 +20,9 @@
 #include <type_traits>
 #include <vector>
 
+#include "artificial_stress.hpp"
 #include "kernel_rows.hpp"
+#include "pair_viscosity.hpp"
 #include "sphstab/forms/rate_form.hpp"
 
 namespace sphstab::rate_form_detail {
@@ -94,11 +97,83 @@ SPHSTAB_ALWAYS_INLINE inline Eigen::Matrix<double, Dim, 1> symmetric_times(
     return Eigen::Vector2d(p[0] * g[0] + p[2] * g[1], p[2] * g[0] + p[1] * g[1]);
 }
 
-/// The pair loop with the viscosity switch, artificial stress and XSPH compiled in (kf: kernel_rows.hpp).
+/// Packs what a pair reads of each particle (PairParticle) and zeroes the sums.
+template <int Dim>
+void pack_particles(const PairLoopArrays<Dim>& A, PairLoopScratch<Dim>& s) {
+  using Mat = Eigen::Matrix<double, Dim, Dim>;
+  const int n = A.n;
+  s.particle.resize(n);
+  s.motion.resize(n);
+  s.gradient.resize(n);
+  for (int i = 0; i < n; ++i) {
+    PairParticle<Dim>& P = s.particle[i];
+    P.x = A.x[i];
+    P.v = A.v[i];
+    P.rho = A.rho[i];
+    P.mass = A.mass[i];
+    const Mat &sr = A.sigma_rho2[i], &R = A.R[i];
+    P.s[0] = sr(0, 0);
+    P.R[0] = R(0, 0);
+    if constexpr (Dim == 2) {
+      P.s[1] = sr(1, 1);
+      P.s[2] = sr(0, 1);
+      P.R[1] = R(1, 1);
+      P.R[2] = R(0, 1);
+    }
+    s.motion[i].acc.setZero();
+    s.motion[i].dvhat.setZero();
+    s.gradient[i].L.setZero();
+    s.gradient[i].drho = 0;
+  }
+}
+
+/// The second sweep with XSPH: every vhat known, L and drho from the kept pairs (j, g).
+template <int Dim>
+void gradient_sweep(const PairLoopArrays<Dim>& A, PairLoopScratch<Dim>& s) {
+  using Vec = Eigen::Matrix<double, Dim, 1>;
+  using Mat = Eigen::Matrix<double, Dim, Dim>;
+  const int n = A.n;
+  const MotionSums<Dim>* const ms = s.motion.data();
+  s.gradient_particle.resize(n);
+  for (int i = 0; i < n; ++i) {
+    A.vhat[i] = A.xsph_moves[i] ? Vec(A.v[i] + ms[i].dvhat) : A.v[i];
+    s.gradient_particle[i] = {A.vhat[i], A.vol[i], A.mass[i]};
+  }
+  const GradientParticle<Dim>* const gp = s.gradient_particle.data();
+  GradientSums<Dim>* const gs = s.gradient.data();
+  const int* kj = s.kept_j.data();
+  const Vec* kg = s.kept_g.data();
+  for (int i = 0; i < n; ++i) {
+    const Vec vh_i = gp[i].vhat;
+    const double m_i = gp[i].mass, vol_i = gp[i].vol;
+    Mat L_i = Mat::Zero();
+    double drho_i = 0;
+    const int len = s.kept_count[i];
+    for (int q = 0; q < len; ++q) {
+      const int j = kj[q];
+      const Vec& g = kg[q];
+      const Vec d = gp[j].vhat - vh_i;
+      const Mat dg = d * g.transpose();
+      L_i += gp[j].vol * dg;
+      gs[j].L += vol_i * dg;
+      if (A.summation) {
+        const double dd = d.dot(g);
+        drho_i -= gp[j].mass * dd;
+        gs[j].drho -= m_i * dd;
+      }
+    }
+    gs[i].L += L_i;
+    gs[i].drho += drho_i;
+    kj += len;
+    kg += len;
+  }
+}
+
+/// The first sweep: each pair (i, j > i) in support once, its kernel, the momentum of both particles, and either the
+/// XSPH increments (keeping j and g of the pair for gradient_sweep) or L and drho.
 template <int Dim, ViscositySwitch kViscosity, bool kStress, bool kXsph, class KernelRows>
-void pair_loop(const PairLoopArrays<Dim>& A, const KernelRows& kf, const PairFactor& pair_factor,
-               PairLoopScratch<Dim>& s) {
-  static_assert(Dim == 1 || Dim == 2, "pair_loop: Dim 1 or 2");
+void motion_sweep(const PairLoopArrays<Dim>& A, const KernelRows& kf, const PairFactor& pair_factor,
+                  PairLoopScratch<Dim>& s) {
   using Vec = Eigen::Matrix<double, Dim, 1>;
   using Mat = Eigen::Matrix<double, Dim, Dim>;
   constexpr int kSym = PairParticle<Dim>::kSym;
@@ -129,29 +204,6 @@ void pair_loop(const PairLoopArrays<Dim>& A, const KernelRows& kf, const PairFac
     s.kept_j.resize(upper_pairs);
     s.kept_g.resize(upper_pairs);
     s.kept_count.resize(n);
-  }
-  s.particle.resize(n);
-  s.motion.resize(n);
-  s.gradient.resize(n);
-  for (int i = 0; i < n; ++i) {
-    PairParticle<Dim>& P = s.particle[i];
-    P.x = A.x[i];
-    P.v = A.v[i];
-    P.rho = A.rho[i];
-    P.mass = A.mass[i];
-    const Mat &sr = A.sigma_rho2[i], &R = A.R[i];
-    P.s[0] = sr(0, 0);
-    P.R[0] = R(0, 0);
-    if constexpr (Dim == 2) {
-      P.s[1] = sr(1, 1);
-      P.s[2] = sr(0, 1);
-      P.R[1] = R(1, 1);
-      P.R[2] = R(0, 1);
-    }
-    s.motion[i].acc.setZero();
-    s.motion[i].dvhat.setZero();
-    s.gradient[i].L.setZero();
-    s.gradient[i].drho = 0;
   }
   const PairParticle<Dim>* const pp = s.particle.data();
   MotionSums<Dim>* const ms = s.motion.data();
@@ -200,9 +252,8 @@ void pair_loop(const PairLoopArrays<Dim>& A, const KernelRows& kf, const PairFac
       for (std::size_t q = 0; q < len; ++q) ib[q] = 2.0 / (rho_i + rhoj[q]);
     if constexpr (kViscous)
       for (std::size_t q = 0; q < len; ++q) {
-        const double mu_ij = A.h * vr[q] / (r2[q] + A.eta2);
-        double pi = A.alpha_c0 * mu_ij;
-        if constexpr (kViscosity == ViscositySwitch::Compression) pi += A.beta * mu_ij * mu_ij;
+        const double mu_ij = viscosity_mu(A.h, vr[q], r2[q], A.eta2);  // pair_viscosity.hpp
+        const double pi = viscosity_pi(mu_ij, A.alpha_c0, A.beta, kViscosity == ViscositySwitch::Compression);
         const double cq = pi * ib[q];
         if constexpr (kViscosity == ViscositySwitch::Compression)
           c[q] = vr[q] < 0 ? cq : 0.0;
@@ -256,44 +307,22 @@ void pair_loop(const PairLoopArrays<Dim>& A, const KernelRows& kf, const PairFac
       s.gradient[i].drho += drho_i;
     }
   }
+}
 
+/// The pair loop with the viscosity switch, artificial stress and XSPH compiled in (kf: kernel_rows.hpp).
+template <int Dim, ViscositySwitch kViscosity, bool kStress, bool kXsph, class KernelRows>
+void pair_loop(const PairLoopArrays<Dim>& A, const KernelRows& kf, const PairFactor& pair_factor,
+               PairLoopScratch<Dim>& s) {
+  static_assert(Dim == 1 || Dim == 2, "pair_loop: Dim 1 or 2");
+  const int n = A.n;
+  pack_particles(A, s);
+  motion_sweep<Dim, kViscosity, kStress, kXsph>(A, kf, pair_factor, s);
   if constexpr (kXsph) {
-    s.gradient_particle.resize(n);
-    for (int i = 0; i < n; ++i) {
-      A.vhat[i] = A.xsph_moves[i] ? Vec(A.v[i] + ms[i].dvhat) : A.v[i];
-      s.gradient_particle[i] = {A.vhat[i], A.vol[i], A.mass[i]};
-    }
-    const GradientParticle<Dim>* const gp = s.gradient_particle.data();
-    GradientSums<Dim>* const gs = s.gradient.data();
-    const int* kj = s.kept_j.data();
-    const Vec* kg = s.kept_g.data();
-    for (int i = 0; i < n; ++i) {
-      const Vec vh_i = gp[i].vhat;
-      const double m_i = gp[i].mass, vol_i = gp[i].vol;
-      Mat L_i = Mat::Zero();
-      double drho_i = 0;
-      const int len = s.kept_count[i];
-      for (int q = 0; q < len; ++q) {
-        const int j = kj[q];
-        const Vec& g = kg[q];
-        const Vec d = gp[j].vhat - vh_i;
-        const Mat dg = d * g.transpose();
-        L_i += gp[j].vol * dg;
-        gs[j].L += vol_i * dg;
-        if (A.summation) {
-          const double dd = d.dot(g);
-          drho_i -= gp[j].mass * dd;
-          gs[j].drho -= m_i * dd;
-        }
-      }
-      gs[i].L += L_i;
-      gs[i].drho += drho_i;
-      kj += len;
-      kg += len;
-    }
+    gradient_sweep(A, s);
   } else {
     for (int i = 0; i < n; ++i) A.vhat[i] = A.v[i];
   }
+  const MotionSums<Dim>* const ms = s.motion.data();
   for (int i = 0; i < n; ++i) {
     A.acc[i] = ms[i].acc;
     A.L[i] = s.gradient[i].L;

@@ -1,0 +1,9 @@
+// RateFormScheme<1>::rate on real states: the definitions of rate_form/evaluate.hpp for one
+// dimension and scalar per translation unit.
+#include "rate_form/evaluate.hpp"
+
+namespace sphstab {
+
+template void RateFormScheme<1>::rate(const Eigen::VectorXd&, Eigen::VectorXd&) const;
+
+}  // namespace sphstab
