@@ -2,12 +2,13 @@
 """Compare two results/ trees CSV by CSV, ignoring timing columns.
 
 Usage:
-    python3 scripts/compare_results.py OLD_DIR NEW_DIR [--rtol 0] [--ignore-columns REGEX] [--list-timing]
+    python3 scripts/compare_results.py OLD_DIR NEW_DIR [--rtol 0] [--ignore-columns REGEX] [--list-timing] [--subset]
 
 OLD_DIR and NEW_DIR are results/ trees (results/<study>/*.csv, possibly nested). If a directory holds
 no CSV outside a `results/` subdirectory (e.g. the output of `git archive HEAD results | tar -x -C DIR`),
 that subdirectory is used. Every *.csv present in either tree is compared; a file present in only one
-tree is a failure.
+tree is a failure (with --subset, OLD_DIR is a stored reference: only its CSVs are compared, and files only in
+NEW_DIR are allowed).
 
 Columns are matched by header name (a column present in only one file is a failure), rows by position
 (a different row count is a failure). A cell is equal when both values parse as floats and are equal
@@ -271,6 +272,8 @@ def main(argv: list[str] | None = None) -> int:
                     help="do not compare columns whose name (or 'study/file.csv:name') fully matches REGEX")
     ap.add_argument("--list-timing", action="store_true",
                     help="list the columns treated as timing columns, per file")
+    ap.add_argument("--subset", action="store_true",
+                    help="OLD_DIR is a stored reference: compare its CSVs only (files only in NEW_DIR are allowed)")
     args = ap.parse_args(argv)
     if args.rtol < 0 or math.isnan(args.rtol):
         ap.error("--rtol must be >= 0")
@@ -285,7 +288,7 @@ def main(argv: list[str] | None = None) -> int:
     old_root, new_root = find_root(args.old_dir), find_root(args.new_dir)
     old_files, new_files = list_csvs(old_root), list_csvs(new_root)
     only_old = sorted(old_files - new_files)
-    only_new = sorted(new_files - old_files)
+    only_new = [] if args.subset else sorted(new_files - old_files)
     common = sorted(old_files & new_files)
 
     results: list[FileResult] = []

@@ -2,7 +2,9 @@
 """studies/index.toml lists every study exactly once: every folder under studies/ (except common/) and every
 results/<name>/ folder has one [name] table, and every table names an existing studies/<name>/ and results/<name>/.
 Every main = "full" study has headline claims (studies/<name>/claims.py with a claim_* function; docs/claims.md).
-Its fields are the ones scripts/run_studies.py accepts. Run by ctest (label results); Python 3.11 stdlib only."""
+Its fields are the ones scripts/run_studies.py accepts. Every stored --quick reference (tests/study_quick/<name>/, the
+ctest label "study") belongs to a study with a --quick case, and the comparison it runs catches a changed value.
+Run by ctest (label results); Python 3.11 stdlib only."""
 import os
 import re
 import sys
@@ -65,6 +67,45 @@ class StudyIndexTest(unittest.TestCase):
             for field in ("family", "question", "sources", "headline"):
                 self.assertIn(field, entry, f"[{name}] lacks {field}")
                 self.assertTrue(str(entry[field]).strip(), f"[{name}] has an empty {field}")
+
+    def test_quick_references_belong_to_quick_studies(self):
+        base = os.path.join(ROOT, "tests", "study_quick")
+        for name in sorted(folders(os.path.relpath(base, ROOT))):
+            driver = os.path.join(ROOT, "studies", name, "main.cpp")
+            self.assertTrue(os.path.isfile(driver), f"tests/study_quick/{name}: no studies/{name}/main.cpp")
+            with open(driver, encoding="utf-8") as f:
+                self.assertIn('"--quick"', f.read(), f"studies/{name} has no --quick case")
+            csvs = [c for c in os.listdir(os.path.join(base, name)) if c.endswith(".csv")]
+            self.assertTrue(csvs, f"tests/study_quick/{name} holds no CSV")
+
+    def test_quick_comparison_catches_a_changed_value(self):
+        # compare_results --subset (what tests/scripts/study_quick_test.py runs): equal to itself, and one value moved
+        # by 1e-5 relative (above the tests' 1e-6) fails, as does a missing file.
+        import contextlib
+        import io
+        import shutil
+        import tempfile
+        import compare_results
+        reference = os.path.join(ROOT, "tests", "study_quick", "forms")
+        quiet = contextlib.redirect_stdout(io.StringIO())
+        with tempfile.TemporaryDirectory() as tmp, quiet:
+            run = os.path.join(tmp, "run")
+            shutil.copytree(reference, run)
+            with open(os.path.join(run, "extra.csv"), "w") as f:
+                f.write("a\n1\n")
+            self.assertEqual(compare_results.main([reference, run, "--subset", "--rtol", "1e-6"]), 0)
+            path = os.path.join(run, "crosscheck.csv")
+            with open(path) as f:
+                rows = f.read().splitlines()
+            cells = rows[1].split(",")
+            k = next(i for i, c in enumerate(cells) if re.fullmatch(r"-?[0-9.]+(e[-+]?[0-9]+)?", c) and float(c) != 0)
+            cells[k] = repr(float(cells[k]) * (1 + 1e-5))
+            rows[1] = ",".join(cells)
+            with open(path, "w") as f:
+                f.write("\n".join(rows) + "\n")
+            self.assertEqual(compare_results.main([reference, run, "--subset", "--rtol", "1e-6"]), 1)
+            os.remove(path)
+            self.assertEqual(compare_results.main([reference, run, "--subset", "--rtol", "1e-6"]), 1)
 
 
 if __name__ == "__main__":
