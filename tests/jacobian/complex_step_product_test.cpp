@@ -48,6 +48,45 @@ TEST(ComplexStepProduct, IsTheAssembledJacobianTimesTheVector) {
   EXPECT_EQ(y.cwiseAbs().maxCoeff(), 0.0);
 }
 
+TEST(ComplexStepProduct, ExactAtLengthsFarFromOne) {
+  // Issue 36: a step of 1e-30 / max|x| is not small against positions at dx = 1e-40 (nor exact against velocities at
+  // 1e58). The product must equal the assembled J x (per-column steps) at every supported length, and rescale exactly:
+  // with lengths times L and the material fixed (velocities unchanged, times times L), x = r o variable_scale() keeps
+  // its velocity, density and stress entries, and J x (in the units of F = dy/dt) has its position rows unchanged and
+  // its velocity, density and stress rows times 1/L.
+  Eigen::VectorXd at_one;
+  for (double L : {1.0, 1e-40, 1e40}) {
+    const auto disc = test::lattice_discretisation<2>({.n = 5, .h = 1.3, .periodic = false, .spacing = L});
+    Eigen::VectorXd dev(3);
+    dev << 0.004, -0.002, 0.001;
+    const RateFormScheme<2> scheme(disc, kGms, {.xsph = 0.5, .viscosity = ViscositySwitch::Always}, 1.0 / 1.02, dev);
+    Eigen::VectorXd y0 = scheme.uniform_state();
+    const Eigen::VectorXd s = scheme.variable_scale();
+    const Eigen::VectorXd x = random_vector(static_cast<int>(y0.size()), 1.0, 7).cwiseProduct(s);
+    const SparseMatrix<> J = jacobian(scheme, y0);
+    Eigen::VectorXd y(y0.size());
+    ComplexStepProduct(scheme, y0).apply(x, y);
+    const Eigen::VectorXd ref = J * x;
+    Eigen::VectorXd rescaled = y;
+    for (int i = 0; i < scheme.discretisation().size(); ++i) {
+      if (scheme.velocity_offset(i) >= 0) rescaled.segment(scheme.velocity_offset(i), 2) *= L;
+      if (scheme.density_offset(i) >= 0) rescaled.segment(scheme.density_offset(i), 4) *= L;
+    }
+    EXPECT_LT((y - ref).cwiseAbs().maxCoeff(), 1e-12 * ref.cwiseAbs().maxCoeff()) << "L = " << L;
+    // A vector of unit entries, as an eigensolver starts from: its position entries are 1e40 times the positions at
+    // L = 1e-40, so only a step scaled by the variables keeps h x small against them.
+    const Eigen::VectorXd u = random_vector(static_cast<int>(y0.size()), 1.0, 8);
+    Eigen::VectorXd yu(y0.size());
+    ComplexStepProduct(scheme, y0).apply(u, yu);
+    const Eigen::VectorXd ref_u = J * u;
+    EXPECT_LT((yu - ref_u).cwiseAbs().maxCoeff(), 1e-12 * ref_u.cwiseAbs().maxCoeff()) << "unit vector, L = " << L;
+    if (L == 1.0)
+      at_one = rescaled;
+    else
+      EXPECT_LT((rescaled - at_one).cwiseAbs().maxCoeff(), 1e-12 * at_one.cwiseAbs().maxCoeff()) << "L = " << L;
+  }
+}
+
 TEST(ComplexStepProduct, SpectraFindsTheLeadingEigenvalueMatrixFree) {
   // Tension without artificial stress: J has growing modes; the largest real part from Spectra on the product must
   // be that of the dense spectrum of the assembled J.
@@ -82,5 +121,5 @@ TEST(ComplexStepProduct, RejectsBadInput) {
   EXPECT_THROW(jv.apply(x, y), std::invalid_argument);
 }
 
-}  // namespace
+}  // namespace complex_step_product_test
 }  // namespace sphstab
