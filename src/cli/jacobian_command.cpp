@@ -7,6 +7,7 @@
 //   - rate-form: J = dF/dy of the rate-form scheme at its uniform state (forms/rate_form.hpp; coloured complex step,
 //     exact to rounding); DIR/J.mtx, DIR/state.csv (index, particle, variable, x[, y]).
 // Every file starts with "%" comment lines naming the case.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -142,8 +143,30 @@ void export_rate_form(const RateFormSetup& s, const std::filesystem::path& dir, 
               static_cast<long>(J.cols()), static_cast<long>(J.nonZeros()));
 }
 
+/// Peak memory of the exported J, estimated before the scheme is built (issue 36: --n 1000 needed ~39 GB unannounced):
+/// the scheme as a run's (run_command.cpp) and about 32 bytes per stored entry of J (the pattern, its transpose and
+/// positions, the matrix's values and indices; measured 1.56 GB resident for 54 M entries, a 2D 200 x 200 block). A
+/// particle's rows (its state entries) reach the state entries of the particles within `hops` supports
+/// (RateFormScheme::pattern(): 1; 2 with XSPH or the antisymmetric / C_ij momentum; 3 for S-SPH), with the mean state
+/// entries per particle on both sides (a block's edges make the count an upper bound, tight for large blocks).
+void require_jacobian_memory(const RateFormSetup& s, const std::string& what) {
+  const BlockSize b = block_size(s);
+  const RateFormMomentum m = s.options.momentum;
+  const int hops = std::max(m == RateFormMomentum::Symmetric       ? 1
+                            : m == RateFormMomentum::StabilisedSph ? 3
+                                                                   : 2,
+                            s.options.xsph > 0 ? 2 : 1);
+  // State entries: x, v, rho, S of a free particle; rho, S of a fixed one (evolving: the default).
+  const double stress = s.dim == 1 ? 1 : 3,
+               state = b.free * (2 * s.dim + 1 + stress) + (b.particles - b.free) * (1 + stress);
+  const double entries = state * std::min(b.within(s, hops), b.particles) * (state / b.particles);
+  require_memory(b.particles * (250 + 40 * std::min(b.within(s, 1), b.particles)) + 32 * entries,
+                 what + " (about " + format_number(entries, 3) + " stored entries in J)");
+}
+
 void run_rate_form_jacobian(const RateFormJacobianArgs& a) {
   const RateFormSetup s = parse_rate_form_args(a.scheme, "jacobian rate-form", false, 1, 1'000'000, 1'000);
+  require_jacobian_memory(s, "jacobian rate-form: --dim " + std::to_string(s.dim) + " --n " + std::to_string(s.n));
   const std::filesystem::path dir = output_dir(a.out, "jacobian rate-form");
   if (s.dim == 1)
     export_rate_form<1>(s, dir, a.out);

@@ -6,10 +6,10 @@
 
 #include "parse.hpp"
 #include "sphstab/core/checked_arithmetic.hpp"
-#include "sphstab/growth/stability_verdict.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/length_scale.hpp"
 #include "sphstab/forms/stabilised_sph.hpp"
+#include "sphstab/growth/stability_verdict.hpp"
 #include "sphstab/operators/local_polish.hpp"
 
 namespace sphstab::cli {
@@ -47,7 +47,8 @@ void add_rate_form_options(CLI::App& cmd, RateFormArgs& a, bool lists) {
   cmd.add_option("--beta", a.beta, "viscosity beta (default " + a.beta + ")");
   cmd.add_option("--bulk-viscosity", a.bulk_viscosity,
                  "Q1,Q2: MCM's bulk viscosity q = rho h (Q1 h d^2 - Q2 c0 d) where the velocity divergence d < 0 (the "
-                 "MCM deck's QBVC,LBVC: 1.5,0.06), both >= 0 (default " + a.bulk_viscosity + ": off)");
+                 "MCM deck's QBVC,LBVC: 1.5,0.06), both >= 0 (default " +
+                     a.bulk_viscosity + ": off)");
   cmd.add_option("--artificial-stress", a.artificial_stress,
                  "GMS artificial stress epsilon, >= 0 (default " + a.artificial_stress + ")");
   cmd.add_option(
@@ -56,12 +57,14 @@ void add_rate_form_options(CLI::App& cmd, RateFormArgs& a, bool lists) {
   cmd.add_option("--momentum", a.momentum,
                  "momentum equation: symmetric (Powell 1.36) | antisymmetric | cij (4.10) | ssph (S-SPH, algorithm "
                  "4.2) (default " +
-                     a.momentum + "; fixed layers: 2 supports for ncsph, antisymmetric, cij, 3 for ssph, 4 with "
+                     a.momentum +
+                     "; fixed layers: 2 supports for ncsph, antisymmetric, cij, 3 for ssph, 4 with "
                      "--first-step-shepard)");
   cmd.add_option("--switch-rule", a.switch_rule,
                  "S-SPH switch: tension (4.15-4.17) | as-printed | always | never (default " + a.switch_rule + ")");
-  cmd.add_flag("--first-step-shepard", a.first_step_shepard,
-               "S-SPH: the means of algorithm 4.1 of the first-step Shepard gradient, Powell (4.18) (MCM's; default off)");
+  cmd.add_flag(
+      "--first-step-shepard", a.first_step_shepard,
+      "S-SPH: the means of algorithm 4.1 of the first-step Shepard gradient, Powell (4.18) (MCM's; default off)");
   cmd.add_option("--counting", a.counting,
                  "n_i of the cij/ssph means: actual | boundary-level (Powell Fig. 4.3) (default " + a.counting + ")");
   cmd.add_option("--pair-loop", a.pair_loop,
@@ -76,8 +79,7 @@ namespace {
 /// An option typed where it does nothing is a mistake, not a no-op (issue 36).
 void refuse_if_idle(const RateFormArgs& a, const std::string& c, const char* option, bool applies,
                     const std::string& why) {
-  if (!applies && a.given && a.given(option))
-    throw std::invalid_argument(c + option + " has no effect " + why);
+  if (!applies && a.given && a.given(option)) throw std::invalid_argument(c + option + " has no effect " + why);
 }
 
 }  // namespace
@@ -127,7 +129,8 @@ RateFormSetup parse_rate_form_args(const RateFormArgs& a, const std::string& com
   refuse_if_idle(a, c, "--beta", viscous, "with --viscosity off");
   refuse_if_idle(a, c, "--switch-rule", o.momentum == RateFormMomentum::StabilisedSph, "without --momentum ssph");
   o.first_step_shepard = a.first_step_shepard;
-  refuse_if_idle(a, c, "--first-step-shepard", o.momentum == RateFormMomentum::StabilisedSph, "without --momentum ssph");
+  refuse_if_idle(a, c, "--first-step-shepard", o.momentum == RateFormMomentum::StabilisedSph,
+                 "without --momentum ssph");
   refuse_if_idle(a, c, "--counting",
                  o.momentum == RateFormMomentum::Cij || o.momentum == RateFormMomentum::StabilisedSph,
                  "without --momentum cij or ssph");
@@ -199,16 +202,28 @@ VerdictSetup parse_verdict_args(const VerdictArgs& a, const std::string& command
   return v;
 }
 
-
 void add_verdict_options(CLI::App& cmd, VerdictArgs& a) {
   cmd.add_option("--integrator", a.integrator,
-                  "pc | pc1 | leapfrog: add the stability verdict of a run with this integrator (needs --dt and "
-                  "--t-end): map_growth = ln rho(M) / dt of the one-step map, floor = ln(--energy-ratio) / (2 t_end), "
-                  "verdict S | U | I | B (growth/stability_verdict.hpp; at rest with pc or a viscosity-free leapfrog reduced exactly, otherwise dense in the whole state)");
+                 "pc | pc1 | leapfrog: add the stability verdict of a run with this integrator (needs --dt and "
+                 "--t-end): map_growth = ln rho(M) / dt of the one-step map, floor = ln(--energy-ratio) / (2 t_end), "
+                 "verdict S | U | I | B (growth/stability_verdict.hpp; at rest with pc or a viscosity-free leapfrog "
+                 "reduced exactly, otherwise dense in the whole state)");
   cmd.add_option("--dt", a.dt, "the verdict's time step > 0 (reduced to t_end / ceil(t_end / dt) as in `run`)");
   cmd.add_option("--t-end", a.t_end, "the verdict's run length > 0");
   cmd.add_option("--energy-ratio", a.energy_ratio,
-                  "kinetic-energy growth the run detects, > 1 (default 100): the floor is ln(ratio) / (2 t_end)");
+                 "kinetic-energy growth the run detects, > 1 (default 100): the floor is ln(ratio) / (2 t_end)");
+}
+
+BlockSize block_size(const RateFormSetup& s) {
+  const double support = 2 * s.h_over_dx.front();  // in dx
+  const double layers =
+      s.periodic ? 0 : fixed_layers_needed(rate_form_layer_supports(s.options) * support * s.dx, s.dx);
+  return {.free = std::pow(double(s.n), s.dim), .particles = std::pow(s.n + 2 * layers, s.dim)};
+}
+
+double BlockSize::within(const RateFormSetup& s, double radius) const {
+  const double r = radius * 2 * s.h_over_dx.front();
+  return s.dim == 1 ? 1 + 2 * r : 1 + M_PI * r * r;
 }
 
 }  // namespace sphstab::cli

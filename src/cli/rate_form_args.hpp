@@ -63,6 +63,15 @@ RateFormSetup parse_rate_form_args(const RateFormArgs& a, const std::string& com
 RateFormBlockOptions block_options(const RateFormSetup& setup, KernelType kernel, double h_over_dx, double xi = 1.0,
                                    double kick = 0.0);
 
+/// The size of `setup`'s block before it is built, for the memory estimates of run and jacobian: the free particles
+/// (n^dim), all particles (with the fixed layers of rate_form_layer_supports), and the particles within `radius` kernel
+/// supports of one particle (1 + 2 r in 1D, 1 + pi r^2 in 2D, r = radius x 2 h / dx; 2 h the cubic spline's support).
+struct BlockSize {
+  double free = 0, particles = 0;
+  double within(const RateFormSetup& setup, double radius) const;
+};
+BlockSize block_size(const RateFormSetup& setup);
+
 /// Particle-steps above which a run is refused before it starts: 1e11, about a day at the scheme's ~1 µs per
 /// particle-step on one core (results/gms-speed), so a --t-end or --dt that cannot finish is an error, not a hang.
 inline constexpr double kMaxParticleSteps = 1e11;

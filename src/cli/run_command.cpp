@@ -1,11 +1,11 @@
 // `sphstab run`: the rate-form SPH scheme (forms/rate_form.hpp) run in time on a lattice (integrate/rate_form_run.hpp),
-// its time series printed as CSV. The scene is the library's Swegle block (problems/rate_form_block.hpp: fixed layers, the free particle
-// nearest the centre gets the velocity V0 along x) or a periodic lattice (a sinusoidal velocity V0 sin(k (x - x_lo))
-// along x at the shortest wavelength the box holds). A run that stops (non-finite state, density <= 0, kinetic-energy
-// growth beyond --energy-growth: rate_form_run's statuses; a particle moved beyond --max-displacement: this command's
-// check, since the run never rebuilds its neighbour list; a numerical exception in the scheme) keeps the rows printed
-// so far and ends with a row that names the status, the step, the time and the particle; it is a result (exit 0), not
-// an input error.
+// its time series printed as CSV. The scene is the library's Swegle block (problems/rate_form_block.hpp: fixed layers,
+// the free particle nearest the centre gets the velocity V0 along x) or a periodic lattice (a sinusoidal velocity V0
+// sin(k (x - x_lo)) along x at the shortest wavelength the box holds). A run that stops (non-finite state, density <=
+// 0, kinetic-energy growth beyond --energy-growth: rate_form_run's statuses; a particle moved beyond
+// --max-displacement: this command's check, since the run never rebuilds its neighbour list; a numerical exception in
+// the scheme) keeps the rows printed so far and ends with a row that names the status, the step, the time and the
+// particle; it is a result (exit 0), not an input error.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -317,11 +317,8 @@ struct DisplacementStop {
 /// default dt the dense spectrum of the free velocity DOFs (rate_form_spectrum: 8 dense copies).
 void require_run_memory(const RunSetup& r) {
   const RateFormSetup& s = r.scheme;
-  const double support = 2 * s.h_over_dx.front();  // in dx
-  const double layers =
-      s.periodic ? 0 : fixed_layers_needed(rate_form_layer_supports(s.options) * support * s.dx, s.dx);
-  const double free = std::pow(double(s.n), s.dim), particles = std::pow(s.n + 2 * layers, s.dim);
-  const double q = s.dim == 1 ? 1 + 2 * support : 1 + M_PI * support * support;
+  const BlockSize b = block_size(s);
+  const double free = b.free, particles = b.particles, q = b.within(s, 1);
   const std::string what = "run: --dim " + std::to_string(s.dim) + " --n " + std::to_string(s.n);
   if (std::isnan(r.dt))
     require_dense_memory(static_cast<long>(free * s.dim), 8,

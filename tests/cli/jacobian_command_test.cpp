@@ -125,6 +125,31 @@ TEST(JacobianCommand, RateFormJacobianMatchesCentralDifferences) {
   for (std::size_t q = 0; q < sorted.size(); ++q) EXPECT_EQ(sorted[q], static_cast<double>(q));  // every row once
 }
 
+TEST(JacobianCommand, RateFormMemoryIsEstimatedBeforeBuilding) {
+  // Issue 36: `--max-memory 1M jacobian rate-form` built J anyway, and --n 1000 (~40 GB) started unannounced. The
+  // refusal names its estimate of J's stored entries; it must bracket the count of the J that the same options write
+  // (within [1, 2] x: generous enough to refuse before the pattern exists, tight enough to allow what fits).
+  for (const std::vector<std::string>& options : {std::vector<std::string>{"--n", "12"},
+                                                  {"--n", "10", "--xsph", "0.5"},
+                                                  {"--n", "8", "--momentum", "ssph"},
+                                                  {"--n", "9", "--momentum", "cij", "--h", "1.5"},
+                                                  {"--dim", "1", "--n", "3000"}}) {
+    std::vector<std::string> args = {"--max-memory", "1M", "jacobian", "rate-form", "--out", scratch("mem").string()};
+    args.insert(args.end(), options.begin(), options.end());
+    const test::CliOutcome refused = run(args, "mem");
+    EXPECT_EQ(refused.exit_code, 1) << options[1];
+    const auto at = refused.err.find("(about ");
+    ASSERT_NE(at, std::string::npos) << refused.err;
+    const double estimate = std::stod(refused.err.substr(at + 7));
+    args.erase(args.begin(), args.begin() + 2);
+    const test::CliOutcome made = run(args, "mem");
+    ASSERT_EQ(made.exit_code, 0) << made.err;
+    const double entries = static_cast<double>(read_matrix_market((scratch("mem") / "J.mtx").string()).nonZeros());
+    EXPECT_GE(estimate, entries) << options[1] << " " << options.back();
+    EXPECT_LE(estimate, 2 * entries) << options[1] << " " << options.back();
+  }
+}
+
 TEST(JacobianCommand, BadInputIsOneLine) {
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
       {{"jacobian"}, "subcommand"},
@@ -146,5 +171,5 @@ TEST(JacobianCommand, BadInputIsOneLine) {
   test::expect_one_line_errors(cases, [](const std::vector<std::string>& args) { return run(args, "bad"); });
 }
 
-}  // namespace
+}  // namespace jacobian_command_test
 }  // namespace sphstab
