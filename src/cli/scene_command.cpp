@@ -6,12 +6,13 @@
 // and the scene's measure (plate: tip deflection; rings: largest fragment count of one ring; slab: narrowest width
 // between the driven zones, analysis/neck.hpp). A run that fractures is a result; one that stops (non-finite state,
 // density <= 0) keeps its rows and VTK frames and ends with a row naming the status, step, time and particle.
-// symmetric-impact, bar-impact, clamped-beam: Powell's impact problems [Powell2012, ch. 4 §4] (problems/powell_impact.hpp)
-// in g-cm-us, one rate-form formulation (--formulation sph | ncsph | ssph: MCM's, powell_formulation_options) run as
-// Powell ran them: the staggered leap-frog (algorithm 1.1) with the velocity smoothing (2.71), eps 0.1, at dt = TSSFAC
-// h / c_P (--cfl, default the deck's 0.8); the measure is the problem's (pressure at A; the bar's length; the beam's
-// midline deflection). TL-SPH runs on u'' = a(u), not this scheme: the impact studies run it.
-// The studies gms-plate, gms-rings, gms-slab and powell-* hold the validated runs; this command is for one-off runs.
+// symmetric-impact, bar-impact, clamped-beam: Powell's impact problems [Powell2012, ch. 4 §4]
+// (problems/powell_impact.hpp) in g-cm-us, one rate-form formulation (--formulation sph | ncsph | ssph: MCM's,
+// powell_formulation_options) run as Powell ran them: the staggered leap-frog (algorithm 1.1) with the velocity
+// smoothing (2.71), eps 0.1, at dt = TSSFAC h / c_P (--cfl, default the deck's 0.8); the measure is the problem's
+// (pressure at A; the bar's length; the beam's midline deflection). TL-SPH runs on u'' = a(u), not this scheme: the
+// impact studies run it. The studies gms-plate, gms-rings, gms-slab and powell-* hold the validated runs; this command
+// is for one-off runs.
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
@@ -50,9 +51,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 std::string num(double v) { return format_csv_cell(CsvCell(v)); }  // shortest round trip
 
 struct SceneArgs {
-  std::string scene, dp, across = "10", thickness = "2", length = "20", mu, nu, eps = "0.3", tip_speed = "0.01",
-                         speed, yield, t_end, skin = "0.5", cfl, record_every = "100", out, pair_loop = "auto",
-                         formulation;
+  std::string scene, dp, across = "10", thickness = "2", length = "20", mu, nu, eps = "0.3", tip_speed = "0.01", speed,
+                         yield, t_end, skin = "0.5", cfl, record_every = "100", out, pair_loop = "auto", formulation;
 };
 
 bool is_impact(const std::string& scene) {
@@ -114,10 +114,14 @@ Scene<2> make_scene(const SceneArgs& a) {
     sc = gms_plate_scene({.length = L, .thickness = H, .across = across}, vf, o);
   } else if (s == "rings") {
     const double dp = a.dp.empty() ? 0.1 : positive(a.dp, "--dp");
+    // Two annuli r_in = 3 < r < r_out = 4 (colliding_rings.hpp) on a grid of dp: 2 pi (16 - 9) / dp^2 particles.
+    require_memory(1500.0 * (2 * M_PI * 7 / (dp * dp) + 100), "scene: rings at --dp " + format_number(dp));
     sc = gms_rings_scene({.spacing = dp, .speed = parse_double(a.speed.empty() ? "0.059" : a.speed, "scene: --speed")},
                          o);
   } else {
     const double dp = a.dp.empty() ? 0.04 : positive(a.dp, "--dp");
+    // The 3 x 1 slab (plastic_slab.hpp) on a grid of dp: (3 / dp + 1) (1 / dp + 1) particles.
+    require_memory(1500.0 * (3 / dp + 1) * (1 / dp + 1), "scene: slab at --dp " + format_number(dp));
     sc = gms_slab_scene({.spacing = dp}, a.yield.empty() ? 0.03 : yield, o);  // GMS §7.3: Y = 0.03
   }
   if (s != "slab") sc.yield_stress = yield;
@@ -170,7 +174,8 @@ void register_scene_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "scene",
       "Run a GMS 2001 test case (plate | rings | slab) with GMS's scheme in GMS units, or one of Powell's impact "
-      "problems (symmetric-impact | bar-impact | clamped-beam) with MCM's scheme in g-cm-us; CSV rows of step, t, kinetic "
+      "problems (symmetric-impact | bar-impact | clamped-beam) with MCM's scheme in g-cm-us; CSV rows of step, t, "
+      "kinetic "
       "energy, fragments and the scene's measure, and a final row with the run's status and particle");
   cmd->add_option("scene", a->scene,
                   "plate (§7.1 cantilever) | rings (§7.2) | slab (§7.3, von Mises) | symmetric-impact | bar-impact | "
@@ -198,8 +203,10 @@ void register_scene_command(CLI::App& app) {
   cmd->add_option("--out", a->out, "also write VTK snapshots DIR/scene_<step>.vtp at every row and DIR/scene.pvd");
   cmd->callback([a, cmd] {
     // An option of another scene is a mistake, not a no-op (issue 36): one line naming where it applies.
-    const std::vector<std::pair<const char*, const char*>> only = {{"--across", "plate"},   {"--thickness", "plate"},
-                                                                   {"--length", "plate"},   {"--tip-speed", "plate"},
+    const std::vector<std::pair<const char*, const char*>> only = {{"--across", "plate"},
+                                                                   {"--thickness", "plate"},
+                                                                   {"--length", "plate"},
+                                                                   {"--tip-speed", "plate"},
                                                                    {"--speed", "rings"}};
     const bool impact = is_impact(a->scene);
     for (const auto& [option, scene] : only)

@@ -93,25 +93,24 @@ TEST(SceneCommand, PlateSeriesIsTheLibrarysRun) {
 TEST(SceneCommand, ImpactSeriesIsPowellsRun) {
   // Powell's bar impact [Powell2012, ch. 4 §4.2] with basic SPH at dx = 0.1 cm to 4 us: MCM's leap-frog with the
   // velocity smoothing (2.71), eps 0.1, at dt = 0.8 h / c_P, skin 0.5 dx; the measure is the bar's length.
-  const PowellImpactOptions po{.problem = ImpactProblem::Bar, .spacing = 0.1, .t_end = 4,
-                               .scheme = powell_formulation_options("sph")};
+  const PowellImpactOptions po{
+      .problem = ImpactProblem::Bar, .spacing = 0.1, .t_end = 4, .scheme = powell_formulation_options("sph")};
   const Scene<2> sc = powell_impact_scene(po);
   std::vector<double> value;
   const SceneMeasure<2>& m = sc.measures.front();
-  const RateFormRunResult direct =
-      run_rate_form(*sc.scheme, sc.y0,
-                    {.dt = sc.time_step(0.8),
-                     .t_end = 4,
-                     .record_every = 3,
-                     .observer = [&](long, double, const Eigen::VectorXd& y) {
-                       value.push_back(m.value(rate_form_positions(*sc.scheme, y), y));
-                     },
-                     .integrator = RateFormIntegrator::Leapfrog,
-                     .leapfrog_xsph = 0.1,
-                     .neighbour_skin = 0.05});
+  const RateFormRunResult direct = run_rate_form(
+      *sc.scheme, sc.y0,
+      {.dt = sc.time_step(0.8),
+       .t_end = 4,
+       .record_every = 3,
+       .observer = [&](long, double,
+                       const Eigen::VectorXd& y) { value.push_back(m.value(rate_form_positions(*sc.scheme, y), y)); },
+       .integrator = RateFormIntegrator::Leapfrog,
+       .leapfrog_xsph = 0.1,
+       .neighbour_skin = 0.05});
   ASSERT_TRUE(direct.completed()) << direct.message;
-  const test::CliOutcome r = run({"scene", "bar-impact", "--formulation", "sph", "--dp", "0.1", "--t-end", "4",
-                                  "--record-every", "3"});
+  const test::CliOutcome r =
+      run({"scene", "bar-impact", "--formulation", "sph", "--dp", "0.1", "--t-end", "4", "--record-every", "3"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const CsvTable t = read_csv(r.out_path);
   ASSERT_EQ(t.rows.size(), direct.times.size() + 1);
@@ -166,6 +165,10 @@ TEST(SceneCommand, BadInputIsOneLine) {
       {{"scene", "rings", "--dp", "0.6"}, "spacing"},
       {{"scene", "plate", "--length", "1e9", "--across", "100"}, "GB"},  // refused before anything is built
       {{"scene", "rings", "--dp", "1e-5"}, "GB"},  // the builder: fewer than two particles across the ring
+      // Estimated before the scene is built (issue 36: --dp 0.003 took ~7 GB unannounced)
+      {{"scene", "rings", "--dp", "0.003"}, "GB"},
+      {{"--max-memory", "20M", "scene", "rings", "--dp", "0.03"}, "--max-memory"},
+      {{"scene", "slab", "--dp", "1e-4"}, "GB"},
       // options of another scene (issue 36: they used to be accepted and ignored)
       {{"scene", "rings", "--across", "5"}, "--across applies to the plate only"},
       {{"scene", "slab", "--thickness", "1"}, "--thickness applies to the plate only"},
@@ -186,5 +189,5 @@ TEST(SceneCommand, BadInputIsOneLine) {
   test::expect_one_line_errors(cases, [](const std::vector<std::string>& args) { return run(args, "bad"); });
 }
 
-}  // namespace
+}  // namespace scene_command_test
 }  // namespace sphstab
