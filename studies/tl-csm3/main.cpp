@@ -9,75 +9,29 @@
 // The displacement of A = (0.6, 0.2) is extrapolated linearly to x = 0.6 from the means of the two tip columns'
 // particles nearest y = 0.2: u_A = 1.5 u(col 0) - 0.5 u(col 1). Mean = (max + min) / 2 and amplitude
 // = (max - min) / 2 over the window t >= --t-measure, frequency = 1 / period from the zero crossings of u - mean.
-// Writes to --out DIR: tip_<run>.csv, table.csv, runs.csv, snapshot.csv (finest run, largest deflection of the last
-// period), summary.json.
+// Writes to --out DIR: tip_<run>.csv, runs.csv, order.csv, rotation.csv, snapshot.csv (finest run, largest deflection
+// of the last period), summary.json.
+// The runs and their computation are in csm3_cases.hpp (the snapshot in deflection_snapshot.hpp), runs.csv and the
+// tables against the reference in run_tables.hpp, the observed order in observed_order.hpp, the rigid-rotation check
+// in rigid_rotation.hpp; the form builder, the gravity run and linear beam theory in studies/common/csm3.hpp.
 #include <CLI/CLI.hpp>
-#include <Eigen/Eigenvalues>
-#include <algorithm>
-#include <cmath>
 #include <filesystem>
-#include <functional>
-#include <iostream>
 #include <memory>
-#include <numbers>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "common/csm3.hpp"
 #include "common/study.hpp"
-#include "sphstab/forms/correction_gradient.hpp"
-#include "sphstab/forms/finite_strain_total_lagrangian.hpp"
-#include "sphstab/io/csv.hpp"
-#include "sphstab/jacobian/complex_step_jacobian.hpp"
+#include "csm3_cases.hpp"
+#include "deflection_snapshot.hpp"
+#include "observed_order.hpp"
+#include "rigid_rotation.hpp"
+#include "run_tables.hpp"
 #include "sphstab/models/st_venant_kirchhoff.hpp"
-#include "sphstab/problems/cantilever_plate.hpp"
-#include "sphstab/problems/turek_hron_csm3.hpp"
 
-using namespace sphstab;
+using namespace csm3_study;
 namespace fs = std::filesystem;
-using C = TurekHronCsm3;
-
-namespace {
-
-struct RunSpec {
-  int across;
-  std::string gradient;  ///< "ncsph" or "plain"
-  int clamp_layers;
-  std::string name() const {
-    return "n" + std::to_string(across) + "-" + gradient + "-clamp" + std::to_string(clamp_layers);
-  }
-};
-
-/// Observed order p of three values at spacings h1 > h2 > h3: (f1 - f2) / (f2 - f3) = (h1^p - h2^p) / (h2^p - h3^p),
-/// by bisection on p in [0.05, 8]; NaN when the differences change sign (no monotone convergence) or no root lies
-/// there.
-double observed_order(double h1, double h2, double h3, double f1, double f2, double f3) {
-  const double r = (f1 - f2) / (f2 - f3);
-  if (!(r > 0) || !std::isfinite(r)) return NAN;
-  auto g = [&](double p) { return (std::pow(h1, p) - std::pow(h2, p)) / (std::pow(h2, p) - std::pow(h3, p)) - r; };
-  double a = 0.05, b = 8;
-  if (g(a) * g(b) > 0) return NAN;
-  for (int it = 0; it < 100; ++it) {
-    const double c = 0.5 * (a + b);
-    (g(a) * g(c) <= 0 ? b : a) = c;
-  }
-  return 0.5 * (a + b);
-}
-
-using study::csm3::Measure;
-
-struct CaseResult {
-  RunSpec spec;
-  int particles = 0, free = 0, clamp = 0;
-  double dx = 0, dt = 0, dt_limit = 0, wall = 0, energy_drift = 0;
-  double f_linear = NAN;  ///< lowest eigenfrequency of the linearisation at rest (Hz); NaN when not computed
-  double growth = NAN;    ///< max Re sqrt(-mu), mu in eig(A), A = -da/du at rest (1/s); NaN when not computed
-  long steps = 0;
-  std::string status = "completed";
-  Measure ux, uy;
-};
-
-}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"Turek & Hron CSM3: elastic beam under gravity, finite-strain TL SPH (St Venant-Kirchhoff)"};
@@ -104,221 +58,36 @@ int main(int argc, char** argv) {
   if (across.empty()) throw std::invalid_argument("tl-csm3: --across needs at least one resolution");
   fs::create_directories(out);
   const auto t0 = study::Clock::now();
-  std::vector<std::string> others;
-  for (const std::string g : {"plain", "ncsph", "ncsph-variational"})
-    if (g != gradient) others.push_back(g);
+  const std::vector<std::string> others = other_gradients(gradient);
   const std::string other = others[0] + " and " + others[1];
-  std::vector<RunSpec> specs;
-  for (int n : across) specs.push_back({n, gradient, clamp_layers});
-  for (const std::string& g : others) specs.push_back({across.front(), g, clamp_layers});
-  specs.push_back({across.front(), gradient, wide_clamp});
 
+  // ---- 1. The runs: the chosen form at every resolution, the other forms and the clamp sensitivity. ----
   const LameParameters lame = study::csm3::lame();
   auto svk = std::make_shared<StVenantKirchhoff<2>>(lame);
   const Kernel<2> kernel(KernelType::WendlandC2);
+  const CaseSettings settings{
+      .out = out, .divergence = divergence, .h_over_dx = h_over_dx, .t_end = t_end, .t_measure = t_measure, .cfl = cfl};
   std::vector<CaseResult> results;
-  Eigen::MatrixXd snapshot_x;  // finest chosen run: x + u, sigma (Cauchy) at the largest deflection of the last period
-  Eigen::MatrixXd snapshot_sigma;
-  double snapshot_t = NAN, snapshot_uy = 1e300;
-  for (const RunSpec& spec : specs) {
-    const auto tr = study::Clock::now();
-    const TurekHronBeam beam = turek_hron_beam({.across = spec.across, .clamp_layers = spec.clamp_layers});
-    const double h = h_over_dx * beam.dx;
-    const auto disc = make_discretisation(beam.particles, kernel, h);
-    // the form: FiniteStrainTotalLagrangian (plain or NCSPH strain, divergence of the plain G) or the variational
-    // form with the NCSPH strain and its transpose as divergence ("ncsph-variational"): common/csm3.hpp
-    const study::csm3::Form form = study::csm3::make_form(spec.gradient, divergence, disc, svk);
-    const std::shared_ptr<const ForceFunction> tl = form.force;
-    const auto& stresses = form.stresses;
-    const auto& deformation_gradients = form.deformation_gradients;
-    CaseResult r;
-    r.spec = spec;
-    r.particles = beam.particles.size();
-    r.free = beam.free_count;
-    r.clamp = beam.clamp_count;
-    r.dx = beam.dx;
-    if (tl->dofs() <= 1200) {  // dense nonsymmetric eigenvalues of the linearisation at rest (coarse runs only)
-      const Eigen::EigenSolver<Eigen::MatrixXd> es(Eigen::MatrixXd(jacobian(*tl, Eigen::VectorXd::Zero(tl->dofs()))),
-                                                   false);
-      r.growth = 0;
-      for (const auto& mu : es.eigenvalues()) r.growth = std::max(r.growth, std::sqrt(-mu).real());
-    }
-    if (tl->dofs() <= 2500 && tl->conservative()) {  // M A symmetric, equal masses: A symmetric; lowest mode
-      const Eigen::MatrixXd A = Eigen::MatrixXd(jacobian(*tl, Eigen::VectorXd::Zero(tl->dofs())));
-      const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(0.5 * (A + A.transpose()), Eigen::EigenvaluesOnly);
-      r.f_linear = std::sqrt(es.eigenvalues()[0]) / (2 * std::numbers::pi);
-    }
+  DeflectionSnapshot snapshot;
+  for (const RunSpec& spec : case_specs(across, gradient, clamp_layers, wide_clamp)) {
     const bool finest = spec.across == across.back() && spec.gradient == gradient && spec.clamp_layers == clamp_layers;
-    // snapshot (finest run): x + u and the Cauchy stress at the largest deflection of the last reference period
-    auto on_sample = [&](double t, const Eigen::VectorXd& u, double uy) {
-      if (!(finest && t >= t_end - 1 / C::frequency && uy < snapshot_uy)) return;
-      snapshot_uy = uy;
-      snapshot_t = t;
-      const Eigen::MatrixXd P = stresses(u), F = deformation_gradients(u);
-      snapshot_x.resize(disc->size(), 2);
-      snapshot_sigma.resize(disc->size(), 3);
-      for (int i = 0; i < disc->size(); ++i) {
-        const int f = disc->free_slot[i];
-        snapshot_x.row(i) = disc->particles.x.row(i);
-        if (f >= 0) snapshot_x.row(i) += Eigen::RowVector2d(u[2 * f], u[2 * f + 1]);
-        Deformation<double, 2> Fi, Pi;
-        Fi << F(i, 0), F(i, 1), F(i, 2), F(i, 3);
-        Pi << P(i, 0), P(i, 1), P(i, 2), P(i, 3);
-        const Deformation<double, 2> sigma = Pi * Fi.transpose() / Fi.determinant();
-        snapshot_sigma.row(i) << sigma(0, 0), sigma(1, 1), sigma(0, 1);
-      }
-    };
-    const study::csm3::Run run = study::csm3::gravity_run(tl, beam,
-                                                          {.name = spec.name(),
-                                                           .csv_path = out + "/tip_" + spec.name() + ".csv",
-                                                           .t_end = t_end,
-                                                           .t_measure = t_measure,
-                                                           .cfl = cfl},
-                                                          on_sample);
-    r.dt = run.dt;
-    r.dt_limit = run.dt_limit;
-    r.steps = run.steps;
-    r.energy_drift = run.energy_drift;
-    r.status = run.status;
-    r.ux = run.ux;
-    r.uy = run.uy;
-    r.wall = study::seconds_since(tr);
-    std::cout << spec.name() << ": " << r.particles << " particles (" << r.free << " free), dt = " << r.dt << " s ("
-              << r.dt / r.dt_limit << " of the limit), growth at rest " << r.growth << " 1/s, f_linear " << r.f_linear
-              << " Hz, " << r.steps << " steps, " << r.wall << " s wall, " << r.status << "; ux " << r.ux.mean << " +- "
-              << r.ux.amplitude << " [" << r.ux.frequency << "], uy " << r.uy.mean << " +- " << r.uy.amplitude << " ["
-              << r.uy.frequency << "]\n";
-    results.push_back(r);
+    results.push_back(run_case(spec, settings, kernel, svk, finest ? &snapshot : nullptr));
   }
 
-  // tables
-  study::Summary summary;
-  CsvWriter rcsv(
-      out + "/runs.csv",
-      {"run",           "across",       "gradient",     "clamp_layers",      "dx",           "particles",
-       "free",          "clamp",        "dt",           "dt_limit",          "steps",        "wall_seconds",
-       "status",        "energy_drift", "ux_mean",      "ux_amplitude",      "ux_frequency", "uy_mean",
-       "uy_amplitude",  "uy_frequency", "ux_last_mean", "ux_last_amplitude", "uy_last_mean", "uy_last_amplitude",
-       "uy_half_cycles"});
-  std::string md_runs, md_table;
-  auto rel = [](double v, double ref) { return study::fixed(100 * (v / ref - 1), 2, true) + " %"; };
-  for (const CaseResult& r : results) {
-    rcsv.row({r.spec.name(),
-              r.spec.across,
-              r.spec.gradient,
-              r.spec.clamp_layers,
-              r.dx,
-              r.particles,
-              r.free,
-              r.clamp,
-              r.dt,
-              r.dt_limit,
-              r.steps,
-              r.wall,
-              r.status,
-              r.energy_drift,
-              r.ux.mean,
-              r.ux.amplitude,
-              r.ux.frequency,
-              r.uy.mean,
-              r.uy.amplitude,
-              r.uy.frequency,
-              r.ux.last_mean,
-              r.ux.last_amplitude,
-              r.uy.last_mean,
-              r.uy.last_amplitude,
-              r.uy.half_cycles});
-    study::md_row(md_runs, {r.spec.name(), std::to_string(r.particles), std::to_string(r.free), std::to_string(r.clamp),
-                            study::sig(r.dt * 1e6, 4), study::fixed(r.dt / r.dt_limit, 3), std::to_string(r.steps),
-                            study::fixed(r.wall, 1), study::sig(r.energy_drift, 2), study::sig(r.growth, 3),
-                            study::fixed(r.f_linear, 4), r.status});
-    study::md_row(
-        md_table,
-        {r.spec.name(), study::fixed(1e3 * r.ux.mean, 3), study::fixed(1e3 * r.ux.amplitude, 3),
-         study::fixed(r.ux.frequency, 4), study::fixed(1e3 * r.uy.mean, 3), study::fixed(1e3 * r.uy.amplitude, 3),
-         study::fixed(r.uy.frequency, 4), rel(r.ux.mean, C::ux_mean), rel(r.ux.amplitude, C::ux_amplitude),
-         rel(r.uy.mean, C::uy_mean), rel(r.uy.amplitude, C::uy_amplitude), rel(r.uy.frequency, C::frequency)});
-  }
-  study::md_row(md_table, {"**reference**", study::fixed(1e3 * C::ux_mean, 3), study::fixed(1e3 * C::ux_amplitude, 3),
-                           study::fixed(C::frequency, 4), study::fixed(1e3 * C::uy_mean, 3),
-                           study::fixed(1e3 * C::uy_amplitude, 3), study::fixed(C::frequency, 4), "", "", "", "", ""});
+  // ---- 2. Tables: runs.csv, the measures against the reference, the observed order, the snapshot. ----
+  const RunTables tables = run_tables(out, results);
   // observed order over the three resolutions of the chosen gradient
-  std::string md_order;
-  CsvWriter ocsv(out + "/order.csv", {"quantity", "value_1", "value_2", "value_3", "reference", "observed_order",
-                                      "loglog_slope_of_error", "richardson_extrapolated"});
-  if (across.size() >= 3) {
-    const CaseResult &a = results[across.size() - 3], &b = results[across.size() - 2], &c = results[across.size() - 1];
-    const std::vector<std::tuple<std::string, std::array<double, 3>, double>> qs{
-        {"ux mean", {a.ux.mean, b.ux.mean, c.ux.mean}, C::ux_mean},
-        {"ux amplitude", {a.ux.amplitude, b.ux.amplitude, c.ux.amplitude}, C::ux_amplitude},
-        {"uy mean", {a.uy.mean, b.uy.mean, c.uy.mean}, C::uy_mean},
-        {"uy amplitude", {a.uy.amplitude, b.uy.amplitude, c.uy.amplitude}, C::uy_amplitude},
-        {"uy frequency", {a.uy.frequency, b.uy.frequency, c.uy.frequency}, C::frequency},
-        {"ux frequency", {a.ux.frequency, b.ux.frequency, c.ux.frequency}, C::frequency}};
-    for (const auto& [name, v, ref] : qs) {
-      const double p = observed_order(a.dx, b.dx, c.dx, v[0], v[1], v[2]);
-      const double slope = study::loglog_slope({a.dx, b.dx, c.dx}, {v[0] - ref, v[1] - ref, v[2] - ref});
-      // Richardson: f_h = f + C h^p, so f = f3 + (f3 - f2) / ((h2 / h3)^p - 1); NaN without an order
-      const double ext = v[2] + (v[2] - v[1]) / (std::pow(b.dx / c.dx, p) - 1);
-      ocsv.row({name, v[0], v[1], v[2], ref, p, slope, ext});
-      study::md_row(md_order, {name, study::sig(v[0], 5), study::sig(v[1], 5), study::sig(v[2], 5), study::sig(ref, 5),
-                               study::sig(p, 3), study::sig(slope, 3), study::sig(ext, 5),
-                               std::isnan(ext) ? std::string("-") : rel(ext, ref)});
-    }
-  }
-  if (snapshot_x.rows()) {
-    CsvWriter scsv(out + "/snapshot.csv", {"x", "y", "sigma_xx", "sigma_yy", "sigma_xy", "fixed"});
-    const auto disc_free = turek_hron_beam({.across = across.back(), .clamp_layers = clamp_layers});
-    for (int i = 0; i < snapshot_x.rows(); ++i)
-      scsv.row({snapshot_x(i, 0), snapshot_x(i, 1), snapshot_sigma(i, 0), snapshot_sigma(i, 1), snapshot_sigma(i, 2),
-                disc_free.particles.role[i] == Role::Fixed ? 1 : 0});
-  }
-  // objectivity: a rigid rotation u = (R - I) X of every particle (free and clamp) gives F = R exactly for a
-  // first-order consistent gradient (NCSPH), so the Green strain E = (F^T F - I) / 2 must vanish; the plain gradient
-  // gives F = I + M (R - I) with the moment matrix M != I at the free surfaces: spurious strain
-  CsvWriter rotcsv(out + "/rotation.csv", {"across", "gradient", "theta", "max_green_strain_all",
-                                           "max_green_strain_surface_row", "max_green_strain_interior"});
-  std::string md_rot;
-  for (int n : across)
-    for (const std::string g : {"plain", "ncsph"})
-      for (double theta : {0.1, 0.3}) {
-        const TurekHronBeam beam = turek_hron_beam({.across = n, .clamp_layers = clamp_layers});
-        const auto disc = make_discretisation(beam.particles, kernel, h_over_dx * beam.dx);
-        FiniteStrainOptions<2> opt;
-        if (g == "ncsph") opt.gradient = make_gradient_provider<2>(Correction::Ncsph);
-        FiniteStrainTotalLagrangian<2> tl(disc, svk, C::density, opt);
-        Eigen::Matrix2d R;
-        R << std::cos(theta), -std::sin(theta), std::sin(theta), std::cos(theta);
-        Eigen::VectorXd u(tl.dofs()), d(2 * (disc->size() - disc->free_count()));
-        for (int i = 0, k = 0; i < disc->size(); ++i) {
-          const Eigen::Vector2d X = disc->particles.x.row(i).transpose();
-          const Eigen::Vector2d w = (R - Eigen::Matrix2d::Identity()) * X;
-          const int f = disc->free_slot[i];
-          if (f >= 0)
-            u.segment<2>(2 * f) = w;
-          else
-            d.segment<2>(2 * k++) = w;
-        }
-        tl.set_fixed_displacement(d);
-        const Eigen::MatrixXd F = tl.deformation_gradients(u);
-        double all = 0, surface = 0, interior = -1;  // -1: no particle 3 layers deep
-        for (int f = 0; f < disc->free_count(); ++f) {
-          const int i = disc->free[f];
-          Eigen::Matrix2d Fi;
-          Fi << F(i, 0), F(i, 1), F(i, 2), F(i, 3);
-          const double e = (0.5 * (Fi.transpose() * Fi - Eigen::Matrix2d::Identity())).cwiseAbs().maxCoeff();
-          all = std::max(all, e);
-          if (beam.particles.depth[i] == 0) surface = std::max(surface, e);
-          if (beam.particles.depth[i] >= 3) interior = std::max(interior, e);
-        }
-        if (interior < 0) interior = NAN;
-        rotcsv.row({n, g, theta, all, surface, interior});
-        study::md_row(md_rot, {std::to_string(n), g, study::fixed(theta, 1), study::sig(all, 3), study::sig(surface, 3),
-                               study::sig(interior, 3)});
-      }
+  const std::string md_order = order_table(out, results, across.size());
+  snapshot.write(out, across.back(), clamp_layers);
+
+  // ---- 3. Objectivity of the strain under a rigid rotation (plain and NCSPH gradient). ----
+  const std::string md_rot = rigid_rotation(out, across, clamp_layers, kernel, h_over_dx, svk);
+
+  // ---- 4. Key numbers for summary.md.in. ----
+  study::Summary summary;
   summary.set("rotation", md_rot);
-  summary.set("runs", md_runs);
-  summary.set("table", md_table);
+  summary.set("runs", tables.runs);
+  summary.set("table", tables.table);
   summary.set("order", md_order);
   summary.set("gradient", gradient);
   summary.set("other_gradient", other);
@@ -329,8 +98,8 @@ int main(int argc, char** argv) {
   summary.set("clamp_layers", clamp_layers);
   summary.set("wide_clamp", wide_clamp);
   summary.set("lambda", lame.lambda, 4);
-  summary.set("snapshot_t", snapshot_t, 4);
-  summary.set("snapshot_uy_mm", 1e3 * snapshot_uy, 4);
+  summary.set("snapshot_t", snapshot.t, 4);
+  summary.set("snapshot_uy_mm", 1e3 * snapshot.uy, 4);
   summary.set("load", study::load_average());
   {  // linear beam theory for the 0.35 m cantilever (common/csm3.hpp)
     const study::csm3::BeamTheory b = study::csm3::beam_theory();
