@@ -85,10 +85,10 @@ class PlainRows {
   /// Pair functions of row i: the XSPH velocity (kXsph) and the pair results for the sums (keep), copied to the ring
   /// from slot `base` on unless `base` is kNow (summed right away, from the row arrays).
   template <bool kXsph>
-  SPHSTAB_ALWAYS_INLINE void pair_functions(const Arrays A, int i, bool keep, std::size_t base) const;
+  SPHSTAB_ALWAYS_INLINE inline void pair_functions(const Arrays A, int i, bool keep, std::size_t base) const;
   /// Sums of row i from its pair results (the ring from slot `base` on, or the row arrays) and the XSPH velocities.
   template <bool kRing>
-  SPHSTAB_ALWAYS_INLINE void sums(const Arrays A, int i, std::size_t base) const;
+  SPHSTAB_ALWAYS_INLINE inline void sums(const Arrays A, int i, std::size_t base) const;
   void two_passes();
   void one_pass();
   void ring_pass();
