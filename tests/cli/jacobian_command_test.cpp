@@ -129,11 +129,11 @@ TEST(JacobianCommand, RateFormMemoryIsEstimatedBeforeBuilding) {
   // Issue 36: `--max-memory 1M jacobian rate-form` built J anyway, and --n 1000 (~40 GB) started unannounced. The
   // refusal names its estimate of J's stored entries; it must bracket the count of the J that the same options write
   // (within [1, 2] x: generous enough to refuse before the pattern exists, tight enough to allow what fits).
-  for (const std::vector<std::string>& options : {std::vector<std::string>{"--n", "12"},
-                                                  {"--n", "10", "--xsph", "0.5"},
-                                                  {"--n", "8", "--momentum", "ssph"},
-                                                  {"--n", "9", "--momentum", "cij", "--h", "1.5"},
-                                                  {"--dim", "1", "--n", "3000"}}) {
+  for (const std::vector<std::string>& options : {std::vector<std::string>{"--n", "8"},
+                                                  {"--n", "7", "--xsph", "0.5"},
+                                                  {"--n", "6", "--momentum", "ssph"},
+                                                  {"--n", "6", "--momentum", "cij", "--h", "1.5"},
+                                                  {"--dim", "1", "--n", "1000"}}) {
     std::vector<std::string> args = {"--max-memory", "1M", "jacobian", "rate-form", "--out", scratch("mem").string()};
     args.insert(args.end(), options.begin(), options.end());
     const test::CliOutcome refused = run(args, "mem");
