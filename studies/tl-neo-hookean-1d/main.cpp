@@ -10,7 +10,7 @@
 //      being positive definite (secant iteration on the critical-load engine's definiteness routes).
 // Writes to --out DIR: table.csv, history_nu<nu>_ramp<r>[_n<n>].csv, ramps.csv, resolution.csv, hyperbolicity.csv,
 // summary.json.
-// The bar is in neo_hookean_bar.hpp, the analytic table in reference_t11_table.hpp, the quasi-static run in
+// The bar is in neo_hookean_bar.hpp, the analytic table in common/reference_t11_table.hpp, the quasi-static run in
 // quasi_static_run.hpp, the tangent root and the definiteness crossing in hyperbolicity.hpp.
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -20,11 +20,11 @@
 #include <string>
 #include <vector>
 
+#include "common/reference_t11_table.hpp"
 #include "common/study.hpp"
 #include "hyperbolicity.hpp"
 #include "neo_hookean_bar.hpp"
 #include "quasi_static_run.hpp"
-#include "reference_t11_table.hpp"
 #include "sphstab/io/csv.hpp"
 #include "sphstab/linalg/dense_symmetric_eigen.hpp"
 
@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
   fs::create_directories(out);
   const auto t0 = study::Clock::now();
   const fs::path here = SPHSTAB_STUDY_DIR;
-  const std::vector<TableRow> table = read_table((here / "reference_t11_table.csv").string());
+  const std::vector<study::TableRow> table = study::read_table((here / "reference_t11_table.csv").string());
   const std::vector<double> stretches{1.5, 2, 3, 4, 6};
   study::Summary summary;
   summary.set("n", n);
@@ -87,7 +87,7 @@ int main(int argc, char** argv) {
     summary.set("departure_" + tag, run.departure, 5);
     for (std::size_t k = 0; k < stretches.size(); ++k) {
       const double l1 = stretches[k];
-      const double thesis = thesis_t11(table, nu, l1);
+      const double thesis = study::thesis_t11(table, nu, 1, l1);  // 1D strain: lambda2 = 1
       const double analytic = bar.analytic_t11(l1) / bar.mu();
       const double static_sph = bar.static_t11(l1);  // the worst free particle
       const double dyn = run.t11_at[k];

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "common/reference_t11_table.hpp"
 #include "common/study.hpp"
 #include "sphstab/forms/finite_strain_total_lagrangian.hpp"
 #include "sphstab/integrate/leapfrog.hpp"
@@ -128,28 +129,8 @@ int main(int argc, char** argv) {
        [](double s) { return Eigen::Vector2d(1 + 5 * ramp(s), 1 + ramp(s)); }}};
   const std::vector<double> stretches{1.5, 2, 3, 4, 6};
   // the reference table (nu = 0.3 only): (lambda2, lambda1) -> T11 / mu
-  std::map<std::pair<double, double>, double> notes;
-  {
-    const std::string table_path = (fs::path(SPHSTAB_STUDY_DIR) / "reference_t11_table.csv").string();
-    std::ifstream f(table_path);
-    if (!f) throw std::runtime_error("cannot read " + table_path);
-    std::string line;
-    bool header = true;
-    while (std::getline(f, line)) {
-      if (line.empty() || line[0] == '#') continue;
-      if (header) {
-        header = false;
-        continue;
-      }
-      std::stringstream ss(line);
-      std::string a, b, c2, d;
-      std::getline(ss, a, ',');
-      std::getline(ss, b, ',');
-      std::getline(ss, c2, ',');
-      std::getline(ss, d, ',');
-      if (std::stod(a) == nu) notes[{std::stod(b), std::stod(c2)}] = std::stod(d);
-    }
-  }
+  const std::vector<study::TableRow> reference =
+      study::read_table((fs::path(SPHSTAB_STUDY_DIR) / "reference_t11_table.csv").string());
   CsvWriter tcsv(out + "/table.csv", {"case", "lambda1", "lambda2", "t11_notes_over_mu", "t11_analytic_over_mu",
                                       "t11_sph_over_mu", "relative_error", "F22_centre"});
   std::string md, md_end;
@@ -221,8 +202,7 @@ int main(int argc, char** argv) {
       const double l2 = c.path(s_at)[1];
       const double exact = analytic_t11(stretches[k], l2);
       const double rel = (at[k] - exact) / exact;
-      const auto it = notes.find({l2, stretches[k]});
-      const double note = it == notes.end() ? std::nan("") : it->second;
+      const double note = study::thesis_t11(reference, nu, l2, stretches[k]);
       tcsv.row({c.id, stretches[k], l2, note, exact / mu, at[k] / mu, rel, f22_at[k]});
       study::md_row(md, {std::to_string(c.id), study::fixed(stretches[k], 1), study::fixed(l2, 3),
                          study::fixed(note, 4), study::fixed(exact / mu, 4), study::fixed(at[k] / mu, 4),

@@ -1,7 +1,9 @@
 #pragma once
 // The analytic T11/mu of the compressible Neo-Hookean material under uniaxial stretch, [Ismail2009, (5.5)] (plotted in
 // Figs. 5.1 and 5.2 of the thesis, not tabulated there): reference_t11_table.csv, tabulated for this project to 4
-// decimals, read here (lines starting with '#' are comments; the rows with lambda2 = 1, i.e. 1D strain).
+// decimals: studies/tl-neo-hookean-1d/ and -2d/ each keep the rows they compare with (1D strain; nu = 0.3 in 2D) in a
+// reference_t11_table.csv beside their driver, read here as rows (nu, lambda2, lambda1, T11/mu); lines starting with
+// '#' are comments. One reader for both studies.
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -9,10 +11,10 @@
 #include <string>
 #include <vector>
 
-namespace nh1d {
+namespace sphstab::study {
 
 struct TableRow {
-  double nu, lambda1, t11;
+  double nu, lambda2, lambda1, t11;
 };
 
 inline std::vector<TableRow> read_table(const std::string& path) {
@@ -33,17 +35,17 @@ inline std::vector<TableRow> read_table(const std::string& path) {
     std::getline(s, l2, ',');
     std::getline(s, l1, ',');
     std::getline(s, t, ',');
-    if (std::stod(l2) == 1) rows.push_back({std::stod(nu), std::stod(l1), std::stod(t)});
+    rows.push_back({std::stod(nu), std::stod(l2), std::stod(l1), std::stod(t)});
   }
   return rows;
 }
 
-/// T11/mu of the table at (nu, lambda1); NaN if absent (the last match if repeated).
-inline double thesis_t11(const std::vector<TableRow>& table, double nu, double lambda1) {
+/// T11/mu of the table at (nu, lambda2, lambda1); NaN if absent (the last match if repeated).
+inline double thesis_t11(const std::vector<TableRow>& table, double nu, double lambda2, double lambda1) {
   double thesis = std::nan("");
   for (const TableRow& row : table)
-    if (row.nu == nu && row.lambda1 == lambda1) thesis = row.t11;
+    if (row.nu == nu && row.lambda2 == lambda2 && row.lambda1 == lambda1) thesis = row.t11;
   return thesis;
 }
 
-}  // namespace nh1d
+}  // namespace sphstab::study
