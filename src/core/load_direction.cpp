@@ -2,14 +2,16 @@
 
 #include <stdexcept>
 
+#include "sphstab/core/named_values.hpp"
+
 namespace sphstab {
 
-std::string load_direction_name(LoadDirection d) { return d == LoadDirection::Tension ? "tension" : "compression"; }
+constexpr NamedValue<LoadDirection> kLoadDirectionNames[] = {{LoadDirection::Tension, "tension"},
+                                                             {LoadDirection::Compression, "compression"}};
 
+std::string load_direction_name(LoadDirection d) { return name_of(d, kLoadDirectionNames); }
 LoadDirection parse_load_direction(const std::string& name) {
-  if (name == "tension") return LoadDirection::Tension;
-  if (name == "compression") return LoadDirection::Compression;
-  throw std::invalid_argument("unknown load direction '" + name + "' (valid: tension, compression)");
+  return parse_named(name, kLoadDirectionNames, "load direction");
 }
 
 }  // namespace sphstab

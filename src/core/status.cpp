@@ -1,19 +1,14 @@
 #include "sphstab/core/status.hpp"
 
+#include "sphstab/core/named_values.hpp"
+
 namespace sphstab {
 
-std::string status_name(Status status) {
-  switch (status) {
-    case Status::Successful:
-      return "successful";
-    case Status::NotComputed:
-      return "not-computed";
-    case Status::NotConverging:
-      return "not-converging";
-    case Status::NumericalIssue:
-      return "numerical-issue";
-  }
-  return "?";
-}
+constexpr NamedValue<Status> kStatusNames[] = {{Status::Successful, "successful"},
+                                               {Status::NotComputed, "not-computed"},
+                                               {Status::NotConverging, "not-converging"},
+                                               {Status::NumericalIssue, "numerical-issue"}};
+
+std::string status_name(Status status) { return name_of(status, kStatusNames); }
 
 }  // namespace sphstab

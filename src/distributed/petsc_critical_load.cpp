@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "sphstab/core/format.hpp"
+#include "sphstab/core/named_values.hpp"
 
 namespace sphstab {
 
@@ -354,37 +355,23 @@ LatticeRowPartition lattice_row_partition(const Eigen::MatrixXd& x, int ranks) {
   return p;
 }
 
+constexpr NamedValue<PetscEigenMethod> kPetscEigenMethodNames[] = {{PetscEigenMethod::ShiftInvert, "shift-invert"},
+                                                                   {PetscEigenMethod::KrylovSchur, "krylov-schur"},
+                                                                   {PetscEigenMethod::Lobpcg, "lobpcg"},
+                                                                   {PetscEigenMethod::ShiftInvert, "sinvert"},
+                                                                   {PetscEigenMethod::KrylovSchur, "krylovschur"}};
+constexpr NamedValue<PetscSolver> kPetscSolverNames[] = {{PetscSolver::Cholesky, "cholesky"},
+                                                         {PetscSolver::CgGamg, "gamg"},
+                                                         {PetscSolver::CgHypre, "hypre"},
+                                                         {PetscSolver::CgIcc, "icc"},
+                                                         {PetscSolver::Cholesky, "mumps"}};
+
 PetscEigenMethod parse_petsc_eigen_method(const std::string& name) {
-  if (name == "shift-invert" || name == "sinvert") return PetscEigenMethod::ShiftInvert;
-  if (name == "krylov-schur" || name == "krylovschur") return PetscEigenMethod::KrylovSchur;
-  if (name == "lobpcg") return PetscEigenMethod::Lobpcg;
-  throw std::invalid_argument("unknown eigen method '" + name + "' (shift-invert, krylov-schur, lobpcg)");
+  return parse_named(name, kPetscEigenMethodNames, "eigen method");
 }
-PetscSolver parse_petsc_solver(const std::string& name) {
-  if (name == "cholesky" || name == "mumps") return PetscSolver::Cholesky;
-  if (name == "gamg") return PetscSolver::CgGamg;
-  if (name == "hypre") return PetscSolver::CgHypre;
-  if (name == "icc") return PetscSolver::CgIcc;
-  throw std::invalid_argument("unknown K solver '" + name + "' (cholesky, gamg, hypre, icc)");
-}
-std::string petsc_eigen_method_name(PetscEigenMethod m) {
-  return m == PetscEigenMethod::ShiftInvert   ? "shift-invert"
-         : m == PetscEigenMethod::KrylovSchur ? "krylov-schur"
-                                              : "lobpcg";
-}
-std::string petsc_solver_name(PetscSolver s) {
-  switch (s) {
-    case PetscSolver::Cholesky:
-      return "cholesky";
-    case PetscSolver::CgGamg:
-      return "gamg";
-    case PetscSolver::CgHypre:
-      return "hypre";
-    case PetscSolver::CgIcc:
-      return "icc";
-  }
-  return "?";
-}
+PetscSolver parse_petsc_solver(const std::string& name) { return parse_named(name, kPetscSolverNames, "K solver"); }
+std::string petsc_eigen_method_name(PetscEigenMethod m) { return name_of(m, kPetscEigenMethodNames); }
+std::string petsc_solver_name(PetscSolver s) { return name_of(s, kPetscSolverNames); }
 
 PetscCriticalLoad petsc_critical_load(const Linearisation& lin, LoadDirection direction,
                                       const PetscCriticalLoadOptions& o) {

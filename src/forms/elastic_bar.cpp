@@ -5,41 +5,26 @@
 #include <string>
 #include <vector>
 
+#include "sphstab/core/named_values.hpp"
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
 
-std::string strain_gradient_name(StrainGradient g) {
-  switch (g) {
-    case StrainGradient::Plain:
-      return "plain";
-    case StrainGradient::Minus:
-      return "minus";
-    case StrainGradient::Corrected:
-      return "corrected";
-  }
-  return "?";
-}
-std::string stress_divergence_name(StressDivergence d) {
-  switch (d) {
-    case StressDivergence::Plain:
-      return "plain";
-    case StressDivergence::Plus:
-      return "plus";
-    case StressDivergence::Minus:
-      return "minus";
-    case StressDivergence::Adjoint:
-      return "adjoint";
-  }
-  return "?";
-}
+constexpr NamedValue<StrainGradient> kStrainGradientNames[] = {
+    {StrainGradient::Plain, "plain"}, {StrainGradient::Minus, "minus"}, {StrainGradient::Corrected, "corrected"}};
+constexpr NamedValue<StressDivergence> kStressDivergenceNames[] = {{StressDivergence::Plain, "plain"},
+                                                                   {StressDivergence::Plus, "plus"},
+                                                                   {StressDivergence::Minus, "minus"},
+                                                                   {StressDivergence::Adjoint, "adjoint"}};
+
+std::string strain_gradient_name(StrainGradient g) { return name_of(g, kStrainGradientNames); }
+std::string stress_divergence_name(StressDivergence d) { return name_of(d, kStressDivergenceNames); }
 std::string bar_boundary_name(BarBoundary b) { return b == BarBoundary::Mirror ? "mirror" : "none"; }
 std::string lagrangian_frame_name(LagrangianFrame f) { return f == LagrangianFrame::Total ? "TL" : "UL"; }
 
 namespace {
 
 using Triplets = std::vector<Eigen::Triplet<double>>;
-
 
 }  // namespace
 

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "form_detail.hpp"
+#include "sphstab/core/named_values.hpp"
 
 // Derivation of the conservative force (checked against a complex-step gradient of U in the tests).
 // With w^b_ij = dW(x_i - x_j)/dx_i^b (antisymmetric) and w^{bc}_ij = d^2W/dx_i^b dx_i^c (symmetric),
@@ -17,15 +18,13 @@
 
 namespace sphstab {
 
-PreStrainKind parse_prestrain_kind(const std::string& name) {
-  if (name == "isotropic" || name == "iso") return PreStrainKind::Isotropic;
-  if (name == "uniaxial" || name == "uniaxial-x") return PreStrainKind::UniaxialX;
-  throw std::invalid_argument("unknown pre-strain '" + name + "' (valid: isotropic, uniaxial)");
-}
+constexpr NamedValue<PreStrainKind> kPreStrainNames[] = {{PreStrainKind::Isotropic, "isotropic"},
+                                                         {PreStrainKind::UniaxialX, "uniaxial"},
+                                                         {PreStrainKind::Isotropic, "iso"},
+                                                         {PreStrainKind::UniaxialX, "uniaxial-x"}};
 
-std::string prestrain_kind_name(PreStrainKind kind) {
-  return kind == PreStrainKind::Isotropic ? "isotropic" : "uniaxial";
-}
+PreStrainKind parse_prestrain_kind(const std::string& name) { return parse_named(name, kPreStrainNames, "pre-strain"); }
+std::string prestrain_kind_name(PreStrainKind kind) { return name_of(kind, kPreStrainNames); }
 
 void ElasticMaterial::validate(const char* who) const {
   if (!std::isfinite(lambda) || !std::isfinite(mu) || !std::isfinite(rho) || !(mu > 0) || !(rho > 0) ||

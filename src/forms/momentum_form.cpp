@@ -2,32 +2,21 @@
 
 #include <stdexcept>
 
+#include "sphstab/core/named_values.hpp"
+
 namespace sphstab {
 
+constexpr NamedValue<MomentumForm> kMomentumFormNames[] = {{MomentumForm::Uncorrected, "uncorrected"},
+                                                           {MomentumForm::Plus, "plus"},
+                                                           {MomentumForm::Minus, "minus"},
+                                                           {MomentumForm::Conservative, "conservative"}};
+
 MomentumForm parse_momentum_form(const std::string& name) {
-  for (MomentumForm f : all_momentum_forms())
-    if (momentum_form_name(f) == name) return f;
-  throw std::invalid_argument("parse_momentum_form: unknown form '" + name +
-                              "' (valid: uncorrected, plus, minus, conservative)");
+  return parse_named(name, kMomentumFormNames, "momentum form");
 }
-
-std::string momentum_form_name(MomentumForm form) {
-  switch (form) {
-    case MomentumForm::Uncorrected:
-      return "uncorrected";
-    case MomentumForm::Plus:
-      return "plus";
-    case MomentumForm::Minus:
-      return "minus";
-    case MomentumForm::Conservative:
-      return "conservative";
-  }
-  return "unknown";
-}
-
+std::string momentum_form_name(MomentumForm form) { return name_of(form, kMomentumFormNames); }
 const std::vector<MomentumForm>& all_momentum_forms() {
-  static const std::vector<MomentumForm> forms{MomentumForm::Uncorrected, MomentumForm::Plus, MomentumForm::Minus,
-                                               MomentumForm::Conservative};
+  static const std::vector<MomentumForm> forms = values_of(kMomentumFormNames);
   return forms;
 }
 

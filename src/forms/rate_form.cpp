@@ -13,6 +13,7 @@
 
 #include "rate_form/dispatch.hpp"
 #include "sphstab/core/format.hpp"
+#include "sphstab/core/named_values.hpp"
 
 namespace sphstab {
 
@@ -41,38 +42,31 @@ void RateFormMaterial::validate(const char* who) const {
                                 format_number(shear_modulus) + ")");
 }
 
+constexpr NamedValue<ContinuityForm> kContinuityNames[] = {{ContinuityForm::Summation, "summation"},
+                                                           {ContinuityForm::Divergence, "divergence"}};
+constexpr NamedValue<ViscositySwitch> kViscositySwitchNames[] = {
+    {ViscositySwitch::Off, "off"}, {ViscositySwitch::Compression, "compression"}, {ViscositySwitch::Always, "always"}};
+constexpr NamedValue<RateFormGradient> kGradientNames[] = {{RateFormGradient::Plain, "plain"},
+                                                           {RateFormGradient::Ncsph, "ncsph"}};
+constexpr NamedValue<RateFormMomentum> kMomentumNames[] = {{RateFormMomentum::Symmetric, "symmetric"},
+                                                           {RateFormMomentum::Antisymmetric, "antisymmetric"},
+                                                           {RateFormMomentum::Cij, "cij"},
+                                                           {RateFormMomentum::StabilisedSph, "ssph"}};
+constexpr NamedValue<PairLoop> kPairLoopNames[] = {{PairLoop::Rows, "rows"}, {PairLoop::Pairs, "pairs"}};
+
 ContinuityForm parse_continuity_form(const std::string& name) {
-  if (name == "summation") return ContinuityForm::Summation;
-  if (name == "divergence") return ContinuityForm::Divergence;
-  throw std::invalid_argument("unknown continuity form '" + name + "' (valid: summation, divergence)");
+  return parse_named(name, kContinuityNames, "continuity form");
 }
-
 ViscositySwitch parse_viscosity_switch(const std::string& name) {
-  if (name == "off") return ViscositySwitch::Off;
-  if (name == "compression") return ViscositySwitch::Compression;
-  if (name == "always") return ViscositySwitch::Always;
-  throw std::invalid_argument("unknown viscosity switch '" + name + "' (valid: off, compression, always)");
+  return parse_named(name, kViscositySwitchNames, "viscosity switch");
 }
-
 RateFormGradient parse_rate_form_gradient(const std::string& name) {
-  if (name == "plain") return RateFormGradient::Plain;
-  if (name == "ncsph") return RateFormGradient::Ncsph;
-  throw std::invalid_argument("unknown rate-form gradient '" + name + "' (valid: plain, ncsph)");
+  return parse_named(name, kGradientNames, "rate-form gradient");
 }
-
 RateFormMomentum parse_rate_form_momentum(const std::string& name) {
-  if (name == "symmetric") return RateFormMomentum::Symmetric;
-  if (name == "antisymmetric") return RateFormMomentum::Antisymmetric;
-  if (name == "cij") return RateFormMomentum::Cij;
-  if (name == "ssph") return RateFormMomentum::StabilisedSph;
-  throw std::invalid_argument("unknown rate-form momentum '" + name + "' (valid: symmetric, antisymmetric, cij, ssph)");
+  return parse_named(name, kMomentumNames, "rate-form momentum");
 }
-
-PairLoop parse_pair_loop(const std::string& name) {
-  if (name == "rows") return PairLoop::Rows;
-  if (name == "pairs") return PairLoop::Pairs;
-  throw std::invalid_argument("unknown pair loop '" + name + "' (valid: rows, pairs)");
-}
+PairLoop parse_pair_loop(const std::string& name) { return parse_named(name, kPairLoopNames, "pair loop"); }
 
 using rate_form_detail::uses_local_means;
 

@@ -4,6 +4,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "sphstab/core/named_values.hpp"
+
 namespace sphstab {
 
 namespace {
@@ -27,26 +29,13 @@ bool switch_on(SwitchRule rule, double sum, double tolerance) {
 
 }  // namespace
 
-std::string switch_rule_name(SwitchRule rule) {
-  switch (rule) {
-    case SwitchRule::Tension:
-      return "tension";
-    case SwitchRule::AsPrinted:
-      return "as-printed";
-    case SwitchRule::Always:
-      return "always";
-    case SwitchRule::Never:
-      return "never";
-  }
-  return "?";
-}
+constexpr NamedValue<SwitchRule> kSwitchRuleNames[] = {{SwitchRule::Tension, "tension"},
+                                                       {SwitchRule::AsPrinted, "as-printed"},
+                                                       {SwitchRule::Always, "always"},
+                                                       {SwitchRule::Never, "never"}};
 
-SwitchRule parse_switch_rule(const std::string& name) {
-  for (SwitchRule r : {SwitchRule::Tension, SwitchRule::AsPrinted, SwitchRule::Always, SwitchRule::Never})
-    if (switch_rule_name(r) == name) return r;
-  throw std::invalid_argument("parse_switch_rule: unknown rule '" + name +
-                              "' (valid: tension, as-printed, always, never)");
-}
+std::string switch_rule_name(SwitchRule rule) { return name_of(rule, kSwitchRuleNames); }
+SwitchRule parse_switch_rule(const std::string& name) { return parse_named(name, kSwitchRuleNames, "switch rule"); }
 
 StabilisedSphTerm::StabilisedSphTerm(std::shared_ptr<const Discretisation<2>> discretisation,
                                      const StabilisedSphOptions& options)

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "form_detail.hpp"
+#include "sphstab/core/named_values.hpp"
 #include "sphstab/numerics/dual.hpp"
 
 namespace sphstab {
@@ -44,27 +45,15 @@ std::vector<std::vector<int>> reach_sets(const NeighbourList& nl, const std::vec
 
 }  // namespace
 
-CorrectedOperator parse_corrected_operator(const std::string& name) {
-  if (name == "auto") return CorrectedOperator::Auto;
-  if (name == "divergence") return CorrectedOperator::Divergence;
-  if (name == "strain") return CorrectedOperator::Strain;
-  if (name == "both") return CorrectedOperator::Both;
-  throw std::invalid_argument("unknown corrected operator '" + name + "' (valid: auto, divergence, strain, both)");
-}
+constexpr NamedValue<CorrectedOperator> kCorrectedOperatorNames[] = {{CorrectedOperator::Auto, "auto"},
+                                                                     {CorrectedOperator::Divergence, "divergence"},
+                                                                     {CorrectedOperator::Strain, "strain"},
+                                                                     {CorrectedOperator::Both, "both"}};
 
-std::string corrected_operator_name(CorrectedOperator t) {
-  switch (t) {
-    case CorrectedOperator::Auto:
-      return "auto";
-    case CorrectedOperator::Divergence:
-      return "divergence";
-    case CorrectedOperator::Strain:
-      return "strain";
-    case CorrectedOperator::Both:
-      return "both";
-  }
-  return "?";
+CorrectedOperator parse_corrected_operator(const std::string& name) {
+  return parse_named(name, kCorrectedOperatorNames, "corrected operator");
 }
+std::string corrected_operator_name(CorrectedOperator t) { return name_of(t, kCorrectedOperatorNames); }
 
 WaveForm1D::WaveForm1D(std::shared_ptr<const Discretisation<1>> discretisation, MomentumForm form, double tension,
                        std::shared_ptr<const GradientProvider<1>> gradient, const WaveForm1DOptions& options)

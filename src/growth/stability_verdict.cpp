@@ -7,6 +7,7 @@
 
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/memory_budget.hpp"
+#include "sphstab/core/named_values.hpp"
 #include "sphstab/growth/rate_form_spectrum.hpp"
 #include "sphstab/growth/system_spectrum.hpp"
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
@@ -16,33 +17,17 @@
 
 namespace sphstab {
 
-std::string verdict_letter(VerdictClass c) {
-  switch (c) {
-    case VerdictClass::Stable:
-      return "S";
-    case VerdictClass::SemiDiscrete:
-      return "U";
-    case VerdictClass::Integrator:
-      return "I";
-    case VerdictClass::Both:
-      return "B";
-  }
-  return "?";
-}
+constexpr NamedValue<VerdictClass> kVerdictLetters[] = {{VerdictClass::Stable, "S"},
+                                                        {VerdictClass::SemiDiscrete, "U"},
+                                                        {VerdictClass::Integrator, "I"},
+                                                        {VerdictClass::Both, "B"}};
+constexpr NamedValue<VerdictClass> kVerdictNames[] = {{VerdictClass::Stable, "stable"},
+                                                      {VerdictClass::SemiDiscrete, "semi-discrete"},
+                                                      {VerdictClass::Integrator, "integrator"},
+                                                      {VerdictClass::Both, "both"}};
 
-std::string verdict_name(VerdictClass c) {
-  switch (c) {
-    case VerdictClass::Stable:
-      return "stable";
-    case VerdictClass::SemiDiscrete:
-      return "semi-discrete";
-    case VerdictClass::Integrator:
-      return "integrator";
-    case VerdictClass::Both:
-      return "both";
-  }
-  return "?";
-}
+std::string verdict_letter(VerdictClass c) { return name_of(c, kVerdictLetters); }
+std::string verdict_name(VerdictClass c) { return name_of(c, kVerdictNames); }
 
 double detection_floor(double t_end, double energy_ratio) {
   if (!(t_end > 0) || !std::isfinite(t_end))
@@ -226,8 +211,9 @@ StabilityVerdict stability_verdict(const RateFormScheme<Dim>& scheme, const Eige
   // Powell's XSPH acts outside F: its map is reduced at rest (rate_form_spectrum), else only the stepper has it.
   const bool stepper = options.stepper_map || (run.leapfrog_xsph > 0 && !at_rest) || run.absorbing_half_step;
   const bool reduced = at_rest && !stepper && !run.reuse_corrector_rate;
-  const std::string needs = ": a class basis needs the reduced route (a state at rest, the two-rate "
-                            "predictor-corrector or the leap-frog, no stepper-only option)";
+  const std::string needs =
+      ": a class basis needs the reduced route (a state at rest, the two-rate "
+      "predictor-corrector or the leap-frog, no stepper-only option)";
   if (options.basis.size() && !reduced) throw std::invalid_argument(who + needs);
   RateFormSpectrum s;
   if (reduced)
@@ -238,7 +224,8 @@ StabilityVerdict stability_verdict(const RateFormScheme<Dim>& scheme, const Eige
                             .map_positions = run.positions,
                             .map_integrator = run.integrator,
                             .map_leapfrog_xsph = run.leapfrog_xsph});
-  if (!s.map_reason.empty() && options.basis.size()) throw std::invalid_argument(who + needs + " (" + s.map_reason + ")");
+  if (!s.map_reason.empty() && options.basis.size())
+    throw std::invalid_argument(who + needs + " (" + s.map_reason + ")");
   if (reduced && s.map_reason.empty()) {
     StabilityVerdict v;
     v.integrator = rate_form_integrator_name(run);

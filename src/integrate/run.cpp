@@ -3,36 +3,26 @@
 #include <chrono>
 #include <cmath>
 #include <new>
-#include <string>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "sphstab/core/checked_arithmetic.hpp"
 #include "sphstab/core/format.hpp"
+#include "sphstab/core/named_values.hpp"
 
 namespace sphstab {
 
-std::string run_status_name(RunStatus s) {
-  switch (s) {
-    case RunStatus::Completed:
-      return "completed";
-    case RunStatus::NonFinite:
-      return "non-finite";
-    case RunStatus::DisplacementLimit:
-      return "displacement-limit";
-    case RunStatus::LeftBox:
-      return "left-box";
-    case RunStatus::EnergyGrowth:
-      return "energy-growth";
-    case RunStatus::NonPositiveDensity:
-      return "non-positive-density";
-    case RunStatus::Exception:
-      return "exception";
-    case RunStatus::Stopped:
-      return "stopped";
-  }
-  return "?";
-}
+constexpr NamedValue<RunStatus> kRunStatusNames[] = {{RunStatus::Completed, "completed"},
+                                                     {RunStatus::NonFinite, "non-finite"},
+                                                     {RunStatus::DisplacementLimit, "displacement-limit"},
+                                                     {RunStatus::LeftBox, "left-box"},
+                                                     {RunStatus::EnergyGrowth, "energy-growth"},
+                                                     {RunStatus::NonPositiveDensity, "non-positive-density"},
+                                                     {RunStatus::Exception, "exception"},
+                                                     {RunStatus::Stopped, "stopped"}};
+
+std::string run_status_name(RunStatus s) { return name_of(s, kRunStatusNames); }
 
 std::pair<long, double> run_steps(const RunOptions& o, const std::string& who) {
   if (!(o.dt > 0) || !std::isfinite(o.dt))
@@ -41,8 +31,8 @@ std::pair<long, double> run_steps(const RunOptions& o, const std::string& who) {
   if (!(o.t_end > 0)) return {o.max_steps, o.dt};
   if (!std::isfinite(o.t_end))
     throw std::invalid_argument(who + ": t_end must be finite and > 0 (got " + format_number(o.t_end) + ")");
-  const long n = std::max(1L, checked_floor_count(std::ceil(o.t_end / o.dt - 1e-9), 1L << 53,
-                                                  (who + ": steps t_end / dt").c_str()));
+  const long n = std::max(
+      1L, checked_floor_count(std::ceil(o.t_end / o.dt - 1e-9), 1L << 53, (who + ": steps t_end / dt").c_str()));
   return {n, o.land_on_t_end ? o.t_end / static_cast<double>(n) : o.dt};
 }
 
@@ -52,8 +42,8 @@ RunResult run(Stepper& stepper, const RunOptions& o, const std::string& who) {
   const double dt = steps_dt.second;
   if (o.record_every < 0 || o.snapshot_every < 0) throw std::invalid_argument(who + ": output intervals must be >= 0");
   if (o.limits.check_every < 1)
-    throw std::invalid_argument(who + ": limits.check_every must be >= 1 (got " +
-                                std::to_string(o.limits.check_every) + ")");
+    throw std::invalid_argument(who + ": limits.check_every must be >= 1 (got " + std::to_string(o.limits.check_every) +
+                                ")");
   for (const RunObserver* obs : o.observers)
     if (obs == nullptr) throw std::invalid_argument(who + ": null observer");
   const bool energy_rule = std::isfinite(o.limits.energy_growth);
@@ -64,8 +54,8 @@ RunResult run(Stepper& stepper, const RunOptions& o, const std::string& who) {
   if (energy_rule) {
     e_ref = std::max(std::abs(stepper.energy()), o.limits.energy_floor);
     if (!(e_ref > 0))
-      throw std::invalid_argument(who +
-                                  ": the energy-growth check needs a nonzero initial energy or limits.energy_floor > 0");
+      throw std::invalid_argument(
+          who + ": the energy-growth check needs a nonzero initial energy or limits.energy_floor > 0");
   }
 
   const auto wall0 = std::chrono::steady_clock::now();
@@ -134,13 +124,14 @@ RunResult run(Stepper& stepper, const RunOptions& o, const std::string& who) {
   r.particle = fault.particle;
   r.reason = fault.why;
   if (!fault) {
-    r.message = "completed " + std::to_string(r.steps) + " steps of dt = " + format_number(dt) + " to t = " +
-                format_number(r.time);
+    r.message = "completed " + std::to_string(r.steps) + " steps of dt = " + format_number(dt) +
+                " to t = " + format_number(r.time);
   } else {
     r.message = run_status_name(fault.status) + ": " + fault.why + " at step " + std::to_string(r.steps) +
                 ", t = " + format_number(r.time) +
                 (fault.particle >= 0 ? ", particle " + std::to_string(fault.particle) : "");
-    if (fault.record) {  // the failing state, once (a scheduled record of this step was not written: the check came first)
+    if (fault.record) {  // the failing state, once (a scheduled record of this step was not written: the check came
+                         // first)
       stepper.record(r.steps, o.observers);
       if (o.snapshot_every > 0 && fault.status != RunStatus::NonFinite) stepper.snapshot(r.steps, o.observers);
     }

@@ -4,6 +4,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "sphstab/core/named_values.hpp"
 #include "sphstab/numerics/instantiation.hpp"
 #include "sphstab/numerics/quadrature.hpp"
 
@@ -11,12 +12,7 @@ namespace sphstab {
 
 namespace {
 
-struct KernelInfo {
-  KernelType type;
-  const char* name;
-};
-
-constexpr KernelInfo kKernels[] = {
+constexpr NamedValue<KernelType> kKernels[] = {
     {KernelType::CubicSpline, "cubic"},
     {KernelType::QuarticSpline, "quartic"},
     {KernelType::QuinticSpline, "quintic"},
@@ -75,26 +71,10 @@ double closed_form_inverse_integral(KernelType type, int dim) {
 
 }  // namespace
 
-KernelType parse_kernel_type(const std::string& name) {
-  for (const auto& k : kKernels)
-    if (name == k.name) return k.type;
-  std::string valid;
-  for (const auto& k : kKernels) valid += std::string(valid.empty() ? "" : ", ") + k.name;
-  throw std::invalid_argument("unknown kernel '" + name + "' (valid: " + valid + ")");
-}
-
-std::string kernel_name(KernelType type) {
-  for (const auto& k : kKernels)
-    if (k.type == type) return k.name;
-  throw std::invalid_argument("kernel_name: invalid KernelType value");
-}
-
+KernelType parse_kernel_type(const std::string& name) { return parse_named(name, kKernels, "kernel"); }
+std::string kernel_name(KernelType type) { return name_of(type, kKernels); }
 const std::vector<KernelType>& all_kernel_types() {
-  static const std::vector<KernelType> types = [] {
-    std::vector<KernelType> t;
-    for (const auto& k : kKernels) t.push_back(k.type);
-    return t;
-  }();
+  static const std::vector<KernelType> types = values_of(kKernels);
   return types;
 }
 

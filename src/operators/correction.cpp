@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "sphstab/core/named_values.hpp"
 #include "sphstab/numerics/dual.hpp"
 #include "sphstab/numerics/instantiation.hpp"
 #include "sphstab/operators/column_shepard.hpp"
@@ -11,43 +12,21 @@
 
 namespace sphstab {
 
+constexpr NamedValue<Correction> kCorrectionNames[] = {{Correction::None, "none"},
+                                                       {Correction::Minus, "minus"},
+                                                       {Correction::Shepard, "shepard"},
+                                                       {Correction::ColumnShepard, "column-shepard"},
+                                                       {Correction::Ncsph, "ncsph"},
+                                                       {Correction::LocalPolish, "local-polish"},
+                                                       {Correction::MeanPolish, "mean-polish"},
+                                                       {Correction::ShepardColumnPolish, "shepard-column-polish"}};
+
 const std::vector<Correction>& all_corrections() {
-  static const std::vector<Correction> all = {
-      Correction::None,  Correction::Minus,       Correction::Shepard,    Correction::ColumnShepard,
-      Correction::Ncsph, Correction::LocalPolish, Correction::MeanPolish, Correction::ShepardColumnPolish};
+  static const std::vector<Correction> all = values_of(kCorrectionNames);
   return all;
 }
-
-std::string correction_name(Correction c) {
-  switch (c) {
-    case Correction::None:
-      return "none";
-    case Correction::Minus:
-      return "minus";
-    case Correction::Shepard:
-      return "shepard";
-    case Correction::ColumnShepard:
-      return "column-shepard";
-    case Correction::Ncsph:
-      return "ncsph";
-    case Correction::LocalPolish:
-      return "local-polish";
-    case Correction::MeanPolish:
-      return "mean-polish";
-    case Correction::ShepardColumnPolish:
-      return "shepard-column-polish";
-  }
-  return "?";
-}
-
-Correction parse_correction(const std::string& name) {
-  std::string valid;
-  for (Correction c : all_corrections()) {
-    if (correction_name(c) == name) return c;
-    valid += (valid.empty() ? "" : ", ") + correction_name(c);
-  }
-  throw std::invalid_argument("unknown correction '" + name + "' (valid: " + valid + ")");
-}
+std::string correction_name(Correction c) { return name_of(c, kCorrectionNames); }
+Correction parse_correction(const std::string& name) { return parse_named(name, kCorrectionNames, "correction"); }
 
 bool correction_is_dense(Correction c) { return c == Correction::MeanPolish || c == Correction::ShepardColumnPolish; }
 

@@ -5,14 +5,16 @@
 #include <string>
 
 #include "correction_detail.hpp"
+#include "sphstab/core/named_values.hpp"
 #include "sphstab/numerics/instantiation.hpp"
 
 namespace sphstab {
 
+constexpr NamedValue<NeighbourCounting> kCountingNames[] = {{NeighbourCounting::Actual, "actual"},
+                                                            {NeighbourCounting::BoundaryLevel, "boundary-level"}};
+
 NeighbourCounting parse_neighbour_counting(const std::string& name) {
-  if (name == "actual") return NeighbourCounting::Actual;
-  if (name == "boundary-level") return NeighbourCounting::BoundaryLevel;
-  throw std::invalid_argument("unknown neighbour counting '" + name + "' (valid: actual, boundary-level)");
+  return parse_named(name, kCountingNames, "neighbour counting");
 }
 
 template <int Dim>

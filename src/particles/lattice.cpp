@@ -10,34 +10,21 @@
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/length_scale.hpp"
 #include "sphstab/core/memory_budget.hpp"
+#include "sphstab/core/named_values.hpp"
 #include "sphstab/numerics/instantiation.hpp"
 
 namespace sphstab {
 
-LatticeType parse_lattice_type(const std::string& name) {
-  if (name == "line") return LatticeType::Line;
-  if (name == "square") return LatticeType::Square;
-  if (name == "hex" || name == "hexagonal") return LatticeType::Hexagonal;
-  if (name == "face-centred" || name == "fcc") return LatticeType::FaceCentred;
-  if (name == "cubic") return LatticeType::Cubic;
-  throw std::invalid_argument("unknown lattice '" + name + "' (valid: line, square, hex, face-centred, cubic)");
-}
+constexpr NamedValue<LatticeType> kLatticeNames[] = {{LatticeType::Line, "line"},
+                                                     {LatticeType::Square, "square"},
+                                                     {LatticeType::Hexagonal, "hex"},
+                                                     {LatticeType::Hexagonal, "hexagonal"},
+                                                     {LatticeType::FaceCentred, "face-centred"},
+                                                     {LatticeType::FaceCentred, "fcc"},
+                                                     {LatticeType::Cubic, "cubic"}};
 
-std::string lattice_name(LatticeType type) {
-  switch (type) {
-    case LatticeType::Line:
-      return "line";
-    case LatticeType::Square:
-      return "square";
-    case LatticeType::Hexagonal:
-      return "hex";
-    case LatticeType::FaceCentred:
-      return "face-centred";
-    case LatticeType::Cubic:
-      return "cubic";
-  }
-  return "?";
-}
+LatticeType parse_lattice_type(const std::string& name) { return parse_named(name, kLatticeNames, "lattice"); }
+std::string lattice_name(LatticeType type) { return name_of(type, kLatticeNames); }
 
 int fixed_layers_needed(double support_radius, double dx) {
   check_length(dx, "fixed_layers_needed: spacing");

@@ -9,6 +9,7 @@
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/length_scale.hpp"
 #include "sphstab/core/memory_budget.hpp"
+#include "sphstab/core/named_values.hpp"
 #include "sphstab/forms/finite_strain_total_lagrangian.hpp"
 #include "sphstab/forms/rate_form_state.hpp"
 #include "sphstab/kernel/kernel.hpp"
@@ -17,21 +18,15 @@
 
 namespace sphstab {
 
-ImpactProblem parse_impact_problem(const std::string& name) {
-  if (name == "symmetric") return ImpactProblem::Symmetric;
-  if (name == "bar") return ImpactProblem::Bar;
-  if (name == "beam") return ImpactProblem::Beam;
-  throw std::invalid_argument("unknown impact problem '" + name + "' (valid: symmetric, bar, beam)");
-}
+constexpr NamedValue<ImpactProblem> kImpactProblemNames[] = {
+    {ImpactProblem::Symmetric, "symmetric"}, {ImpactProblem::Bar, "bar"}, {ImpactProblem::Beam, "beam"}};
+constexpr NamedValue<ImpactTLModel> kImpactTLModelNames[] = {{ImpactTLModel::Linear, "linear"},
+                                                             {ImpactTLModel::StVenantKirchhoff, "svk"}};
 
-std::string impact_problem_name(ImpactProblem problem) {
-  switch (problem) {
-    case ImpactProblem::Symmetric: return "symmetric";
-    case ImpactProblem::Bar: return "bar";
-    case ImpactProblem::Beam: return "beam";
-  }
-  return "?";
+ImpactProblem parse_impact_problem(const std::string& name) {
+  return parse_named(name, kImpactProblemNames, "impact problem");
 }
+std::string impact_problem_name(ImpactProblem problem) { return name_of(problem, kImpactProblemNames); }
 
 PowellImpactOptions problem_defaults(PowellImpactOptions o) {
   struct Defaults {
@@ -66,7 +61,7 @@ RateFormOptions powell_formulation_options(const std::string& formulation) {
     return o;
   }
   if (formulation == "ssph") {
-    o.momentum = RateFormMomentum::StabilisedSph;  // algorithm 4.2
+    o.momentum = RateFormMomentum::StabilisedSph;   // algorithm 4.2
     o.counting = NeighbourCounting::BoundaryLevel;  // Fig. 4.3
     o.first_step_shepard = true;                    // (4.18): the means of the first-step Shepard gradient
     return o;
@@ -83,8 +78,8 @@ int whole_spacings(double value, double dx, int multiple, const std::string& wha
   const long k = std::lround(n / multiple) * multiple;
   if (k < multiple || std::abs(n - static_cast<double>(k)) > 1e-9 * n || k > 1'000'000)
     throw std::invalid_argument("powell_impact_scene: " + what + " " + format_number(value) +
-                                " must be a whole multiple of " + std::to_string(multiple) + " dx = " +
-                                format_number(multiple * dx));
+                                " must be a whole multiple of " + std::to_string(multiple) +
+                                " dx = " + format_number(multiple * dx));
   return static_cast<int>(k);
 }
 
@@ -94,9 +89,15 @@ int particle_a(const ParticleSet<2>& q, const PowellImpactOptions& o) {
   const double split = std::round(o.split * length / dx) * dx;
   Eigen::Vector2d target = Eigen::Vector2d::Zero();
   switch (o.problem) {
-    case ImpactProblem::Symmetric: target = {0.5 * length, 0.75 * height}; break;
-    case ImpactProblem::Bar: target = {split - 0.5 * dx, 0.5 * height}; break;
-    case ImpactProblem::Beam: target = {0.5 * length - 0.5 * dx, 0.5 * dx}; break;
+    case ImpactProblem::Symmetric:
+      target = {0.5 * length, 0.75 * height};
+      break;
+    case ImpactProblem::Bar:
+      target = {split - 0.5 * dx, 0.5 * height};
+      break;
+    case ImpactProblem::Beam:
+      target = {0.5 * length - 0.5 * dx, 0.5 * dx};
+      break;
   }
   int a = -1;
   double best = std::numeric_limits<double>::infinity();
@@ -130,8 +131,7 @@ ParticleSet<2> impact_particles(const PowellImpactOptions& o) {
   const int split_columns = static_cast<int>(std::lround(columns));
   if (o.problem == ImpactProblem::Beam && (nx - split_columns) % 2 != 0)
     throw std::invalid_argument(std::string(who) + ": the beam's section (" + std::to_string(split_columns) +
-                                " columns) must leave an even number of columns to centre it in " +
-                                std::to_string(nx));
+                                " columns) must leave an even number of columns to centre it in " + std::to_string(nx));
   const int clamp = o.problem == ImpactProblem::Beam ? o.clamp_layers : 0;
   if (o.problem == ImpactProblem::Beam && (clamp < 1 || 2 * clamp + split_columns > nx))
     throw std::invalid_argument(std::string(who) + ": clamp_layers " + std::to_string(o.clamp_layers) +
@@ -192,8 +192,12 @@ Scene<2> powell_impact_scene(const PowellImpactOptions& options) {
     const double x = q.x(k, 0), y = q.x(k, 1);
     Eigen::Vector2d v = Eigen::Vector2d::Zero();
     switch (o.problem) {
-      case ImpactProblem::Symmetric: v.y() = y > 0.5 * height ? -o.speed : o.speed; break;  // Fig. 4.5
-      case ImpactProblem::Bar: v.x() = x < split_columns * dx ? o.speed : -o.speed; break;
+      case ImpactProblem::Symmetric:
+        v.y() = y > 0.5 * height ? -o.speed : o.speed;
+        break;  // Fig. 4.5
+      case ImpactProblem::Bar:
+        v.x() = x < split_columns * dx ? o.speed : -o.speed;
+        break;
       case ImpactProblem::Beam:
         if (std::abs(x - 0.5 * length) < 0.5 * split_columns * dx) v.y() = -o.speed;
         break;
@@ -207,18 +211,16 @@ Scene<2> powell_impact_scene(const PowellImpactOptions& options) {
   s.measures.push_back({"pressure_A", [rho_a, K, rho0](const Eigen::Matrix2Xd&, const Eigen::VectorXd& y) {
                           return K * (y[rho_a] / rho0 - 1);  // GMS (2.7)
                         }});
-  s.measures.push_back({"speed_A", [v_a](const Eigen::Matrix2Xd&, const Eigen::VectorXd& y) {
-                          return y.segment<2>(v_a).norm();
-                        }});
+  s.measures.push_back(
+      {"speed_A", [v_a](const Eigen::Matrix2Xd&, const Eigen::VectorXd& y) { return y.segment<2>(v_a).norm(); }});
   std::vector<int> free = s.scheme->discretisation().free;
   s.measures.push_back({"length", [free](const Eigen::Matrix2Xd& x, const Eigen::VectorXd&) {
                           double lo = std::numeric_limits<double>::infinity(), hi = -lo;
                           for (int k : free) lo = std::min(lo, x(0, k)), hi = std::max(hi, x(0, k));
                           return hi - lo;
                         }});
-  s.measures.push_back({"deflection", [a, y_a](const Eigen::Matrix2Xd& x, const Eigen::VectorXd&) {
-                          return x(1, a) - y_a;
-                        }});
+  s.measures.push_back(
+      {"deflection", [a, y_a](const Eigen::Matrix2Xd& x, const Eigen::VectorXd&) { return x(1, a) - y_a; }});
   if (o.problem == ImpactProblem::Bar) std::swap(s.measures[0], s.measures[2]);   // headline: the bar's length
   if (o.problem == ImpactProblem::Beam) std::swap(s.measures[0], s.measures[3]);  // the beam's deflection
   s.neighbour_skin = 0.5 * dx;  // fracturing runs move particles by many h
@@ -226,9 +228,7 @@ Scene<2> powell_impact_scene(const PowellImpactOptions& options) {
 }
 
 ImpactTLModel parse_impact_tl_model(const std::string& name) {
-  if (name == "linear") return ImpactTLModel::Linear;
-  if (name == "svk") return ImpactTLModel::StVenantKirchhoff;
-  throw std::invalid_argument("unknown TL-SPH model '" + name + "' (valid: linear, svk)");
+  return parse_named(name, kImpactTLModelNames, "TL-SPH model");
 }
 
 ImpactTotalLagrangian impact_total_lagrangian(const Scene<2>& scene, ImpactTLModel model) {
@@ -237,9 +237,8 @@ ImpactTotalLagrangian impact_total_lagrangian(const Scene<2>& scene, ImpactTLMod
   // Aliasing: the discretisation lives as long as the scheme that owns it.
   const std::shared_ptr<const Discretisation<2>> disc(scene.scheme, &scheme.discretisation());
   const RateFormMaterial& m = scheme.material();
-  const ElasticMaterial material{.lambda = m.bulk_modulus - 2.0 * m.shear_modulus / 3.0,
-                                 .mu = m.shear_modulus,
-                                 .rho = m.density};
+  const ElasticMaterial material{
+      .lambda = m.bulk_modulus - 2.0 * m.shear_modulus / 3.0, .mu = m.shear_modulus, .rho = m.density};
   ImpactTotalLagrangian tl;
   if (model == ImpactTLModel::Linear) {
     auto form = std::make_shared<const TotalLagrangianForm2D>(disc, material);

@@ -10,6 +10,7 @@
 #include "sphstab/core/checked_arithmetic.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/memory_budget.hpp"
+#include "sphstab/core/named_values.hpp"
 
 namespace sphstab {
 
@@ -95,21 +96,13 @@ ElasticSymbol2D::Value ElasticSymbol2D::operator()(const Eigen::Vector2d& k) con
   return v;
 }
 
-std::string mechanism_name(InstabilityMechanism m) {
-  switch (m) {
-    case InstabilityMechanism::None:
-      return "none";
-    case InstabilityMechanism::RealCrossing:
-      return "real-crossing";
-    case InstabilityMechanism::ComplexPair:
-      return "complex-pair";
-    case InstabilityMechanism::ZeroSymbol:
-      return "zero-symbol";
-    case InstabilityMechanism::Neutral:
-      return "neutral";
-  }
-  return "?";
-}
+constexpr NamedValue<InstabilityMechanism> kMechanismNames[] = {{InstabilityMechanism::None, "none"},
+                                                                {InstabilityMechanism::RealCrossing, "real-crossing"},
+                                                                {InstabilityMechanism::ComplexPair, "complex-pair"},
+                                                                {InstabilityMechanism::ZeroSymbol, "zero-symbol"},
+                                                                {InstabilityMechanism::Neutral, "neutral"}};
+
+std::string mechanism_name(InstabilityMechanism m) { return name_of(m, kMechanismNames); }
 
 CriticalStrain2x2 critical_strain_2x2(const Eigen::Matrix2d& a0, const Eigen::Matrix2d& a1_in, LoadDirection sign,
                                       double zero_tol) {

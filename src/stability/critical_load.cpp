@@ -11,6 +11,7 @@
 
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/memory_budget.hpp"
+#include "sphstab/core/named_values.hpp"
 #include "sphstab/growth/growth_rate.hpp"
 #include "sphstab/jacobian/analytic_jacobian_1d.hpp"
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
@@ -565,40 +566,26 @@ void finish_mode(const Linearisation& lin, CriticalLoad& out) {
 
 }  // namespace
 
-Criterion parse_criterion(const std::string& name) {
-  if (name == "auto") return Criterion::Auto;
-  if (name == "definiteness" || name == "pd") return Criterion::Definiteness;
-  if (name == "spectrum" || name == "real-positive-spectrum") return Criterion::Spectrum;
-  if (name == "symmetric-part" || name == "symmetric-part-pd") return Criterion::SymmetricPart;
-  throw std::invalid_argument("unknown criterion '" + name + "' (valid: auto, definiteness, spectrum, symmetric-part)");
-}
+constexpr NamedValue<Criterion> kCriterionNames[] = {{Criterion::Auto, "auto"},
+                                                     {Criterion::Definiteness, "definiteness"},
+                                                     {Criterion::Spectrum, "spectrum"},
+                                                     {Criterion::SymmetricPart, "symmetric-part"},
+                                                     {Criterion::Definiteness, "pd"},
+                                                     {Criterion::Spectrum, "real-positive-spectrum"},
+                                                     {Criterion::SymmetricPart, "symmetric-part-pd"}};
+constexpr NamedValue<CriticalLoadMethod> kCriticalLoadMethodNames[] = {
+    {CriticalLoadMethod::Eigen, "eig"}, {CriticalLoadMethod::Bisection, "bisect"}, {CriticalLoadMethod::Both, "both"}};
+constexpr NamedValue<EigenBackend> kEigenBackendNames[] = {
+    {EigenBackend::Auto, "auto"}, {EigenBackend::Dense, "dense"}, {EigenBackend::Spectra, "spectra"}};
 
-std::string criterion_name(Criterion c) {
-  switch (c) {
-    case Criterion::Auto:
-      return "auto";
-    case Criterion::Definiteness:
-      return "definiteness";
-    case Criterion::Spectrum:
-      return "spectrum";
-    case Criterion::SymmetricPart:
-      return "symmetric-part";
-  }
-  return "?";
-}
-
+Criterion parse_criterion(const std::string& name) { return parse_named(name, kCriterionNames, "criterion"); }
+std::string criterion_name(Criterion c) { return name_of(c, kCriterionNames); }
 CriticalLoadMethod parse_critical_load_method(const std::string& name) {
-  if (name == "eig") return CriticalLoadMethod::Eigen;
-  if (name == "bisect") return CriticalLoadMethod::Bisection;
-  if (name == "both") return CriticalLoadMethod::Both;
-  throw std::invalid_argument("unknown method '" + name + "' (valid: eig, bisect, both)");
+  return parse_named(name, kCriticalLoadMethodNames, "method");
 }
-
+std::string critical_load_method_name(CriticalLoadMethod method) { return name_of(method, kCriticalLoadMethodNames); }
 EigenBackend parse_eigen_backend(const std::string& name) {
-  if (name == "auto") return EigenBackend::Auto;
-  if (name == "dense") return EigenBackend::Dense;
-  if (name == "spectra") return EigenBackend::Spectra;
-  throw std::invalid_argument("unknown eigen backend '" + name + "' (valid: auto, dense, spectra)");
+  return parse_named(name, kEigenBackendNames, "eigen backend");
 }
 
 CriticalLoadOptions CriticalLoadOptions::tension_1d() {

@@ -7,6 +7,7 @@
 
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/memory_budget.hpp"
+#include "sphstab/core/named_values.hpp"
 #include "sphstab/forms/discretisation.hpp"
 #include "sphstab/jacobian/analytic_jacobian_2d.hpp"
 #include "sphstab/jacobian/matrix_free_linearisation.hpp"
@@ -16,48 +17,21 @@
 
 namespace sphstab {
 
+constexpr NamedValue<CriticalLoadRoute> kRouteNames[] = {{CriticalLoadRoute::Auto, "auto"},
+                                                         {CriticalLoadRoute::Assembled, "assembled"},
+                                                         {CriticalLoadRoute::MatrixFree, "matrix-free"},
+                                                         {CriticalLoadRoute::Symbol, "symbol"},
+                                                         {CriticalLoadRoute::Distributed, "distributed"},
+                                                         {CriticalLoadRoute::Distributed, "petsc"}};
+
 CriticalLoadRoute parse_critical_load_route(const std::string& name) {
-  if (name == "auto") return CriticalLoadRoute::Auto;
-  if (name == "assembled") return CriticalLoadRoute::Assembled;
-  if (name == "matrix-free") return CriticalLoadRoute::MatrixFree;
-  if (name == "symbol") return CriticalLoadRoute::Symbol;
-  if (name == "petsc" || name == "distributed") return CriticalLoadRoute::Distributed;
-  throw std::invalid_argument("unknown critical-load route '" + name +
-                              "' (valid: auto, assembled, matrix-free, symbol, petsc)");
+  return parse_named(name, kRouteNames, "critical-load route");
 }
-
-std::string critical_load_route_name(CriticalLoadRoute route) {
-  switch (route) {
-    case CriticalLoadRoute::Auto:
-      return "auto";
-    case CriticalLoadRoute::Assembled:
-      return "assembled";
-    case CriticalLoadRoute::MatrixFree:
-      return "matrix-free";
-    case CriticalLoadRoute::Symbol:
-      return "symbol";
-    case CriticalLoadRoute::Distributed:
-      return "distributed";
-  }
-  return "?";
-}
-
-std::string critical_load_method_name(CriticalLoadMethod method) {
-  switch (method) {
-    case CriticalLoadMethod::Eigen:
-      return "eig";
-    case CriticalLoadMethod::Bisection:
-      return "bisect";
-    case CriticalLoadMethod::Both:
-      return "both";
-  }
-  return "?";
-}
+std::string critical_load_route_name(CriticalLoadRoute route) { return name_of(route, kRouteNames); }
 
 int probe_lattice_size(double support_over_dx) { return 2 * static_cast<int>(std::ceil(2 * support_over_dx)) + 3; }
 
 namespace {
-
 
 template <int Dim>
 double support_of(const ElasticLatticeProblem<Dim>& p) {
