@@ -1,14 +1,11 @@
 """Summarise the assembly benchmark CSVs into results/assembly-speed/{assembly.csv, summary.md, assembly.png}."""
 import csv
 import json
-import math
 import os
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from plot_common import decorate, loglog_slope, plt, save, write_summary_md  # noqa: E402
 
 out = sys.argv[1]
 
@@ -45,13 +42,6 @@ with open(os.path.join(out, "assembly.csv"), "w", newline="") as f:
         w.writerow(row)
 
 
-def slope(rows):
-    xs = [math.log(r["particles"]) for r in rows]
-    ys = [math.log(r["seconds"]) for r in rows]
-    mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
-    return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
-
-
 fig, ax = plt.subplots(figsize=(7, 4.5))
 lines = ["# Assembly speed: W + G on 2D square lattices", "",
          "Produced by `studies/assembly-speed/run.sh` (Google Benchmark `benchmarks/assembly_benchmark.cpp`), cubic",
@@ -75,11 +65,12 @@ for mode in ("default", "hugepages"):
             rates = [r["pair_entries_per_s"] for r in rows]
             ratios = [r["ratio_to_copy"] for r in rows if r["ratio_to_copy"] == r["ratio_to_copy"]]
             ratio_txt = f"{min(ratios):.3f}..{max(ratios):.3f}" if ratios else "-"
+            p = loglog_slope([r["particles"] for r in rows], [r["seconds"] for r in rows])
             lines.append(f"| {mode} | {bench} | {h} | {rows[0]['particles']:.0e}..{rows[-1]['particles']:.0e} | "
                          f"{min(rates):.3g}..{max(rates):.3g} | {3 * min(rates):.3g}..{3 * max(rates):.3g} | "
-                         f"{slope(rows):.3f} | {ratio_txt} |")
+                         f"{p:.3f} | {ratio_txt} |")
             if bench != "NeighbourSearch":
-                verdict[(mode, bench, h)] = (min(rates), slope(rows))
+                verdict[(mode, bench, h)] = (min(rates), p)
             if bench != "NeighbourSearch":
                 ax.loglog([r["particles"] for r in rows], rates, "o-" if mode == "hugepages" else "s--",
                           label=f"{bench} h={h}dx ({mode})")
@@ -115,12 +106,7 @@ if huge:
               ", ".join(f"N = {n}: {ratio:.2f}x" for n, ratio in huge) + "."]
 lines += [""]
 ax.axhline(5e7, color="k", lw=0.8, ls=":", label="target 5e7/s")
-ax.set_xlabel("particles N")
-ax.set_ylabel("pair entries assembled per second")
-ax.set_title("W + G assembly, 2D square lattice, one core")
-ax.legend(fontsize=7)
-fig.tight_layout()
-fig.savefig(os.path.join(out, "assembly.png"), dpi=130)
-with open(os.path.join(out, "summary.md"), "w") as f:
-    f.write("\n".join(lines) + "\n")
-print("\n".join(lines))
+decorate(ax, "particles N", "pair entries assembled per second", "W + G assembly, 2D square lattice, one core",
+         legend=7)
+save(fig, os.path.join(out, "assembly.png"), dpi=130)
+write_summary_md(out, lines)

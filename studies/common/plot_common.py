@@ -1,6 +1,7 @@
-"""Helpers shared by the studies' plot.py scripts (import after adding studies/common to sys.path)."""
+"""Helpers shared by the studies' plot.py and report.py scripts (import after adding studies/common to sys.path)."""
 import csv
 import math
+import os
 
 import matplotlib
 
@@ -29,6 +30,60 @@ def ordered(rows, key):
         if r[key] not in out:
             out.append(r[key])
     return out
+
+
+def decorate(ax, xlabel=None, ylabel=None, title=None, title_size=None, legend=8, **legend_kw):
+    """Label one panel: its x label, y label and title (each left out when None; title_size: the title's font size,
+    else matplotlib's default), then its legend at font size `legend` (None: no legend) with any further legend
+    options legend_kw (loc, ncol, ...)."""
+    if xlabel is not None:
+        ax.set_xlabel(xlabel)
+    if ylabel is not None:
+        ax.set_ylabel(ylabel)
+    if title is not None:
+        ax.set_title(title, **({} if title_size is None else {"fontsize": title_size}))
+    if legend is not None:
+        ax.legend(fontsize=legend, **legend_kw)
+
+
+def save(fig, path, dpi=110, announce=False):
+    """Lay the figure out (tight_layout), write it to path at dpi and close it; announce: then print 'wrote PATH'."""
+    fig.tight_layout()
+    fig.savefig(path, dpi=dpi)
+    plt.close(fig)
+    if announce:
+        print(f"wrote {path}")
+
+
+def loglog_slope(xs, ys):
+    """Least-squares slope of log y against log x: the exponent p of a fit y ~ x^p."""
+    lx = [math.log(x) for x in xs]
+    ly = [math.log(y) for y in ys]
+    mx, my = sum(lx) / len(lx), sum(ly) / len(ly)
+    return sum((a - mx) * (b - my) for a, b in zip(lx, ly)) / sum((a - mx) ** 2 for a in lx)
+
+
+def write_summary_md(out, lines):
+    """Write the lines (joined with newlines, one at the end) to out/summary.md and print them."""
+    with open(os.path.join(out, "summary.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
+def growth_panels(ax1, ax2, lim, diagonal, xlabel1, ylabel1, ylabel2):
+    """The Swegle studies' growth-rate axes, once the points are drawn: ax1 measured against linear gamma on log axes
+    over lim x lim with the diagonal (labelled `diagonal`), ax2 gamma against xi on a log axis; grids and legends."""
+    ax1.plot(lim, lim, "k--", lw=0.8, label=diagonal)
+    ax1.set(xscale="log", yscale="log", xlim=lim, ylim=lim)
+    ax1.set_xlabel(xlabel1)
+    ax1.set_ylabel(ylabel1)
+    ax1.grid(True, which="both", alpha=0.3)
+    ax1.legend(fontsize=7)
+    ax2.set_yscale("log")
+    ax2.set_xlabel("xi = V/V0")
+    ax2.set_ylabel(ylabel2)
+    ax2.grid(True, which="both", alpha=0.3)
+    ax2.legend(fontsize=7, ncol=2)
 
 
 def xi_colour(xi, xis):
@@ -61,12 +116,22 @@ def read_vtp(path, names):
     return pts[0], pts[1], {n: array(n)[0] for n in names}
 
 
+def time_series_panels(fig, axes, suptitle, path, legend):
+    """Finish the GMS studies' 2 x 2 time-series figure once its curves are drawn: a grid and a legend (font size
+    `legend`) on every panel, the time label t (cm / c0) under the bottom row, the title suptitle; saved to path."""
+    for ax in axes.flat:
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=legend)
+    for ax in axes[1]:
+        ax.set_xlabel("t (cm / c0)")
+    fig.suptitle(suptitle)
+    save(fig, path)
+
+
 def frozen_modes(out, title, path="frozen.png"):
     """One panel per row of out/frozen_spectrum.csv (common/gms.hpp frozen_spectra_along_run): the most unstable
     mode's velocity shape (arrows, |v| coloured; red cross: its largest velocity) at the state's particle positions,
     titled with the growth rate and the number of unstable eigenvalues. Returns False (and writes nothing) without the CSV."""
-    import os
-
     spec_path = os.path.join(out, "frozen_spectrum.csv")
     if not os.path.exists(spec_path):
         return False

@@ -10,7 +10,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from plot_common import num, plt, read, xi_colour  # noqa: E402
+from plot_common import decorate, num, plt, read, save, xi_colour  # noqa: E402
 
 
 def dispersion(out, h="1.3"):
@@ -44,9 +44,7 @@ def dispersion(out, h="1.3"):
         axes[k // ncol][k % ncol].axis("off")
     fig.suptitle(f"Rate-form scheme, square lattice, cubic spline, h = {h} dx, steel: acoustic branches "
                  "(thick: the higher branch)", fontsize=10)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "dispersion_2d.png"), dpi=130)
-    plt.close(fig)
+    save(fig, os.path.join(out, "dispersion_2d.png"), dpi=130)
 
 
 def bar(out):
@@ -60,13 +58,9 @@ def bar(out):
     ax.semilogy(h, sym, "o", mfc="none", label="bisection on the symbol's spectrum")
     ax.semilogy(h, cf, "x", label="|g|² / (2L − |g|²), same k grid")
     ax.semilogy(h, inf, "-", lw=0.8, label="T/(1 − T), grid-free infimum")
-    ax.set_xlabel("h / dx")
-    ax.set_ylabel("σ0,crit / M (floor 1e-10 = unstable at any tension)")
-    ax.set_title("1D basic SPH rate form, infinite lattice, cubic spline", fontsize=10)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "bar_1d.png"), dpi=130)
-    plt.close(fig)
+    decorate(ax, "h / dx", "σ0,crit / M (floor 1e-10 = unstable at any tension)",
+             "1D basic SPH rate form, infinite lattice, cubic spline", title_size=10)
+    save(fig, os.path.join(out, "bar_1d.png"), dpi=130)
 
 
 if __name__ == "__main__":

@@ -6,35 +6,20 @@ compression_conditions.png kernel x h map: L positive semi-definite (stable in c
                           conditions 1 (W'' negative definite, free block) and 3 (row sum of W'' > 0) marked
 asymmetry.png             Jacobian asymmetry per form and configuration (1D, 2D) and against the displacement amplitude
 """
-import csv
 import math
+import os
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
 from matplotlib.colors import ListedColormap  # noqa: E402
+from plot_common import ordered, plt, read, save  # noqa: E402
 
 FORMS = ["uncorrected", "plus", "minus", "conservative"]
 
 
-def read(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
-
-
-def kernels_of(rows):
-    out = []
-    for r in rows:
-        if r["kernel"] not in out:
-            out.append(r["kernel"])
-    return out
-
-
 def tension_compression(out):
     rows = read(f"{out}/tcrit.csv")
-    kernels = kernels_of(rows)
+    kernels = ordered(rows, "kernel")
     ceiling = 1e3
     fig, axes = plt.subplots(2, (len(kernels) + 1) // 2, figsize=(17, 7), sharex=True, sharey=True)
     for ax, k in zip(axes.flat, kernels):
@@ -58,15 +43,12 @@ def tension_compression(out):
         ax.set_visible(False)
     fig.suptitle("1D bar, N = 30: critical tension and compression of the conservative form "
                  "(uncorrected 4x, plus 2x; top band: none)")
-    fig.tight_layout()
-    fig.savefig(f"{out}/tension_compression.png", dpi=130)
-    plt.close(fig)
-    print(f"wrote {out}/tension_compression.png")
+    save(fig, f"{out}/tension_compression.png", dpi=130, announce=True)
 
 
 def compression_conditions(out):
     rows = read(f"{out}/compression_conditions.csv")
-    kernels = kernels_of(rows)
+    kernels = ordered(rows, "kernel")
     hs = sorted({float(r["h_over_dx"]) for r in rows})
     grid = [[0.0] * len(hs) for _ in kernels]
     fig, ax = plt.subplots(figsize=(16, 5.5))
@@ -87,10 +69,7 @@ def compression_conditions(out):
     ax.set_xlabel("h / dx")
     ax.set_title("Compression, N = 30: green = stable for every T < 0 (L positive semi-definite), red = finite "
                  "T_crit^-;\ntext: Powell's condition 1 (W'' negative definite) and/or 3 (row sum of W'' > 0) holds")
-    fig.tight_layout()
-    fig.savefig(f"{out}/compression_conditions.png", dpi=130)
-    plt.close(fig)
-    print(f"wrote {out}/compression_conditions.png")
+    save(fig, f"{out}/compression_conditions.png", dpi=130, announce=True)
 
 
 def asymmetry(out):
@@ -100,10 +79,7 @@ def asymmetry(out):
     fig, axes = plt.subplots(1, 3, figsize=(18, 5), gridspec_kw=dict(width_ratios=[1.2, 1.2, 1]))
     for ax, dim in zip(axes[:2], ["1", "2"]):
         sub = [r for r in rows if r["dim"] == dim]
-        configs = []
-        for r in sub:
-            if r["config"] not in configs:
-                configs.append(r["config"])
+        configs = ordered(sub, "config")
         width = 0.2
         for k, form in enumerate(FORMS):
             values = [max(floor, float(next(r for r in sub if r["config"] == c and r["form"] == form)
@@ -128,10 +104,7 @@ def asymmetry(out):
     ax.set_title("1D, cubic h = 1.3: against the amplitude\n(solid T = 0.1, dotted T = 0, dashed T = -0.1)")
     ax.legend(fontsize=8)
     fig.suptitle("Symmetry of the exact Jacobian A = -da/du (dashed line: round-off level)")
-    fig.tight_layout()
-    fig.savefig(f"{out}/asymmetry.png", dpi=130)
-    plt.close(fig)
-    print(f"wrote {out}/asymmetry.png")
+    save(fig, f"{out}/asymmetry.png", dpi=130, announce=True)
 
 
 def main(out):

@@ -8,7 +8,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from plot_common import frozen_modes, num, plt, read, read_vtp  # noqa: E402
+from plot_common import frozen_modes, num, plt, read, read_vtp, time_series_panels  # noqa: E402
 
 STYLE = {0.0: ("C3", "eps = 0"), 0.3: ("C0", "eps = 0.3")}
 
@@ -46,16 +46,8 @@ def main(out):
     a_ke.set(ylabel="kinetic energy / initial")
     a_v.set(ylabel="ring centre-of-mass v_x / c0")
     a_d.set(ylabel="closest distance between the rings (cm)", ylim=(0, 1.0))
-    for ax in axes.flat:
-        ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=7)
-    for ax in axes[1]:
-        ax.set_xlabel("t (cm / c0)")
-    fig.suptitle("Colliding rings (GMS 2001 §7.2), mu = 0.22, dp = %s, +-0.059 c0; dashed verticals: last contact"
-                 % runs[0]["dp"])
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "timeseries.png"), dpi=110)
-    plt.close(fig)
+    time_series_panels(fig, axes, "Colliding rings (GMS 2001 §7.2), mu = 0.22, dp = %s, +-0.059 c0; dashed verticals: "
+                       "last contact" % runs[0]["dp"], os.path.join(out, "timeseries.png"), legend=7)
 
     # Snapshots: 5 frames per eps, evenly spread over the run, coloured by sigma_xx on one symmetric scale.
     shown = runs + si_full

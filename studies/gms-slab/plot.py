@@ -7,7 +7,7 @@ import sys
 from collections import defaultdict
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from plot_common import frozen_modes, num, plt, read, read_vtp  # noqa: E402
+from plot_common import frozen_modes, num, plt, read, read_vtp, save, time_series_panels  # noqa: E402
 
 GMS_TIMES = {0.0: [(119, "GMS break (eps 0)")], 0.3: [(394, "GMS neck"), (542, "GMS break")]}
 
@@ -48,16 +48,8 @@ def main(out):
     a_width.set(ylabel="width (cm), inner window")
     a_frag.set(ylabel="fragments (bonds < 1.5 dp)")
     a_ke.set(ylabel="kinetic energy (t >= 1)", yscale="log")
-    for ax in axes.flat:
-        ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=6)
-    for ax in axes[1]:
-        ax.set_xlabel("t (cm / c0)")
-    fig.suptitle("Plastic slab in tension (GMS 2001 §7.3); coloured verticals: detected break (1.5 dp bonds); "
-                 "grey: GMS's times")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "timeseries.png"), dpi=110)
-    plt.close(fig)
+    time_series_panels(fig, axes, "Plastic slab in tension (GMS 2001 §7.3); coloured verticals: detected break "
+                       "(1.5 dp bonds); grey: GMS's times", os.path.join(out, "timeseries.png"), legend=6)
 
     # Snapshots: per run, a regular frame before the events, the neck onset, the break and the final frame.
     frames = defaultdict(list)
@@ -131,9 +123,7 @@ def main(out):
             ax.grid(True, alpha=0.3)
             ax.legend(fontsize=7)
         axes[-1][0].set_xlabel("x (cm), between the driven zones")
-        fig.tight_layout()
-        fig.savefig(os.path.join(out, "profiles.png"), dpi=110)
-        plt.close(fig)
+        save(fig, os.path.join(out, "profiles.png"))
 
 
 if __name__ == "__main__":

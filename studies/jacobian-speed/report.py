@@ -7,14 +7,11 @@ the force itself).
 """
 import csv
 import json
-import math
 import os
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from plot_common import decorate, loglog_slope, plt, save, write_summary_md  # noqa: E402
 
 out = sys.argv[1]
 with open(os.path.join(out, "benchmark.json")) as f:
@@ -44,13 +41,6 @@ with open(os.path.join(out, "jacobian.csv"), "w", newline="") as f:
     w.writerows(rows)
 
 
-def exponent(xs, ys):
-    lx = [math.log(x) for x in xs]
-    ly = [math.log(y) for y in ys]
-    mx, my = sum(lx) / len(lx), sum(ly) / len(ly)
-    return sum((a - mx) * (b - my) for a, b in zip(lx, ly)) / sum((a - mx) ** 2 for a in lx)
-
-
 ctx = data["context"]
 lines = ["# Generic Jacobian: coloured complex step against one force evaluation", "",
          "Produced by `studies/jacobian-speed/run.sh` (Google Benchmark `benchmarks/jacobian_benchmark.cpp`, "
@@ -71,9 +61,9 @@ fig, ax = plt.subplots(figsize=(6.5, 4.2))
 for family in sorted({r["family"] for r in rows}):
     rs = [r for r in rows if r["family"] == family]
     ns = [r["dofs"] for r in rs]
-    pj = exponent(ns, [r["jacobian_s"] for r in rs])
+    pj = loglog_slope(ns, [r["jacobian_s"] for r in rs])
     # one real force evaluation, as timed inside the Jacobian benchmark (ratio_to_real_force)
-    pf = exponent(ns, [r["jacobian_s"] / r["ratio_to_real_force"] for r in rs])
+    pf = loglog_slope(ns, [r["jacobian_s"] / r["ratio_to_real_force"] for r in rs])
     cols = sorted({r["colours"] for r in rs})
     ratios = [r["ratio_to_real_force"] for r in rs]
     lines.append(f"- {family}: colours {cols[0]}..{cols[-1]} over {ns[0]}..{ns[-1]} DOFs; Jacobian time ~ N^{pj:.2f} "
@@ -89,12 +79,7 @@ lines += ["- The factor between (Jacobian / force) and the colour count is the c
           "- The 2D families need ~180 colours because a conservative or plus-form 2D Jacobian couples particles two "
           "neighbour hops apart (radius 4h); where an analytic Jacobian exists it is ~100x faster "
           "(results/critical-strain-2d/benchmark.md), and the complex step serves as its independent check.", ""]
-ax.set_xlabel("DOFs")
-ax.set_ylabel("Jacobian time / one real force evaluation")
-ax.set_title("Coloured complex-step Jacobian: cost in force evaluations")
-ax.legend(fontsize=8)
-fig.tight_layout()
-fig.savefig(os.path.join(out, "jacobian_cost.png"), dpi=130)
-with open(os.path.join(out, "summary.md"), "w") as f:
-    f.write("\n".join(lines) + "\n")
-print("\n".join(lines))
+decorate(ax, "DOFs", "Jacobian time / one real force evaluation",
+         "Coloured complex-step Jacobian: cost in force evaluations")
+save(fig, os.path.join(out, "jacobian_cost.png"), dpi=130)
+write_summary_md(out, lines)

@@ -6,25 +6,18 @@ tcrit_vs_h.png        T_crit (tension) vs h/dx, N = 30: rows = forms, columns = 
 compression_vs_h.png  the same for the critical compression |T_crit^-|.
 momentum_locality.png total force on a displaced periodic lattice, and the fill of Ghat and of the Jacobian.
 """
-import csv
 import math
+import os
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from plot_common import plt, read, save  # noqa: E402
 
 KERNELS = ["cubic", "wendland-c2", "quintic"]
 FORMS = [("uncorrected", "divergence"), ("plus", "divergence"), ("minus", "divergence"), ("conservative", "strain")]
 CORRECTIONS = ["none", "minus", "shepard", "column-shepard", "ncsph", "local-polish", "local-polish+fig4.3",
                "local-polish+eq4.18", "mean-polish", "shepard-column-polish"]
 STYLE = {c: dict(color=f"C{i}", marker="os^vDx+*<>"[i]) for i, c in enumerate(CORRECTIONS)}
-
-
-def read(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
 
 
 def series(rows, n, kernel, correction, form, target, direction):
@@ -70,10 +63,7 @@ def tcrit_figure(rows, n, direction, path, ylabel):
     axes[0][len(KERNELS) - 1].legend(fontsize=7, loc="lower right")
     fig.suptitle(f"Critical {'tension' if direction == 'tension' else 'compression'} of the corrected 1D forms, "
                  f"N = {n}, fixed layers 3 supports (top band: no critical load)")
-    fig.tight_layout()
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
-    print(f"wrote {path}")
+    save(fig, path, dpi=130, announce=True)
 
 
 def momentum_locality(out):
@@ -109,10 +99,7 @@ def momentum_locality(out):
     b.set_xticklabels(names, rotation=30, ha="right", fontsize=8)
     b.set_title("Locality (N = 30, cubic, h = 1.3 dx)")
     b.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(f"{out}/momentum_locality.png", dpi=130)
-    plt.close(fig)
-    print(f"wrote {out}/momentum_locality.png")
+    save(fig, f"{out}/momentum_locality.png", dpi=130, announce=True)
 
 
 def main(out):

@@ -7,7 +7,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from plot_common import num, plt, read  # noqa: E402
+from plot_common import decorate, num, plt, read, save  # noqa: E402
 
 FORMS = ["SPH", "XSPH", "NCSPH", "NCXSPH"]
 
@@ -40,9 +40,7 @@ def profiles(out, rows, timing):
         ax.set_title(f"{form}, {timing}-step boundary acceleration")
         ax.legend(fontsize=7, ncol=3, loc="lower right")
     axes[-1].set_xlabel("t (us)")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, f"profiles_{timing}.png"), dpi=110)
-    plt.close(fig)
+    save(fig, os.path.join(out, f"profiles_{timing}.png"))
 
 
 def h_study(out):
@@ -52,13 +50,9 @@ def h_study(out):
     for key, label, m in (("reference_error", "reference (800)", "o"), ("half_error", "NRBC, half-step (Powell)", "s"),
                           ("whole_error", "NRBC, whole-step", "^")):
         ax.semilogy(h, [100 * num(r[key]) for r in rows], marker=m, label=label)
-    ax.set_xlabel("h / dx")
-    ax.set_ylabel("mean relative error x 100, 3 < t < 10 us")
-    ax.set_title("NCXSPH, floor(2h/dx) + 1 absorbing particles (Powell Fig. 2.12)")
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "h_study.png"), dpi=110)
-    plt.close(fig)
+    decorate(ax, "h / dx", "mean relative error x 100, 3 < t < 10 us",
+             "NCXSPH, floor(2h/dx) + 1 absorbing particles (Powell Fig. 2.12)")
+    save(fig, os.path.join(out, "h_study.png"))
 
 
 def dt_limit(out):
@@ -78,9 +72,7 @@ def dt_limit(out):
         ax.set_yscale("log")
     axes[0].set_ylabel("largest stable c dt / dx (runs to 20 us)")
     axes[0].legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "dt_limit.png"), dpi=110)
-    plt.close(fig)
+    save(fig, os.path.join(out, "dt_limit.png"))
 
 
 def main(out):

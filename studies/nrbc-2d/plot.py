@@ -8,7 +8,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from plot_common import num, plt, read  # noqa: E402
+from plot_common import decorate, num, plt, read, save  # noqa: E402
 
 
 COLOURS = {"free": "tab:blue", "P": "tab:orange", "M": "tab:green", "H-Powell": "tab:red", "H-Higdon": "tab:purple",
@@ -46,17 +46,11 @@ def main(out):
                 a_dev.plot(t, [100 * (num(x["ke_over_ke0"]) - num(x["ke_ref_over_ke0"])) for x in s], label=label,
                            **style)
         a_ke.set_ylim(0, 1.2)
-        a_ke.set_ylabel("KE of the block / KE0")
-        a_ke.set_title(fields[field])
-        a_ke.legend(fontsize=8)
+        decorate(a_ke, ylabel="KE of the block / KE0", title=fields[field])
         a_dev.axhline(0.25, color="0.5", lw=0.6, ls=":")
         a_dev.axhline(-0.25, color="0.5", lw=0.6, ls=":")
-        a_dev.set_ylabel("(KE - KE_ref) / KE0  (%); traction: against reference-plain")
-        a_dev.set_xlabel("t (us)")
-        a_dev.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "kinetic_energy.png"), dpi=110)
-    plt.close(fig)
+        decorate(a_dev, "t (us)", "(KE - KE_ref) / KE0  (%); traction: against reference-plain")
+    save(fig, os.path.join(out, "kinetic_energy.png"))
 
 
 if __name__ == "__main__":

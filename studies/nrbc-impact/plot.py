@@ -8,7 +8,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from plot_common import num, plt, read  # noqa: E402
+from plot_common import decorate, num, plt, read, save  # noqa: E402
 
 PROBES = [f"s{k}" for k in range(1, 10)]
 X = [0.1 * k + 0.01 for k in range(1, 10)]
@@ -31,10 +31,7 @@ def waterfall(out, summary):
         ax.plot(t, [x + scale * v for v in ref[p]], "k", lw=0.8)
     ax.plot([0, (0.91 - 0.3) / c_r], [0.3, 0.91], "r--", lw=0.8, label=f"c_r = {c_r:.4f} from the patch edge")
     ax.set_ylim(0.3, 1.05)
-    ax.set_title("reference: v_y at the surface probes")
-    ax.set_xlabel("t (us)")
-    ax.set_ylabel("probe x (cm); trace = x + v_y x 25")
-    ax.legend(fontsize=8)
+    decorate(ax, "t (us)", "probe x (cm); trace = x + v_y x 25", "reference: v_y at the surface probes")
     for ax, (tag, label) in zip(axes[1:], runs):
         t2, run = series(out, tag)
         for p, x in zip(PROBES[3:8], X[3:8]):
@@ -45,12 +42,8 @@ def waterfall(out, summary):
         ax.plot([t1, t1 + (1 - 0.41) / c_r], [1.0, 0.41], "r--", lw=0.8, label="back at c_r from the side")
         ax.plot([(1.0 - 0.3) / c_p, (1.0 - 0.3) / c_p + 0.59 / c_p], [1.0, 0.41], "0.5", ls=":", lw=0.8,
                 label="back at c_p (P hitting the side)")
-        ax.set_title(f"narrow, {label}: (v_y - v_y,ref) x 10")
-        ax.set_xlabel("t (us)")
-        ax.legend(fontsize=8, loc="lower left")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "surface_waves.png"), dpi=110)
-    plt.close(fig)
+        decorate(ax, "t (us)", title=f"narrow, {label}: (v_y - v_y,ref) x 10", loc="lower left")
+    save(fig, os.path.join(out, "surface_waves.png"))
 
 
 def cost(out):
@@ -64,13 +57,10 @@ def cost(out):
         for r in pts:
             ax.annotate(f"{r['run']} {r['boundary']}", (num(r["cpu_seconds"]), 100 * max(num(r["error_surface"]), 1e-4)),
                         fontsize=7, xytext=(3, 3), textcoords="offset points")
-    ax.set_xlabel("CPU seconds of the run (one thread)")
-    ax.set_ylabel("largest error at the surface probes s4-s9 (% of the probe's peak |v|)")
-    ax.set_title("cost of a non-reflecting boundary: 2 cm deep truncations, t <= t_end")
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "cost.png"), dpi=110)
-    plt.close(fig)
+    decorate(ax, "CPU seconds of the run (one thread)",
+             "largest error at the surface probes s4-s9 (% of the probe's peak |v|)",
+             "cost of a non-reflecting boundary: 2 cm deep truncations, t <= t_end")
+    save(fig, os.path.join(out, "cost.png"))
 
 
 def main(out):

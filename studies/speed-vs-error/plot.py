@@ -1,30 +1,15 @@
 #!/usr/bin/env python3
 """Plots for the speed-vs-error study: python3 plot.py DIR (reads DIR/*.csv, writes DIR/*.png)."""
-import csv
 import math
+import os
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from plot_common import num, plt, read, save  # noqa: E402
 
 out = sys.argv[1] if len(sys.argv) > 1 else "results/speed-vs-error"
 
-
-def read(name):
-    with open(f"{out}/{name}") as f:
-        return list(csv.DictReader(f))
-
-
-def num(x):
-    try:
-        return float(x)
-    except ValueError:
-        return math.nan
-
-
-runs = read("runs.csv")
+runs = read(f"{out}/runs.csv")
 forms = ["tl-plain", "tl-minus", "tl-corrected", "tl-plain-xsph", "ul-plain", "ul-minus-plus"]
 colors = dict(zip(forms, ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown"]))
 markers = {1.0: "o", 1.3: "s", 2.0: "^"}
@@ -58,8 +43,7 @@ handles += [plt.Line2D([], [], color="gray", marker="o", ls="", mfc="gray" if fi
 handles += [plt.Line2D([], [], color="k", ls="--", label="Pareto front")]
 axes[1].legend(handles=handles, fontsize=8, loc="upper right", ncol=2)
 fig.suptitle("1D velocity-jump bar: error vs cost (blown-up runs omitted)")
-fig.tight_layout()
-fig.savefig(f"{out}/pareto.png", dpi=130)
+save(fig, f"{out}/pareto.png", dpi=130)
 
 # --- Convergence: L1 against n ---
 fig, axes = plt.subplots(2, len(kernels), figsize=(6.5 * len(kernels), 9), sharey=True, squeeze=False)
@@ -86,11 +70,10 @@ for row, bnd in enumerate(["mirror", "none"]):
     axes[row][0].set_ylabel("L1 at t = 1.5 µs")
 axes[0][0].legend(fontsize=6.5, ncol=2)
 fig.suptitle("Convergence at fixed h/Δx (ul-plain at v0 = 0.01 omitted: it blows up)")
-fig.tight_layout()
-fig.savefig(f"{out}/convergence.png", dpi=130)
+save(fig, f"{out}/convergence.png", dpi=130)
 
 # --- Error over time ---
-hist = read("error_history.csv")
+hist = read(f"{out}/error_history.csv")
 fig, axes = plt.subplots(1, 2, figsize=(13, 4.5), sharey=True)
 for ax, bnd in zip(axes, ["mirror", "none"]):
     for f in forms:
@@ -103,11 +86,10 @@ for ax, bnd in zip(axes, ["mirror", "none"]):
     ax.grid(True, which="both", alpha=0.3)
 axes[0].set_ylabel("L1 velocity error")
 axes[0].legend(fontsize=8)
-fig.tight_layout()
-fig.savefig(f"{out}/error_vs_time.png", dpi=130)
+save(fig, f"{out}/error_vs_time.png", dpi=130)
 
 # --- Velocity profiles at t = 1.5 ---
-prof = read("profiles.csv")
+prof = read(f"{out}/profiles.csv")
 fig, axes = plt.subplots(2, 2, figsize=(13, 8), sharex=True, sharey=True)
 ex = [(num(r["x"]), num(r["v"])) for r in prof if r["formulation"] == "exact"]
 for i, n in enumerate(["100", "400"]):
@@ -126,6 +108,5 @@ for i, n in enumerate(["100", "400"]):
         if j == 0:
             ax.set_ylabel("v at t = 1.5 µs [cm/µs] (scaled to v0 = 0.01)")
 axes[0][0].legend(fontsize=8)
-fig.tight_layout()
-fig.savefig(f"{out}/profiles.png", dpi=130)
+save(fig, f"{out}/profiles.png", dpi=130)
 print(f"plot.py: wrote pareto.png, convergence.png, error_vs_time.png, profiles.png to {out}")

@@ -7,7 +7,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from plot_common import ke_panels, num, plt, read, xi_colour  # noqa: E402
+from plot_common import growth_panels, ke_panels, num, plt, read, save  # noqa: E402
 
 
 def main(out):
@@ -26,21 +26,9 @@ def main(out):
         ax1.plot(lin, meas, m, color=f"C{k}", label=form, alpha=0.8)
         ax2.plot(xis, [g if g > 1e-3 else math.nan for g in lin], "-", color=f"C{k}", alpha=0.6)
         ax2.plot(xis, meas, m, color=f"C{k}", label=form)
-    lim = [1e-1, 30]
-    ax1.plot(lim, lim, "k--", lw=0.8, label="measured = linear")
-    ax1.set(xscale="log", yscale="log", xlim=lim, ylim=lim)
-    ax1.set_xlabel("full-state linear gamma (1/us), excited mirror class")
-    ax1.set_ylabel("measured gamma (1/us), fit of log KE / 2")
-    ax1.grid(True, which="both", alpha=0.3)
-    ax1.legend(fontsize=7)
-    ax2.set_yscale("log")
-    ax2.set_xlabel("xi = V/V0")
-    ax2.set_ylabel("gamma (1/us): lines linear, markers measured")
-    ax2.grid(True, which="both", alpha=0.3)
-    ax2.legend(fontsize=7, ncol=2)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "growth.png"), dpi=110)
-    plt.close(fig)
+    growth_panels(ax1, ax2, [1e-1, 30], "measured = linear", "full-state linear gamma (1/us), excited mirror class",
+                  "measured gamma (1/us), fit of log KE / 2", "gamma (1/us): lines linear, markers measured")
+    save(fig, os.path.join(out, "growth.png"))
 
 
 if __name__ == "__main__":

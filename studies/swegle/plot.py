@@ -8,7 +8,7 @@ import sys
 from collections import defaultdict
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from plot_common import ke_panels, num, plt, read, xi_colour  # noqa: E402
+from plot_common import decorate, growth_panels, ke_panels, num, ordered, plt, read, save, xi_colour  # noqa: E402
 
 
 def main(out):
@@ -24,14 +24,9 @@ def main(out):
             t, e = series.get((form, xi), ([], []))
             if t:
                 ax.semilogy(t, e, color=xi_colour(xi, xis), lw=1.2, label=f"xi = {xi:g}")
-        ax.set_xlabel("t (us)")
-        ax.set_ylabel("kinetic energy")
-        ax.set_title(f"Swegle test: {form}")
         ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=8)
-        fig.tight_layout()
-        fig.savefig(os.path.join(out, f"ke_{form}.png"), dpi=100)
-        plt.close(fig)
+        decorate(ax, "t (us)", "kinetic energy", f"Swegle test: {form}")
+        save(fig, os.path.join(out, f"ke_{form}.png"), dpi=100)
 
     # Measured versus predicted growth rates.
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 4.6))
@@ -57,24 +52,11 @@ def main(out):
             ax1.plot([p for p, _ in late], [g for _, g in late], m, color=f"C{k}", mfc="none", alpha=0.8)
         ax2.plot(xs, pred, "-", color=f"C{k}", alpha=0.6)
         ax2.plot(xs, [positive(g) for g, _ in meas], m, color=f"C{k}", label=form)
-    lim = [1e-2, 30]
-    ax1.plot(lim, lim, "k--", lw=0.8, label="measured = predicted")
-    ax1.set_xscale("log")
-    ax1.set_yscale("log")
-    ax1.set_xlim(lim)
-    ax1.set_ylim(lim)
-    ax1.set_xlabel("linear theory gamma (1/us): excited mirror class; with XSPH the leap-frog map")
-    ax1.set_ylabel("measured gamma (1/us), fit of log KE (hollow: late-time slope)")
-    ax1.grid(True, which="both", alpha=0.3)
-    ax1.legend(fontsize=7)
-    ax2.set_yscale("log")
-    ax2.set_xlabel("xi = V/V0")
-    ax2.set_ylabel("gamma (1/us): lines linear theory, markers measured")
-    ax2.grid(True, which="both", alpha=0.3)
-    ax2.legend(fontsize=7, ncol=2)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "growth_rates.png"), dpi=110)
-    plt.close(fig)
+    growth_panels(ax1, ax2, [1e-2, 30], "measured = predicted",
+                  "linear theory gamma (1/us): excited mirror class; with XSPH the leap-frog map",
+                  "measured gamma (1/us), fit of log KE (hollow: late-time slope)",
+                  "gamma (1/us): lines linear theory, markers measured")
+    save(fig, os.path.join(out, "growth_rates.png"))
 
     # 1D version.
     ke1 = read(os.path.join(out, "onedim_ke.csv"))
@@ -83,10 +65,7 @@ def main(out):
         key = (r["form"], num(r["T"]))
         s1[key][0].append(num(r["t"]))
         s1[key][1].append(num(r["kinetic"]))
-    forms1 = []
-    for r in ke1:
-        if r["form"] not in forms1:
-            forms1.append(r["form"])
+    forms1 = ordered(ke1, "form")
     Ts = sorted({k[1] for k in s1})
     fig, axes = plt.subplots(1, len(forms1), figsize=(4.2 * len(forms1), 3.6), sharey=True, squeeze=False)
     for k, form in enumerate(forms1):
@@ -100,9 +79,7 @@ def main(out):
         ax.grid(True, alpha=0.3)
     axes[0][0].set_ylabel("kinetic energy")
     axes[0][0].legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "ke_1d.png"), dpi=110)
-    plt.close(fig)
+    save(fig, os.path.join(out, "ke_1d.png"))
 
     # Energy error of the conservative form.
     es = read(os.path.join(out, "energy_series.csv"))
@@ -119,9 +96,7 @@ def main(out):
     ax.set_title("Conservative form, xi = 1, v0 = 0.01 cm/us: energy error of leap-frog")
     ax.grid(True, alpha=0.3)
     ax.legend()
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "energy.png"), dpi=110)
-    plt.close(fig)
+    save(fig, os.path.join(out, "energy.png"))
 
 
 if __name__ == "__main__":

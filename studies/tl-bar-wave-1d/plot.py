@@ -7,7 +7,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from plot_common import num, plt, read  # noqa: E402
+from plot_common import decorate, num, plt, read, save  # noqa: E402
 
 RUNS = ["hooke-1d-stress", "neo-hookean-1d-strain", "neo-hookean-1d-stress"]
 PROBES = ["0.05", "0.1", "0.15"]
@@ -22,10 +22,7 @@ def main(out):
             ax.plot(t, [num(r[f"sigma_exact_kpa_x{probe}"]) for r in rows], color=colour, lw=0.8, ls="--")
             ax.plot(t, [num(r[f"sigma_sph_kpa_x{probe}"]) for r in rows], color=colour, lw=1.2,
                     label=f"x = {probe} m (SPH solid, exact dashed)")
-        ax.set_xlabel("t (us)")
-        ax.set_ylabel("T11 (kPa)")
-        ax.set_title(run)
-        ax.legend(fontsize=8, loc="lower left")
+        decorate(ax, "t (us)", "T11 (kPa)", run, loc="lower left")
     ax = axes[1, 1]
     speeds = read(os.path.join(out, "speeds.csv"))
     for run in RUNS:
@@ -33,12 +30,9 @@ def main(out):
         ax.semilogx([num(r["dx"]) * 1e3 for r in rows],
                     [100 * (num(r["speed_sph_005_010"]) / num(r["c_model"]) - 1) for r in rows], "o-", label=run)
     ax.axhline(0, color="0.6", lw=0.6)
-    ax.set_xlabel("dx (mm), h = 2.75 dx")
-    ax.set_ylabel("speed between 0.05 and 0.10 m vs model speed (%)")
-    ax.set_title("arrival-time wave speed (c_b for 1D stress, c_L for 1D strain)")
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "tl_bar_wave_1d.png"), dpi=110)
+    decorate(ax, "dx (mm), h = 2.75 dx", "speed between 0.05 and 0.10 m vs model speed (%)",
+             "arrival-time wave speed (c_b for 1D stress, c_L for 1D strain)")
+    save(fig, os.path.join(out, "tl_bar_wave_1d.png"))
     fixed_end(out, speeds)
 
 
@@ -53,21 +47,15 @@ def fixed_end(out, speeds):
         if m == "clamped":
             ax.plot(t, [num(r["sigma_exact_kpa_x0.15"]) for r in rows], "k--", lw=0.8, label="exact")
         ax.plot(t, [num(r["sigma_sph_kpa_x0.15"]) for r in rows], lw=1.1, label=m)
-    ax.set_xlabel("t (us)")
-    ax.set_ylabel("T11 at the fixed-end particle (kPa)")
     ax.set_ylim(-450, 150)
-    ax.set_title("fixed end, Hooke 1D stress, base resolution")
-    ax.legend(fontsize=8)
+    decorate(ax, "t (us)", "T11 at the fixed-end particle (kPa)", "fixed end, Hooke 1D stress, base resolution")
     ax = axes[1]
     for m in methods:
         rows = [r for r in speeds if r["run"].startswith("hooke") and r["fixed_end"] == m]
         ax.loglog([num(r["n"]) for r in rows], [num(r["max_error_kpa_x0.15"]) for r in rows], "o-", label=m)
-    ax.set_xlabel("free particles n (h = 2.75 dx)")
-    ax.set_ylabel("max |T11 - exact| at the fixed-end particle (kPa)")
-    ax.set_title("fixed-end error against resolution")
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "tl_bar_wave_1d_fixed_end.png"), dpi=110)
+    decorate(ax, "free particles n (h = 2.75 dx)", "max |T11 - exact| at the fixed-end particle (kPa)",
+             "fixed-end error against resolution")
+    save(fig, os.path.join(out, "tl_bar_wave_1d_fixed_end.png"))
     closure(out)
 
 
@@ -91,10 +79,8 @@ def closure(out):
                 t0 = t[-1] - 15
                 ax.semilogy([t0, t[-1]], [e[-1] * math.exp(-rate * 15e-6), e[-1]], "k--", lw=0.8)
     ax.set_ylim(1e-2, 1e5)
-    ax.set_xlabel("t (us)")
-    ax.set_ylabel("|T11 - exact| at the fixed-end particle (kPa)")
-    ax.set_title("end error; dashed: e^(rate t) of the linearised closed loop", fontsize=10)
-    ax.legend(fontsize=7)
+    decorate(ax, "t (us)", "|T11 - exact| at the fixed-end particle (kPa)",
+             "end error; dashed: e^(rate t) of the linearised closed loop", title_size=10, legend=7)
     ax = axes[1]
     modes = read(os.path.join(out, "closure_mode.csv"))
     for n, colour in colours.items():
@@ -105,10 +91,8 @@ def closure(out):
         sign = 1 if sh[-1] > 0 else -1
         ax.plot(xs, [sign * v for v in sh], "o-", ms=3, color=colour, label=f"n = {n}")
     ax.set_xlim(20, 0)
-    ax.set_xlabel("distance from the fixed end (L - x) / dx")
-    ax.set_ylabel("mode (unit norm)")
-    ax.set_title("modified closure: the growing mode (real mu < 0)", fontsize=10)
-    ax.legend(fontsize=8)
+    decorate(ax, "distance from the fixed end (L - x) / dx", "mode (unit norm)",
+             "modified closure: the growing mode (real mu < 0)", title_size=10)
     ax = axes[2]
     wcc = [r for r in read(os.path.join(out, "wcc_conditioning.csv")) if r["n"] == "300"]
     layers = [read(os.path.join(out, "closure_layers.csv"))][0]
@@ -118,11 +102,9 @@ def closure(out):
     ax.semilogy([num(r["layers"]) for r in layers], [1e3 * num(r["gamma_dx_over_c"]) for r in layers], "^-",
                 label="1000 gamma dx / c of the closed loop")
     ax.axvline(5, color="0.6", lw=0.6)
-    ax.set_xlabel("constrained ghost layers (5: the study's, within the wall's support)")
-    ax.set_title("modified matrix against the constrained set (n = 300)", fontsize=10)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "tl_bar_wave_1d_closure.png"), dpi=110)
+    decorate(ax, "constrained ghost layers (5: the study's, within the wall's support)",
+             title="modified matrix against the constrained set (n = 300)", title_size=10)
+    save(fig, os.path.join(out, "tl_bar_wave_1d_closure.png"))
 
 
 if __name__ == "__main__":

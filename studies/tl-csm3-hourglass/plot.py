@@ -9,7 +9,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from plot_common import num, ordered, plt, read  # noqa: E402
+from plot_common import decorate, num, ordered, plt, read, save  # noqa: E402
 
 FORMS = ["plain", "ncsph-variational"]
 REF_UY = (-63.607e-3, 65.160e-3)
@@ -48,9 +48,7 @@ def modes_plot(out):
             zx.tick_params(labelsize=6)
         fig.suptitle(f"CSM3 beam, {n} particles across: the fundamental and the softest zigzag modes of A at rest "
                      "(c_HG = 0), colour |phi|")
-        fig.tight_layout()
-        fig.savefig(os.path.join(out, f"modes_n{n}.png"), dpi=80)
-        plt.close(fig)
+        save(fig, os.path.join(out, f"modes_n{n}.png"), dpi=80)
 
 
 def mode_energy(out):
@@ -96,31 +94,19 @@ def lift_plot(out):
             g = [num(r["growth_rate"]) for r in pos]
             if any(v == v for v in g):
                 axes[2].semilogx(c, g, "o" + styles[form], color=col, label=lab)
-    axes[0].set_xlabel("hourglass coefficient c_HG")
-    axes[0].set_ylabel("eigenvalue of A (1/s²)")
-    axes[0].set_title("softest zigzag (filled) and fundamental (open); thin lines: zigzag at c_HG = 0", fontsize=9)
-    axes[0].legend(fontsize=6)
-    axes[1].set_xlabel("c_HG")
-    axes[1].set_ylabel("shift of the fundamental eigenvalue (%)")
+    decorate(axes[0], "hourglass coefficient c_HG", "eigenvalue of A (1/s²)",
+             "softest zigzag (filled) and fundamental (open); thin lines: zigzag at c_HG = 0", title_size=9, legend=6)
     axes[1].set_yscale("symlog", linthresh=0.1)
-    axes[1].set_title("cost: the beam's fundamental (followed by eigenvector overlap)", fontsize=9)
-    axes[1].legend(fontsize=7)
-    axes[2].set_xlabel("c_HG")
-    axes[2].set_ylabel("growth rate max Re sqrt(-mu) at rest (1/s)")
-    axes[2].set_title("growth at rest (full spectra only)", fontsize=9)
-    axes[2].legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "lift.png"), dpi=90)
-    plt.close(fig)
+    decorate(axes[1], "c_HG", "shift of the fundamental eigenvalue (%)",
+             "cost: the beam's fundamental (followed by eigenvector overlap)", title_size=9, legend=7)
+    decorate(axes[2], "c_HG", "growth rate max Re sqrt(-mu) at rest (1/s)", "growth at rest (full spectra only)",
+             title_size=9, legend=7)
+    save(fig, os.path.join(out, "lift.png"), dpi=90)
 
 
 def tip_plot(out):
     runs = read(os.path.join(out, "runs.csv"))
-    groups = []
-    for r in runs:
-        key = (r["across"], r["form"])
-        if key not in groups:
-            groups.append(key)
+    groups = list(dict.fromkeys((r["across"], r["form"]) for r in runs))
     fig, axes = plt.subplots(len(groups), 1, figsize=(12, 3.3 * len(groups)), squeeze=False)
     for (n, form), ax in zip(groups, axes[:, 0]):
         mean, amp = REF_UY
@@ -129,13 +115,10 @@ def tip_plot(out):
             tip = read(os.path.join(out, f"tip_{r['run']}.csv"))
             ax.plot([num(t["t"]) for t in tip], [1e3 * num(t["uy_A"]) for t in tip], lw=0.9,
                     label=f"c_HG = {r['hourglass']}" + ("" if r["status"] == "completed" else " (stopped)"))
-        ax.set_title(f"{n} across, {form}", fontsize=9)
-        ax.set_ylabel("u_y(A) (mm)")
-        ax.legend(fontsize=7, loc="lower right", ncol=3)
+        decorate(ax, ylabel="u_y(A) (mm)", title=f"{n} across, {form}", title_size=9, legend=7, loc="lower right",
+                 ncol=3)
     axes[-1, 0].set_xlabel("t (s)")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "tip.png"), dpi=90)
-    plt.close(fig)
+    save(fig, os.path.join(out, "tip.png"), dpi=90)
 
 
 def main(out):

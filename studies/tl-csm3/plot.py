@@ -8,7 +8,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from plot_common import num, plt, read  # noqa: E402
+from plot_common import decorate, num, plt, read, save  # noqa: E402
 
 REF = {"ux": (-14.305e-3, 14.645e-3), "uy": (-63.607e-3, 65.160e-3)}  # [TurekHron2006], CSM3: mean, amplitude (m)
 
@@ -32,9 +32,7 @@ def main(out):
             rows = read(os.path.join(out, f"tip_{r['run']}.csv"))
             ax.plot([num(x["t"]) for x in rows], [1e3 * num(x[f"{key}_A"]) for x in rows], lw=1.0,
                     label=f"{r['across']} across ({r['free']} free), {gradient}")
-        ax.set_xlabel("t (s)")
-        ax.set_ylabel(f"{key[0]}_{key[1]}(A) (mm)")
-        ax.legend(fontsize=8, loc="lower left")
+        decorate(ax, "t (s)", f"{key[0]}_{key[1]}(A) (mm)", loc="lower left")
     axes[0].set_title("CSM3 tip displacement, finite-strain TL SPH (St Venant-Kirchhoff), no damping")
     ax = axes[2]
     band(ax, "uy")
@@ -42,12 +40,8 @@ def main(out):
     for r in coarse:
         rows = read(os.path.join(out, f"tip_{r['run']}.csv"))
         ax.plot([num(x["t"]) for x in rows], [1e3 * num(x["uy_A"]) for x in rows], lw=1.0, label=r["run"])
-    ax.set_xlabel("t (s)")
-    ax.set_ylabel("u_y(A) (mm)")
-    ax.set_title("coarsest resolution: reference gradient and clamp width")
-    ax.legend(fontsize=8, loc="lower left")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "tl_csm3_tip.png"), dpi=110)
+    decorate(ax, "t (s)", "u_y(A) (mm)", "coarsest resolution: reference gradient and clamp width", loc="lower left")
+    save(fig, os.path.join(out, "tl_csm3_tip.png"))
 
     snap = os.path.join(out, "snapshot.csv")
     if os.path.exists(snap):
@@ -63,12 +57,9 @@ def main(out):
         ax.plot([0.6], [0.2], "k+", ms=10, label="A (undeformed)")
         fig.colorbar(sc, ax=ax, label="Cauchy sigma_xx (kPa)")
         ax.set_aspect("equal")
-        ax.set_xlabel("x (m)")
-        ax.set_ylabel("y (m)")
-        ax.set_title("deformed beam at the largest deflection of the last period (finest run)")
-        ax.legend(fontsize=8, loc="upper right")
-        fig.tight_layout()
-        fig.savefig(os.path.join(out, "tl_csm3_snapshot.png"), dpi=110)
+        decorate(ax, "x (m)", "y (m)", "deformed beam at the largest deflection of the last period (finest run)",
+                 loc="upper right")
+        save(fig, os.path.join(out, "tl_csm3_snapshot.png"))
 
 
 if __name__ == "__main__":

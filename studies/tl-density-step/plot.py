@@ -6,7 +6,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from plot_common import num, plt, read  # noqa: E402
+from plot_common import decorate, num, plt, read, save  # noqa: E402
 
 
 def main(out):
@@ -24,21 +24,14 @@ def main(out):
         ax.plot(t, [num(r["sigma_kpa_xt"]) for r in rows], label="x = 0.225 m (transmitted)")
         ax.axhline(s_in * num(c["R_stress_expected"]), color="C0", ls="--", lw=0.8, label="C_r x incident")
         ax.axhline(s_in * num(c["T_stress_expected"]), color="C1", ls="--", lw=0.8, label="C_t x incident")
-        ax.set_title(f"rho2/rho1 = {ratio}, n = {n}: stress")
-        ax.set_xlabel("t (us)")
-        ax.set_ylabel("P11 (kPa)")
-        ax.legend(fontsize=8)
+        decorate(ax, "t (us)", "P11 (kPa)", f"rho2/rho1 = {ratio}, n = {n}: stress")
         ax = axes[1][col]
         ax.plot(t, [num(r["v_xr"]) for r in rows], label="x = 0.05 m")
         ax.plot(t, [num(r["v_xt"]) for r in rows], label="x = 0.225 m")
         ax.axhline(v_in * num(c["R_velocity_expected"]), color="C0", ls="--", lw=0.8, label="-C_r x incident")
         ax.axhline(v_in * num(c["T_velocity_expected"]), color="C1", ls="--", lw=0.8, label="2Z1/(Z1+Z2) x incident")
-        ax.set_title("particle velocity")
-        ax.set_xlabel("t (us)")
-        ax.set_ylabel("v (m/s)")
-        ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "tl_density_step.png"), dpi=110)
+        decorate(ax, "t (us)", "v (m/s)", "particle velocity")
+    save(fig, os.path.join(out, "tl_density_step.png"))
 
 
 if __name__ == "__main__":

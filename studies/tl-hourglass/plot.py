@@ -6,7 +6,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from plot_common import num, ordered, plt, read  # noqa: E402
+from plot_common import decorate, num, ordered, plt, read, save  # noqa: E402
 
 
 def modes_plot(out):
@@ -37,9 +37,7 @@ def modes_plot(out):
                 ax.set_title(title, fontsize=8)
                 ax.tick_params(labelsize=7)
         fig.suptitle(f"{cfg}: the six softest eigenvectors of A = -da/du at u = 0 (c_HG = 0)")
-        fig.tight_layout()
-        fig.savefig(os.path.join(out, f"modes_{cfg}.png"), dpi=90)
-        plt.close(fig)
+        save(fig, os.path.join(out, f"modes_{cfg}.png"), dpi=90)
 
 
 def lift_plot(out):
@@ -61,19 +59,13 @@ def lift_plot(out):
             axes[1].semilogx(c, [100 * num(r["fundamental_shift_rel"]) for r in sel], "o" + ls, color=line.get_color(),
                              label=f"{cfg} {var}")
             axes[2].semilogx(c, [num(r["zigzag_below_smooth"]) for r in sel], "o" + ls, color=line.get_color())
-    axes[0].set_xlabel("hourglass coefficient c_HG")
-    axes[0].set_ylabel("softest zigzag eigenvalue (E / rho dx^2); x: closed form / Bloch symbol")
-    axes[0].set_title("lift of the hourglass modes")
-    axes[0].legend(fontsize=6)
-    axes[1].set_xlabel("c_HG")
-    axes[1].set_ylabel("shift of the fundamental eigenvalue (%)")
-    axes[1].set_title("cost: the fundamental mode")
-    axes[2].set_xlabel("c_HG")
-    axes[2].set_ylabel("zigzag modes softer than the softest smooth mode")
-    axes[2].set_title("spurious soft modes left")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "lift.png"), dpi=100)
-    plt.close(fig)
+    decorate(axes[0], "hourglass coefficient c_HG",
+             "softest zigzag eigenvalue (E / rho dx^2); x: closed form / Bloch symbol", "lift of the hourglass modes",
+             legend=6)
+    decorate(axes[1], "c_HG", "shift of the fundamental eigenvalue (%)", "cost: the fundamental mode", legend=None)
+    decorate(axes[2], "c_HG", "zigzag modes softer than the softest smooth mode", "spurious soft modes left",
+             legend=None)
+    save(fig, os.path.join(out, "lift.png"), dpi=100)
 
 
 def symbol_plot(out):
@@ -84,13 +76,9 @@ def symbol_plot(out):
             sel = [r for r in rows if r["config"] == cfg and r["variant"] == var]
             ax.plot([num(r["k_over_pi"]) for r in sel], [num(r["abs_K_symbol"]) for r in sel], "o-", ms=3,
                     label=f"{cfg} {var}")
-    ax.set_xlabel("k dx / pi (along x)")
-    ax.set_ylabel("|symbol of the strain operator K^x|")
-    ax.set_title("the strain operator's symbol vanishes at k = pi / dx")
-    ax.legend(fontsize=6)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "symbol.png"), dpi=100)
-    plt.close(fig)
+    decorate(ax, "k dx / pi (along x)", "|symbol of the strain operator K^x|",
+             "the strain operator's symbol vanishes at k = pi / dx", legend=6)
+    save(fig, os.path.join(out, "symbol.png"), dpi=100)
 
 
 def bar_plot(out):
@@ -108,23 +96,15 @@ def bar_plot(out):
             ax.plot(t, [num(r["sigma_exact_kpa_x0.1"]) for r in sel], "k-", lw=2, label="exact")
             first = False
         ax.plot(t, [num(r["sigma_sph_kpa_x0.1"]) for r in sel], label=f"c_HG = {c}")
-    ax.set_xlabel("t (us)")
-    ax.set_ylabel("stress at x = 0.10 m (kPa)")
-    ax.set_title("validation bar (Hooke 1D stress): probe at x = 0.10 m")
-    ax.legend(fontsize=8)
+    decorate(ax, "t (us)", "stress at x = 0.10 m (kPa)", "validation bar (Hooke 1D stress): probe at x = 0.10 m")
     ax = axes[1]
     c = [max(num(r["hourglass"]), 1e-3) for r in bar]
     for col, lab in (("max_error_kpa_x0.05", "max |error| x = 0.05"), ("max_error_kpa_x0.1", "max |error| x = 0.10"),
                      ("max_error_kpa_x0.15", "max |error| x = 0.15 (fixed end)")):
         ax.semilogx(c, [num(r[col]) for r in bar], "o-", label=lab)
     ax.semilogx(c, [abs(num(r["plateau_error_kpa_x0.1"])) for r in bar], "s--", label="|plateau error| x = 0.10")
-    ax.set_xlabel("c_HG (0 plotted at 1e-3)")
-    ax.set_ylabel("kPa")
-    ax.set_title("accuracy cost against the coefficient")
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "bar.png"), dpi=100)
-    plt.close(fig)
+    decorate(ax, "c_HG (0 plotted at 1e-3)", "kPa", "accuracy cost against the coefficient")
+    save(fig, os.path.join(out, "bar.png"), dpi=100)
 
 
 def noise_plot(out):
@@ -135,13 +115,8 @@ def noise_plot(out):
         for c in ordered([r for r in rows if r["config"] == cfg], "hourglass"):
             sel = [r for r in rows if r["config"] == cfg and r["hourglass"] == c]
             ax.plot([num(r["time"]) for r in sel], [num(r["zigzag_amplitude"]) for r in sel], label=f"c_HG = {c}")
-        ax.set_xlabel("t (dx / c)")
-        ax.set_ylabel("zigzag amplitude (dx)")
-        ax.set_title(f"{cfg}: noisy initial velocity 1e-3 c", fontsize=9)
-        ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "noise.png"), dpi=100)
-    plt.close(fig)
+        decorate(ax, "t (dx / c)", "zigzag amplitude (dx)", f"{cfg}: noisy initial velocity 1e-3 c", title_size=9)
+    save(fig, os.path.join(out, "noise.png"), dpi=100)
 
 
 def main(out):

@@ -8,7 +8,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from plot_common import num, plt, read  # noqa: E402
+from plot_common import decorate, num, plt, read, save  # noqa: E402
 
 
 def main(out):
@@ -40,12 +40,9 @@ def main(out):
         ax.scatter([num(r["mu_re"]) for r in rows], [num(r["mu_im"]) for r in rows], s=10, color=colour,
                    marker=marker, label=f"{form} (beam)")
     ax.set_xscale("symlog", linthresh=1e4)
-    ax.set_xlabel("Re mu (1/s^2)")
-    ax.set_ylabel("Im mu (1/s^2)")
-    ax.set_title("eigenvalues of A at rest on the clamped beam: the variational form's are real and >= 0", fontsize=10)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "tl_instability.png"), dpi=110)
+    decorate(ax, "Re mu (1/s^2)", "Im mu (1/s^2)",
+             "eigenvalues of A at rest on the clamped beam: the variational form's are real and >= 0", title_size=10)
+    save(fig, os.path.join(out, "tl_instability.png"))
 
 
 if __name__ == "__main__":

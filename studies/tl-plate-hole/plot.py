@@ -7,7 +7,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from plot_common import num, plt, read  # noqa: E402
+from plot_common import decorate, num, plt, read, save  # noqa: E402
 
 
 def kirsch_xx(y):
@@ -41,8 +41,7 @@ def main(out):
         tag = ismail[-1]["tag"]
         scatter(axes[1], out, tag, "principal_over_S", f"{tag}: max principal Cauchy stress / S (S = 5 MPa)",
                 "sigma_1 / S")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "particles.png"), dpi=110)
+    save(fig, os.path.join(out, "particles.png"))
 
     fig, axes = plt.subplots(1, 3, figsize=(17, 4.8))
     ax = axes[0]
@@ -53,10 +52,7 @@ def main(out):
         ax.plot([num(q["y_over_a"]) for q in p], [num(q["sigma_xx_over_S"]) for q in p], ".-", ms=4, lw=0.8,
                 label=f"SPH a/dx = {r['a_over_dx']}, W/a = {r['w_over_a']}" + (", lumped load" if "lumped" in r["tag"] else ""))
     ax.set_xlim(1, 5)
-    ax.set_xlabel("y / a")
-    ax.set_ylabel("sigma_xx / S")
-    ax.set_title("profile along theta = 90 deg")
-    ax.legend(fontsize=7)
+    decorate(ax, "y / a", "sigma_xx / S", "profile along theta = 90 deg", legend=7)
     ax = axes[1]
     th = [90 * i / 200 for i in range(201)]
     ax.plot(th, [1 - 2 * math.cos(2 * math.radians(t)) for t in th], "k-", lw=1.5, label="Kirsch at r = a")
@@ -65,10 +61,8 @@ def main(out):
         p.sort(key=lambda q: num(q["theta_deg"]))
         ax.plot([num(q["theta_deg"]) for q in p], [num(q["hoop_over_S"]) for q in p], ".", ms=5,
                 label=f"SPH a/dx = {r['a_over_dx']} (a <= r < a + dx)")
-    ax.set_xlabel("theta (deg, from the load axis)")
-    ax.set_ylabel("hoop stress / S")
-    ax.set_title("hoop stress of the first ring of particles")
-    ax.legend(fontsize=7)
+    decorate(ax, "theta (deg, from the load axis)", "hoop stress / S", "hoop stress of the first ring of particles",
+             legend=7)
     ax = axes[2]
     dx = [1 / num(r["a_over_dx"]) for r in lin]
     hw = num(lin[0]["heywood_over_S"])
@@ -76,12 +70,8 @@ def main(out):
     ax.loglog(dx, [abs(num(r["peak_hoop_over_S"]) - num(r["kirsch_at_peak"])) for r in lin], "s-",
               label="|peak particle - Kirsch at that particle|")
     ax.loglog(dx, [abs(num(lin[0]["edge_over_S"]) - hw) * (d / dx[0]) for d in dx], "k:", label="slope 1")
-    ax.set_xlabel("dx / a")
-    ax.set_ylabel("error / S")
-    ax.set_title("resolution")
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "profiles.png"), dpi=110)
+    decorate(ax, "dx / a", "error / S", "resolution", legend=7)
+    save(fig, os.path.join(out, "profiles.png"))
 
 
 if __name__ == "__main__":

@@ -11,7 +11,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from plot_common import num, plt, read  # noqa: E402
+from plot_common import decorate, num, ordered, plt, read, save  # noqa: E402
 
 
 def middle7_panel(ax, rows, run, title):
@@ -19,10 +19,7 @@ def middle7_panel(ax, rows, run, title):
     t = [num(r["t"]) for r in sel]
     for k in range(-3, 4):
         ax.plot(t, [num(r[f"d{k}_over_dx"]) for r in sel], label=f"particle {k:+d}")
-    ax.set_xlabel("t (dx / c)")
-    ax.set_ylabel("u - u_eq (spacing)")
-    ax.set_title(title)
-    ax.legend(fontsize=7)
+    decorate(ax, "t (dx / c)", "u - u_eq (spacing)", title, legend=7)
 
 
 def main(out):
@@ -47,10 +44,7 @@ def main(out):
         ax.plot([num(r["t"]) for r in rows], [num(r["min_gap_over_spacing"]) for r in rows], styles[run],
                 label=f"{run} min gap")
     ax.axhline(0.5, color="0.6", lw=0.8, ls=":", label="pairing threshold 0.5")
-    ax.set_xlabel("t (dx / c)")
-    ax.set_ylabel("min (x_{i+1} - x_i) / spacing")
-    ax.set_title("pairing measure")
-    ax.legend(fontsize=8)
+    decorate(ax, "t (dx / c)", "min (x_{i+1} - x_i) / spacing", "pairing measure")
     if rate_form:  # linear growth rate of the rate form over the tension (the runs' stretched states)
         ax = axes[5]
         growth = read(os.path.join(out, "growth_rate_form.csv"))
@@ -65,13 +59,8 @@ def main(out):
         with open(os.path.join(out, "summary.json"), encoding="utf-8") as f:
             tension = num(json.load(f).get("tension", "nan"))
         ax.axvline(tension, color="tab:red", lw=0.8, ls=":", label=f"run tension {tension:g}")
-        ax.set_xlabel("sigma0 / M (= T)")
-        ax.set_ylabel("growth rate max Re lambda (c / dx)")
-        ax.set_title("rate form: linear growth rate at rest")
-        ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "tl_ul_pairing.png"), dpi=110)
-    plt.close(fig)
+        decorate(ax, "sigma0 / M (= T)", "growth rate max Re lambda (c / dx)", "rate form: linear growth rate at rest")
+    save(fig, os.path.join(out, "tl_ul_pairing.png"))
 
 
 RUNS_2D = ["TL", "UL plus", "UL conservative"]
@@ -100,16 +89,10 @@ def main_2d(out):
     for ax in axes:
         ax.set_xlabel("t (dx / c, c^2 = E / rho)")
         ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "tl_ul_pairing_2d.png"), dpi=110)
-    plt.close(fig)
+    save(fig, os.path.join(out, "tl_ul_pairing_2d.png"))
 
     snaps = read(os.path.join(out, "snapshots_2d.csv"))
-    labels = []
-    for r in snaps:
-        if r["snapshot"] not in labels:
-            labels.append(r["snapshot"])
-    labels = [lab for lab in labels if lab != "end"] + ["end"]
+    labels = [lab for lab in ordered(snaps, "snapshot") if lab != "end"] + ["end"]
     nrow = len(KINDS_2D) * len(labels)
     fig, axes = plt.subplots(nrow, len(RUNS_2D), figsize=(16, 1.05 * nrow + 1), squeeze=False)
     cmap = plt.get_cmap("viridis")
