@@ -27,7 +27,10 @@ int main(int argc, char** argv) {
   app.add_option("--epsilon", epsilon, "artificial stress coefficient to compare with");
   app.add_option("--n", n, "artificial stress exponent")->check(CLI::NonNegativeNumber);
   app.add_option("--mu", mu, "shear modulus (rho0 c0^2) of the material examples");
+  bool quick = false;
+  app.add_flag("--quick", quick, "the thresholds scan in h/dp steps of 0.02 (the study's test case)");
   CLI11_PARSE(app, argc, argv);
+  if (quick && app.count("--h-step") == 0) h_step = 0.02;
   const auto t0 = study::Clock::now();
   std::filesystem::create_directories(out);
   const Lattices g{.w = Kernel<2>(KernelType::CubicSpline), .opt = {.exponent = n}, .mu = mu};

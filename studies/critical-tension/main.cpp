@@ -21,10 +21,12 @@ int main(int argc, char** argv) {
   CLI::App app{"Critical tension study (Powell Fig. 3.2)"};
   std::string out_dir = "results/critical-tension";
   app.add_option("--out", out_dir, "Output directory");
+  bool quick = false;
+  app.add_flag("--quick", quick, "h/dx in steps of 0.2 instead of 0.05 (the study's test case)");
   CLI11_PARSE(app, argc, argv);
   std::filesystem::create_directories(out_dir);
   const auto t_start = Clock::now();
-  const std::vector<double> hs = h_grid();
+  const std::vector<double> hs = h_grid(quick ? 4 : 1);
   const int n_cons = initial_stress_multiplier(MomentumForm::Conservative);
 
   // ---- Fig. 3.2: N = 30, conservative. Timed sweeps per method (jacobian assembly included). ----

@@ -34,10 +34,10 @@ inline const std::vector<KernelType> kKernels{KernelType::CubicSpline,   KernelT
 inline const std::vector<int> kSizes{15, 30, 60, 120, 240, 480, 960};
 inline const std::vector<double> kHVersusN{1.0, 1.2, 1.5, 2.0};
 
-/// h/dx = 0.8 + 0.05 i, i = 0..44, computed exactly in decimal (no accumulated rounding).
-inline std::vector<double> h_grid() {
+/// h/dx = 0.8 + 0.05 i, i = 0, stride, 2 stride, ... <= 44, computed exactly in decimal (no accumulated rounding).
+inline std::vector<double> h_grid(int stride = 1) {
   std::vector<double> hs;
-  for (int i = 0; i <= 44; ++i) hs.push_back((80 + 5 * i) / 100.0);
+  for (int i = 0; i <= 44; i += stride) hs.push_back((80 + 5 * i) / 100.0);
   return hs;
 }
 

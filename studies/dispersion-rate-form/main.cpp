@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "common/study.hpp"
+#include "dispersion_cases.hpp"
 #include "sphstab/io/csv.hpp"
 #include "sphstab/particles/lattice.hpp"
 #include "sphstab/spectral/fourier_symbol.hpp"
@@ -22,54 +23,9 @@
 #include "sphstab/spectral/rate_form_symbol.hpp"
 
 using namespace sphstab;
+using namespace dispersion_study;
 
-namespace {
-
-struct Formulation {
-  std::string name;
-  RateFormOptions options;
-};
-
-// The formulations of the critical-stress and Swegle rate-form studies, GMS's combination added.
-std::vector<Formulation> formulations() {
-  return {{"sph", {}},
-          {"sph-xsph", {.xsph = 0.5}},
-          {"sph-as", {.artificial_stress = 0.3}},
-          {"gms", {.xsph = 0.5, .artificial_stress = 0.3}},
-          {"ncsph", {.continuity = ContinuityForm::Divergence, .gradient = RateFormGradient::Ncsph}},
-          {"ncsph-anti",
-           {.continuity = ContinuityForm::Divergence,
-            .gradient = RateFormGradient::Ncsph,
-            .momentum = RateFormMomentum::Antisymmetric}},
-          {"cij", {.momentum = RateFormMomentum::Cij}},
-          {"ssph", {.momentum = RateFormMomentum::StabilisedSph}}};
-}
-
-// MCM-like steel in units of dx (the spectrum scales with c_P / dx).
-const RateFormMaterial kSteel = RateFormMaterial::from_youngs(2.1, 0.3, 7.8);
-
-template <int Dim>
-RateFormSymbol<Dim> symbol_of(const RateFormOptions& o, double h, double xi, int n) {
-  const Kernel<Dim> kernel(KernelType::CubicSpline);
-  const ParticleSet<Dim> set =
-      make_lattice<Dim>(Dim == 1 ? LatticeType::Line : LatticeType::Square, n,
-                        {.spacing = 1.0, .support_radius = kernel.support_radius(h), .periodic = true});
-  const RateFormScheme<Dim> scheme(make_discretisation(set, kernel, h), kSteel, o, kSteel.density / xi);
-  return rate_form_symbol(scheme, scheme.uniform_state());
-}
-
-// Periodic box holding three supports each way (the widest stencil: S-SPH, antisymmetrised NCSPH).
-int box_for(double h) { return 2 * static_cast<int>(std::ceil(3 * 2 * h)) + 2; }
-
-UniformState gms_state(double xi) {
-  const double rho = kSteel.density / xi;
-  return {.density = rho,
-          .sound_speed = kSteel.sound_speed(),
-          .shear_modulus = kSteel.shear_modulus,
-          .pressure = kSteel.bulk_modulus * (rho / kSteel.density - 1)};
-}
-
-}  // namespace
+namespace {}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"dispersion-rate-form: all dispersion branches of the rate-form scheme from its Bloch symbol"};
@@ -78,13 +34,20 @@ int main(int argc, char** argv) {
   app.add_option("--out", out);
   app.add_option("--path-points", path_points, "points per segment of Gamma-X-M-Gamma")->check(CLI::Range(4, 2000));
   app.add_option("--grid", grid, "k points per axis of the growth map over [0, pi]^2")->check(CLI::Range(5, 400));
+  bool quick = false;
+  app.add_flag("--quick", quick,
+               "the study's test case: gms and ncsph at h/dx 1.3, --path-points 16, --grid 9 (unless given); 1D at "
+               "h/dx 0.8, 1.9, 3.0");
   CLI11_PARSE(app, argc, argv);
+  if (quick && app.count("--path-points") == 0) path_points = 16;
+  if (quick && app.count("--grid") == 0) grid = 9;
   std::filesystem::create_directories(out);
   const auto t0 = study::Clock::now();
   const double cp = kSteel.p_wave_speed();
 
   // --- 2D square lattice: branches along Gamma-X-M-Gamma, growth over the Brillouin zone ---------------------------
-  const std::vector<double> hs{1.3, 1.5}, xis{0.98, 1.0, 1.02};
+  const std::vector<double> hs = quick ? std::vector<double>{1.3} : std::vector<double>{1.3, 1.5};
+  const std::vector<double> xis{0.98, 1.0, 1.02};
   std::ofstream branches(out + "/branches_2d.csv"), growth(out + "/growth_2d.csv");
   branches << "formulation,h_over_dx,xi,s,kx_over_pi,ky_over_pi,omega_l,omega_t,growth_l,growth_t,"
               "longitudinality_l,growth_all,slaved_lambda,gms_rel_diff\n";
@@ -93,7 +56,7 @@ int main(int argc, char** argv) {
   std::string growth_table;
   double worst_slaved = 0, worst_invariance = 0, worst_gms = 0;
   const Kernel<2> kernel2(KernelType::CubicSpline);
-  for (const Formulation& f : formulations())
+  for (const Formulation& f : formulations(quick))
     for (double h : hs)
       for (double xi : xis) {
         const int n = box_for(h);
@@ -180,7 +143,7 @@ int main(int argc, char** argv) {
   longwave << "formulation,h_over_dx,k_dx,direction,rel_error_l,rel_error_t\n";
   std::string long_table;
   double ncsph_order = NAN;
-  for (const Formulation& f : formulations()) {
+  for (const Formulation& f : formulations(quick)) {
     if (f.name == "sph-as" || f.name == "gms") continue;  // R is ignored by the continuum relation
     for (double h : hs) {
       const int n = box_for(h);
@@ -227,7 +190,7 @@ int main(int argc, char** argv) {
   const Kernel<1> kernel1(KernelType::CubicSpline);
   const double M = kSteel.bulk_modulus + 4 * kSteel.shear_modulus / 3;
   const int kgrid = 400;
-  for (int ih = 0; ih <= 22; ++ih) {
+  for (int ih = 0; ih <= 22; ih += quick ? 11 : 1) {
     const double h = 0.8 + 0.1 * ih;
     const int n = box_for(h);
     // Unstable at sigma0 = tau M if some grid k in (0, pi] has -omega^2 > 1e-14 c_P^2 k^2.

@@ -47,7 +47,12 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--record-every", c.record_every, "kinetic-energy sample interval (steps)")
       ->check(CLI::PositiveNumber);
+  bool quick = false;
+  app.add_flag("--quick", quick,
+               "the study's test case: sph, tl and conservative at xi 0.98, 1, 1.02, t_end 5 us, 1D t_end 100, 500 "
+               "energy steps (each unless given)");
   CLI11_PARSE(app, argc, argv);
+  if (quick) apply_quick(c, app);
   for (double xi : c.xis)
     if (!(xi > 0)) {
       std::cerr << "study_swegle: xi must be > 0 (got " << xi << ")\n";

@@ -27,4 +27,14 @@ struct Config {
   double detect = 0;  ///< slowest growth that reaches the onset within t_end: log(onset) / (2 t_end)
 };
 
+/// --quick: a small case of every phase (the study's ctest reference); options given on the command line win.
+template <class App>
+void apply_quick(Config& c, const App& app) {
+  if (app.count("--t-end") == 0) c.t_end = 5;
+  if (app.count("--t-end-1d") == 0) c.t_end_1d = 100;
+  if (app.count("--xi") == 0) c.xis = {0.98, 1.00, 1.02};
+  if (app.count("--forms") == 0) c.only = {"sph", "tl", "conservative"};
+  if (app.count("--energy-steps") == 0) c.energy_steps = 500;
+}
+
 }  // namespace swegle_study
