@@ -102,6 +102,14 @@ Scene<2> make_scene(const SceneArgs& a) {
   // GMS's scheme (plain gradient, symmetric momentum) takes the pair loop: auto is pairs (issue 35).
   o.scheme.pair_loop = a.pair_loop == "auto" ? PairLoop::Pairs : parse_pair_loop(a.pair_loop);
   const double yield = a.yield.empty() ? kInf : positive(a.yield, "--yield (von Mises yield stress)");
+  // A run that cannot finish is refused before its particles are built (issue 36: --dp 0.003 built 4.4 M particles
+  // first): the step rule of Scene::time_step and the estimated count; run_scene checks again with the exact count.
+  auto require_steps = [&](double particles, double dp, double default_t_end) {
+    const double t_end = a.t_end.empty() ? default_t_end : positive(a.t_end, "--t-end");
+    const double cfl = positive(a.cfl.empty() ? "0.5" : a.cfl, "--cfl");
+    require_run_length(t_end, cfl * o.h_over_spacing * dp / o.material.p_wave_speed(),
+                       static_cast<long>(std::min(particles, 1e18)), "scene");
+  };
   Scene<2> sc;
   if (s == "plate") {
     if (!a.dp.empty()) throw std::invalid_argument("scene: the plate takes --across (dp = H / across), not --dp");
@@ -115,13 +123,17 @@ Scene<2> make_scene(const SceneArgs& a) {
   } else if (s == "rings") {
     const double dp = a.dp.empty() ? 0.1 : positive(a.dp, "--dp");
     // Two annuli r_in = 3 < r < r_out = 4 (colliding_rings.hpp) on a grid of dp: 2 pi (16 - 9) / dp^2 particles.
-    require_memory(1500.0 * (2 * M_PI * 7 / (dp * dp) + 100), "scene: rings at --dp " + format_number(dp));
+    const double particles = 2 * M_PI * 7 / (dp * dp);
+    require_steps(particles, dp, kGmsRingsRunLength);
+    require_memory(1500.0 * (particles + 100), "scene: rings at --dp " + format_number(dp));
     sc = gms_rings_scene({.spacing = dp, .speed = parse_double(a.speed.empty() ? "0.059" : a.speed, "scene: --speed")},
                          o);
   } else {
     const double dp = a.dp.empty() ? 0.04 : positive(a.dp, "--dp");
     // The 3 x 1 slab (plastic_slab.hpp) on a grid of dp: (3 / dp + 1) (1 / dp + 1) particles.
-    require_memory(1500.0 * (3 / dp + 1) * (1 / dp + 1), "scene: slab at --dp " + format_number(dp));
+    const double particles = (3 / dp + 1) * (1 / dp + 1);
+    require_steps(particles, dp, kGmsSlabRunLength);
+    require_memory(1500.0 * particles, "scene: slab at --dp " + format_number(dp));
     sc = gms_slab_scene({.spacing = dp}, a.yield.empty() ? 0.03 : yield, o);  // GMS §7.3: Y = 0.03
   }
   if (s != "slab") sc.yield_stress = yield;

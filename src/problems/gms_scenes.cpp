@@ -48,12 +48,12 @@ Scene<2> gms_plate_scene(const CantileverPlateOptions& plate, double tip_speed, 
   }
   const IsotropicModuli m = isotropic_moduli(o.material.bulk_modulus, o.material.shear_modulus);
   s.t_end = 1.25 * thin_plate_period(m.youngs, m.poisson, o.material.density, plate.thickness, plate.length);
-  s.measures.push_back({"tip_deflection", [tip, y_ref = p.x.col(1).eval()](const Eigen::Matrix2Xd& x,
-                                                                          const Eigen::VectorXd&) {
-                          double u = 0;
-                          for (int i : tip) u += x(1, i) - y_ref[i];
-                          return u / static_cast<double>(tip.size());
-                        }});
+  s.measures.push_back(
+      {"tip_deflection", [tip, y_ref = p.x.col(1).eval()](const Eigen::Matrix2Xd& x, const Eigen::VectorXd&) {
+         double u = 0;
+         for (int i : tip) u += x(1, i) - y_ref[i];
+         return u / static_cast<double>(tip.size());
+       }});
   return s;
 }
 
@@ -61,13 +61,13 @@ Scene<2> gms_rings_scene(const CollidingRingsOptions& rings, const GmsSceneOptio
   const CollidingRings r = make_colliding_rings(rings);
   Scene<2> s = at_rest("rings", r.particles, o);
   for (int i = 0; i < r.size(); ++i) s.scheme->set_velocity(s.y0, i, r.velocity.col(i));
-  s.t_end = 100;
+  s.t_end = kGmsRingsRunLength;
   const int n = r.per_ring;
-  s.measures.push_back({"ring_fragments", [n, bond = 1.5 * s.spacing](const Eigen::Matrix2Xd& x,
-                                                                      const Eigen::VectorXd&) {
-                          return static_cast<double>(std::max(find_fragments(x.leftCols(n), bond).count(),
-                                                              find_fragments(x.rightCols(n), bond).count()));
-                        }});
+  s.measures.push_back(
+      {"ring_fragments", [n, bond = 1.5 * s.spacing](const Eigen::Matrix2Xd& x, const Eigen::VectorXd&) {
+         return static_cast<double>(
+             std::max(find_fragments(x.leftCols(n), bond).count(), find_fragments(x.rightCols(n), bond).count()));
+       }});
   return s;
 }
 
@@ -78,11 +78,12 @@ Scene<2> gms_slab_scene(const PlasticSlabOptions& slab_options, double yield_str
   for (Eigen::Index k = 0; k < slab.driven_acceleration.cols(); ++k) acc.emplace_back(slab.driven_acceleration.col(k));
   s.scheme->set_driven(slab.driven, acc);
   s.yield_stress = yield_stress;
-  s.t_end = 200;
+  s.t_end = kGmsSlabRunLength;
   const double dp = s.spacing;
   s.measures.push_back({"min_width", [slab, dp](const Eigen::Matrix2Xd& x, const Eigen::VectorXd&) {
-                          const SlabNeck neck = slab_neck(x, slab.left_end, slab.right_end,
-                                                          {.bin_width = 2 * dp, .particle_size = dp, .bond_radius = 1.5 * dp});
+                          const SlabNeck neck =
+                              slab_neck(x, slab.left_end, slab.right_end,
+                                        {.bin_width = 2 * dp, .particle_size = dp, .bond_radius = 1.5 * dp});
                           double w = std::numeric_limits<double>::infinity();
                           for (double v : neck.profile.width) w = std::min(w, v);
                           return w;

@@ -149,12 +149,16 @@ TEST(CliFuzz, TheIssuesFailingCasesAreOneLineErrors) {
 TEST(CliFuzz, EmptyValuesAreOneLineErrors) {
   // Issue 36: empty values were taken as defaults (exit 0). Each is now one error line with exit 1.
   const std::string out = scratch("E").string();
-  const std::vector<std::vector<std::string>> cases = {
-      {"spectrum", "--n", "6", "--lattice", ""}, {"run", "--n", "5", "--lattice", ""},
-      {"scene", "plate", "--mu", ""},           {"scene", "plate", "--nu", ""},
-      {"run", "--n", "5", "--yield", ""},       {"scene", "rings", "--dp", ""},
-      {"run", "--n", "5", "--t-end", ""},       {"run", "--n", "5", "--t-end", "0.5", "--out", ""},
-      {""},                                     {"tcrit", ""}};
+  const std::vector<std::vector<std::string>> cases = {{"spectrum", "--n", "6", "--lattice", ""},
+                                                       {"run", "--n", "5", "--lattice", ""},
+                                                       {"scene", "plate", "--mu", ""},
+                                                       {"scene", "plate", "--nu", ""},
+                                                       {"run", "--n", "5", "--yield", ""},
+                                                       {"scene", "rings", "--dp", ""},
+                                                       {"run", "--n", "5", "--t-end", ""},
+                                                       {"run", "--n", "5", "--t-end", "0.5", "--out", ""},
+                                                       {""},
+                                                       {"tcrit", ""}};
   for (size_t k = 0; k < cases.size(); ++k) expect_contract(cases[k], "empty" + std::to_string(k), 1);
 }
 
@@ -165,10 +169,13 @@ TEST(CliFuzz, RunsThatCannotFinishAreRefusedBeforeTheyStart) {
       {"run", "--n", "5", "--t-end", "1e12", "--record-every", "1000000000"},
       {"run", "--n", "5", "--dt", "1e-9", "--t-end", "1e6"},
       {"scene", "plate", "--t-end", "1e12", "--record-every", "1000000000"},
-      {"scene", "rings", "--t-end", "1e9"}};
+      {"scene", "rings", "--t-end", "1e9"},
+      // 4.9 M and 0.75 M particles: refused before they are built (inside the time limit, under the memory limit).
+      {"scene", "rings", "--dp", "0.003"},
+      {"scene", "slab", "--dp", "0.002"}};
   for (size_t k = 0; k < cases.size(); ++k) {
-    const test::CliOutcome r = test::run_cli_in_child(cases[k], scratch("long" + std::to_string(k)), kMemoryLimit,
-                                                      kTimeLimit);
+    const test::CliOutcome r =
+        test::run_cli_in_child(cases[k], scratch("long" + std::to_string(k)), kMemoryLimit, kTimeLimit);
     EXPECT_EQ(r.exit_code, 1) << test::join_args(cases[k]) << "\nstderr: " << r.err;
     EXPECT_NE(r.err.find("particle-steps"), std::string::npos) << test::join_args(cases[k]) << "\nstderr: " << r.err;
   }
@@ -184,9 +191,8 @@ TEST(CliFuzz, KicksWhoseEnergyOverflowsAreRefused) {
     EXPECT_NE(r.err.find("--kick"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("overflows"), std::string::npos) << r.err;
   }
-  const test::CliOutcome ok =
-      test::run_cli_in_child({"run", "--n", "5", "--t-end", "0.1", "--kick", "1e100"}, scratch("kick"), kMemoryLimit,
-                             kTimeLimit);
+  const test::CliOutcome ok = test::run_cli_in_child({"run", "--n", "5", "--t-end", "0.1", "--kick", "1e100"},
+                                                     scratch("kick"), kMemoryLimit, kTimeLimit);
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
 }
 
@@ -407,5 +413,5 @@ TEST(CliFuzz, OutputIsDeterministic) {
   }
 }
 
-}  // namespace
+}  // namespace cli_fuzz_test
 }  // namespace sphstab

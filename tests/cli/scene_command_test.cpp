@@ -164,11 +164,14 @@ TEST(SceneCommand, BadInputIsOneLine) {
       {{"scene", "slab", "--t-end", "0"}, "--t-end"},
       {{"scene", "rings", "--dp", "0.6"}, "spacing"},
       {{"scene", "plate", "--length", "1e9", "--across", "100"}, "GB"},  // refused before anything is built
-      {{"scene", "rings", "--dp", "1e-5"}, "GB"},  // the builder: fewer than two particles across the ring
-      // Estimated before the scene is built (issue 36: --dp 0.003 took ~7 GB unannounced)
-      {{"scene", "rings", "--dp", "0.003"}, "GB"},
+      // More particles than any run may step, even one step: refused before anything is built (issue 36)
+      {{"scene", "rings", "--dp", "1e-5"}, "particle-steps"},
+      {{"scene", "slab", "--dp", "1e-4"}, "particle-steps"},
+      // Memory estimated before the scene is built (issue 36: --dp 0.003 took ~7 GB unannounced); short runs, so the
+      // step count passes
+      {{"scene", "rings", "--dp", "0.003", "--t-end", "0.01"}, "GB"},
       {{"--max-memory", "20M", "scene", "rings", "--dp", "0.03"}, "--max-memory"},
-      {{"scene", "slab", "--dp", "1e-4"}, "GB"},
+      {{"scene", "slab", "--dp", "1e-3", "--t-end", "0.01"}, "GB"},
       // options of another scene (issue 36: they used to be accepted and ignored)
       {{"scene", "rings", "--across", "5"}, "--across applies to the plate only"},
       {{"scene", "slab", "--thickness", "1"}, "--thickness applies to the plate only"},

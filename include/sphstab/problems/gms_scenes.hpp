@@ -29,13 +29,16 @@ struct GmsSceneOptions {
 /// "tip_deflection": the mean y displacement of the particles within dp of the tip.
 Scene<2> gms_plate_scene(const CantileverPlateOptions& plate, double tip_speed, const GmsSceneOptions& options = {});
 
-/// §7.2: the rings of make_colliding_rings at their speeds. Run length 100 (GMS units). Measure "ring_fragments": the
-/// larger of the two rings' fragment counts (bond-graph fragments, bonds < 1.5 dp; analysis/fragments.hpp).
+/// The run lengths of GMS's rings (§7.2) and slab (§7.3), GMS units.
+inline constexpr double kGmsRingsRunLength = 100, kGmsSlabRunLength = 200;
+
+/// §7.2: the rings of make_colliding_rings at their speeds. Run length kGmsRingsRunLength. Measure "ring_fragments":
+/// the larger of the two rings' fragment counts (bond-graph fragments, bonds < 1.5 dp; analysis/fragments.hpp).
 Scene<2> gms_rings_scene(const CollidingRingsOptions& rings, const GmsSceneOptions& options = {});
 
 /// §7.3: the slab of make_plastic_slab with its end zones driven at +-acceleration (RateFormScheme::set_driven), von
-/// Mises yield stress `yield_stress` (GMS 0.03). Run length 200. Measure "min_width": the narrowest width of the
-/// slab between the driven zones (analysis/neck.hpp, bins of 2 dp).
+/// Mises yield stress `yield_stress` (GMS 0.03). Run length kGmsSlabRunLength. Measure "min_width": the narrowest width
+/// of the slab between the driven zones (analysis/neck.hpp, bins of 2 dp).
 Scene<2> gms_slab_scene(const PlasticSlabOptions& slab, double yield_stress = 0.03,
                         const GmsSceneOptions& options = {});
 
