@@ -75,8 +75,12 @@ namespace {
 int whole_spacings(double value, double dx, int multiple, const std::string& what) {
   check_length(value, "powell_impact_scene: " + what);
   const double n = value / dx;
+  if (!(n <= 1e6))
+    throw std::invalid_argument("powell_impact_scene: " + what + " " + format_number(value) + " is " +
+                                format_number(n, 3) + " spacings of dx = " + format_number(dx) +
+                                ", more than 1e6 along one side");
   const long k = std::lround(n / multiple) * multiple;
-  if (k < multiple || std::abs(n - static_cast<double>(k)) > 1e-9 * n || k > 1'000'000)
+  if (k < multiple || std::abs(n - static_cast<double>(k)) > 1e-9 * n)
     throw std::invalid_argument("powell_impact_scene: " + what + " " + format_number(value) +
                                 " must be a whole multiple of " + std::to_string(multiple) +
                                 " dx = " + format_number(multiple * dx));

@@ -42,10 +42,10 @@ TEST(PowellImpact, SymmetricBlockHalvesApproachWithKineticEnergyHalfRhoV0Squared
   for (int i = 0; i < d.size(); ++i) {
     const double vy = s.y0[s.scheme->velocity_offset(i) + 1];
     EXPECT_EQ(vy, d.particles.x(i, 1) > 0.5 ? -0.06 : 0.06) << i;
-    EXPECT_EQ(d.particles.depth[i], std::min({static_cast<int>(d.particles.x(i, 0) / 0.05),
-                                              19 - static_cast<int>(d.particles.x(i, 0) / 0.05),
-                                              static_cast<int>(d.particles.x(i, 1) / 0.05),
-                                              19 - static_cast<int>(d.particles.x(i, 1) / 0.05)}));
+    EXPECT_EQ(
+        d.particles.depth[i],
+        std::min({static_cast<int>(d.particles.x(i, 0) / 0.05), 19 - static_cast<int>(d.particles.x(i, 0) / 0.05),
+                  static_cast<int>(d.particles.x(i, 1) / 0.05), 19 - static_cast<int>(d.particles.x(i, 1) / 0.05)}));
   }
   EXPECT_NEAR(s.scheme->kinetic_energy(s.y0), 0.5 * 7.8 * 0.06 * 0.06 * 1.0, 1e-15);
   EXPECT_LT(momentum(*s.scheme, s.y0).norm(), 1e-15);
@@ -83,8 +83,8 @@ TEST(PowellImpact, FormulationsAreMcmsRateForm) {
 }
 
 TEST(PowellImpact, BarImpactConservesMomentumOverARun) {
-  const Scene<2> s =
-      powell_impact_scene({.problem = ImpactProblem::Bar, .spacing = 0.05, .scheme = powell_formulation_options("ssph")});
+  const Scene<2> s = powell_impact_scene(
+      {.problem = ImpactProblem::Bar, .spacing = 0.05, .scheme = powell_formulation_options("ssph")});
   const auto& d = s.scheme->discretisation();
   ASSERT_EQ(d.size(), 80 * 8);
   int left = 0;
@@ -101,8 +101,10 @@ TEST(PowellImpact, BarImpactConservesMomentumOverARun) {
   // S-SPH's pair forces are symmetrised, the bulk viscosity is a pressure and (2.71) conserves momentum for equal
   // masses without fixed neighbours: the total momentum stays p0 to rounding over 30 leap-frog steps.
   const RateFormRunResult r = run_rate_form(*s.scheme, s.y0,
-                                            {.dt = s.time_step(0.8), .t_end = 30 * s.time_step(0.8),
-                                             .integrator = RateFormIntegrator::Leapfrog, .leapfrog_xsph = 0.1});
+                                            {.dt = s.time_step(0.8),
+                                             .t_end = 30 * s.time_step(0.8),
+                                             .integrator = RateFormIntegrator::Leapfrog,
+                                             .leapfrog_xsph = 0.1});
   ASSERT_TRUE(r.completed()) << r.message;
   EXPECT_NEAR((momentum(*s.scheme, r.y) - p0).norm(), 0.0, 1e-12 * p0.norm());
   EXPECT_LT(s.measures.front().value(rate_form_positions(*s.scheme, r.y), r.y), 3.95);  // the bar is compressed
@@ -222,6 +224,9 @@ TEST(PowellImpact, BadOptionsAreOneLineErrors) {
   EXPECT_NE(error_of({.spacing = 1e300}), "");
   // 1e6 x 1e6 particles: refused by the memory estimate before anything is allocated.
   EXPECT_THROW(powell_impact_scene({.spacing = 1e-6}), MemoryLimitError);
+  // 4e6 spacings along the bar: one line saying so (it used to read "must be a whole multiple of 1 dx").
+  EXPECT_EQ(error_of({.problem = ImpactProblem::Bar, .spacing = 1e-6}),
+            "powell_impact_scene: length 4 is 4e+06 spacings of dx = 1e-06, more than 1e6 along one side");
   EXPECT_EQ(parse_impact_problem("beam"), ImpactProblem::Beam);
   EXPECT_EQ(impact_problem_name(parse_impact_problem("bar")), "bar");
   EXPECT_THROW(parse_impact_problem("plate"), std::invalid_argument);
