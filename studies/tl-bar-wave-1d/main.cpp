@@ -36,9 +36,12 @@ int main(int argc, char** argv) {
   CLI::App app{"Ismail 2009 §4.6.3 / §5.3.1: pulse in the 1D validation bar, finite-strain TL SPH"};
   std::string out = "results/tl-bar-wave-1d";
   int n = 300;
+  bool quick = false;
   app.add_option("--out", out, "output directory");
   app.add_option("--n", n, "free particles")->check(CLI::Range(50, 5000));
+  app.add_flag("--quick", quick, "pipeline check: n = 50 free particles (resolutions 50, 100, 200)");
   CLI11_PARSE(app, argc, argv);
+  if (quick) n = 50;
   fs::create_directories(out);
   const auto t0 = study::Clock::now();
   const LameParameters lame = LameParameters::from_young_poisson(kE, kNu);

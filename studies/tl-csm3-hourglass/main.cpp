@@ -101,7 +101,12 @@ int main(int argc, char** argv) {
                  "largest DOF count for the full dense spectrum at c_HG > 0 (above: the nev softest modes)")
       ->check(CLI::PositiveNumber);
   app.add_option("--nev", nev, "softest modes by shift-invert above --dense-max")->check(CLI::Range(2, 50));
+  bool quick = false;
+  app.add_flag("--quick", quick,
+               "pipeline check: spectra at 2 and 3 particles across (dense up to 200 DOFs, so 3 across takes the "
+               "shift-invert path), gravity runs at 2 across to t = 3 s, measured from t = 0.5 s");
   CLI11_PARSE(app, argc, argv);
+  if (quick) across = {2, 3}, run_across = {2}, dense_max = 200, t_end = 3, t_measure = 0.5;
   if (across.empty() || run_across.empty())
     throw std::invalid_argument("tl-csm3-hourglass: --across and --run-across need at least one resolution");
   fs::create_directories(out);

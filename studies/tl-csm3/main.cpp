@@ -54,7 +54,10 @@ int main(int argc, char** argv) {
   app.add_option("--clamp", clamp_layers, "clamp width in dx")->check(CLI::Range(1, 20));
   app.add_option("--clamp-sensitivity", wide_clamp, "clamp width of the sensitivity run at the coarsest resolution")
       ->check(CLI::Range(1, 20));
+  bool quick = false;
+  app.add_flag("--quick", quick, "pipeline check: 2, 3 and 4 particles across, to t = 3 s, measured from t = 0.5 s");
   CLI11_PARSE(app, argc, argv);
+  if (quick) across = {2, 3, 4}, t_end = 3, t_measure = 0.5;
   if (across.empty()) throw std::invalid_argument("tl-csm3: --across needs at least one resolution");
   fs::create_directories(out);
   const auto t0 = study::Clock::now();

@@ -76,7 +76,10 @@ int main(int argc, char** argv) {
   app.add_option("--out", out, "output directory");
   app.add_option("--n", resolutions, "free particles over the 0.3 m bar (one run each)");
   app.add_option("--ratio", ratios, "rho2 / rho1 (one case each)");
+  bool quick = false;
+  app.add_flag("--quick", quick, "pipeline check: n = 300 and 600 free particles (both ratios)");
   CLI11_PARSE(app, argc, argv);
+  if (quick) resolutions = {300, 600};
   fs::create_directories(out);
   const auto t0 = study::Clock::now();
   const LameParameters lame = LameParameters::from_young_poisson(kE, kNu);

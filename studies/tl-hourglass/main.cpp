@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "bar_accuracy.hpp"
 #include "common/ismail_bar.hpp"
@@ -34,14 +35,23 @@ int main(int argc, char** argv) {
   int bar_n = 300;
   app.add_option("--out", out, "output directory");
   app.add_option("--bar-n", bar_n, "free particles of the validation bar")->check(CLI::Range(50, 5000));
+  bool quick = false;
+  app.add_flag("--quick", quick,
+               "pipeline check: lattices of 20 (1D) and 8 x 8 (2D) free particles instead of 40 and 12 x 12, "
+               "validation bar of 50 free particles");
   CLI11_PARSE(app, argc, argv);
+  std::vector<Config> configs = kConfigs;
+  if (quick) {
+    bar_n = 50;
+    for (Config& c : configs) c.n = c.dim == 1 ? 20 : 8;
+  }
   fs::create_directories(out);
   const auto t0 = study::Clock::now();
   study::Summary summary;
 
   // ---------------- (a) + (b): spectra at u = 0 against the coefficient ----------------
   SpectrumTables spectrum_tables(out);
-  for (const Config& cfg : kConfigs) {
+  for (const Config& cfg : configs) {
     if (cfg.dim == 1)
       spectra<1>(cfg, spectrum_tables, summary, t0);
     else
@@ -66,10 +76,10 @@ int main(int argc, char** argv) {
   // ---------------- (c) explicit runs from a noisy initial velocity ----------------
   {
     NoiseTables noise_tables(out);
-    noise_run<1>(kConfigs[0], noise_tables);
-    noise_run<1>(kConfigs[1], noise_tables);
-    noise_run<2>(kConfigs[3], noise_tables);
-    noise_run<2>(kConfigs[4], noise_tables);
+    noise_run<1>(configs[0], noise_tables);
+    noise_run<1>(configs[1], noise_tables);
+    noise_run<2>(configs[3], noise_tables);
+    noise_run<2>(configs[4], noise_tables);
     summary.set("noise", noise_tables.md_noise);
   }
   summary.set("wall_seconds", study::seconds_since(t0), 3);

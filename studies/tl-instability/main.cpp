@@ -64,7 +64,10 @@ int main(int argc, char** argv) {
   app.add_option("--across", across, "CSM3 beam: particles through the thickness")->check(CLI::Range(2, 8));
   app.add_option("--block", block, "free block / periodic lattice: particles per side")->check(CLI::Range(6, 30));
   app.add_option("--h", h_over_dx, "h / dx (Wendland C2, support 2h)")->check(CLI::Range(1.0, 3.0));
+  bool quick = false;
+  app.add_flag("--quick", quick, "pipeline check: beam of 2 particles across, block and periodic lattice of 8 x 8");
   CLI11_PARSE(app, argc, argv);
+  if (quick) across = 2, block = 8;
   fs::create_directories(out);
   const auto t0 = study::Clock::now();
   const LameParameters lame{.lambda = 2 * C::shear_modulus * C::poisson / (1 - 2 * C::poisson), .mu = C::shear_modulus};

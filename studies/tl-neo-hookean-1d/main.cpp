@@ -42,7 +42,10 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--spread", spread, "departure: max F - min F over the free particles above this")
       ->check(CLI::PositiveNumber);
+  bool quick = false;
+  app.add_flag("--quick", quick, "pipeline check: n = 40 free particles (the resolution runs at 20, 40, 80)");
   CLI11_PARSE(app, argc, argv);
+  if (quick) n = 40;
   fs::create_directories(out);
   const auto t0 = study::Clock::now();
   const fs::path here = SPHSTAB_STUDY_DIR;

@@ -82,7 +82,10 @@ int main(int argc, char** argv) {
   app.add_option("--ramp", ramp_transits, "loading time in small-strain transit times (31 dx) / c_L")
       ->check(CLI::PositiveNumber);
   app.add_option("--nu", nu, "Poisson's ratio")->check(CLI::Range(0.0, 0.4999));
+  bool quick = false;
+  app.add_flag("--quick", quick, "pipeline check: loading over 10 transit times instead of --ramp (same block)");
   CLI11_PARSE(app, argc, argv);
+  if (quick) ramp_transits = 10;
   fs::create_directories(out);
   const auto t0 = study::Clock::now();
   const Kernel<2> kernel(KernelType::ModifiedMollifier);

@@ -34,6 +34,17 @@ inline std::vector<Run> static_runs(int finest) {
   return runs;
 }
 
+/// The static runs of --quick, in the same order: the resolution study at a/dx = 4, 8, the width W/a = 10, the lumped
+/// edge load and Ismail's case (Hooke and Neo-Hookean) at a/dx = 4.
+inline std::vector<Run> quick_static_runs() {
+  return {{"linear-n4-w5", "hooke", 4, 5, 0.3, 70, 70e-3, 1},
+          {"linear-n8-w5", "hooke", 8, 5, 0.3, 70, 70e-3, 1},
+          {"linear-n4-w10", "hooke", 4, 10, 0.3, 70, 70e-3, 1},
+          {"linear-n4-w5-lumped", "hooke", 4, 5, 0.3, 70, 70e-3, 1, true},
+          {"ismail-hooke-n4", "hooke", 4, 5, 0.49, 70, 5, 1},
+          {"ismail-nh-n4", "neo-hookean", 4, 5, 0.49, 70, 5, 2}};
+}
+
 /// Ismail's case suddenly loaded (Neo-Hookean, W/a = 5) at a/dx = n.
 inline Run dynamic_run(int n) {
   return {"ismail-nh-n" + std::to_string(n), "neo-hookean", double(n), 5, 0.49, 70, 5, 1};

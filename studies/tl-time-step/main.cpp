@@ -80,7 +80,12 @@ int main(int argc, char** argv) {
   app.add_option("--n", n, "free particles of the validation bar (Ismail: 1000, dt = h/c = 165 ns)");
   app.add_option("--steps", steps, "leap-frog steps per run");
   app.add_option("--n-table", n_table, "free particles of the limit table's bars");
+  bool quick = false;
+  app.add_flag("--quick", quick,
+               "pipeline check: validation bar of 500 free particles (above the dense route's 400 unknowns: the "
+               "limit still by Spectra), 1000 steps per run, limit table on bars of 100 free particles");
   CLI11_PARSE(app, argc, argv);
+  if (quick) n = 500, steps = 1000, n_table = 100;
   fs::create_directories(out);
   const auto t0 = study::Clock::now();
   const LameParameters lame = LameParameters::from_young_poisson(kE, kNu);

@@ -88,7 +88,11 @@ int main(int argc, char** argv) {
   app.add_option("--ny-2d", o2.ny, "2D free particles along y (odd)")->check(CLI::Range(1, 401));
   app.add_option("--strain-2d", o2.strain, "2D run pre-strain e (E = 1)");
   app.add_option("--t-end-2d", o2.t_end, "2D run length (dx / c with c^2 = E / rho)");
+  bool quick = false;
+  app.add_flag("--quick", quick,
+               "pipeline check: 1D bar of 15 free particles to t = 75, 2D block of 9 x 3 to t = 20 (both sections)");
   CLI11_PARSE(app, argc, argv);
+  if (quick) n = 15, t_end = 75, section = "both", o2.nx = 9, o2.ny = 3, o2.t_end = 20;
   o2.perturbation = perturbation;
   if (n % 2 == 0) throw std::invalid_argument("tl-ul-pairing: --n must be odd (a centre particle)");
   fs::create_directories(out);
