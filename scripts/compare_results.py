@@ -96,7 +96,7 @@ TIMING_COLUMN_RULES: list[tuple[str, str]] = [
 # Physical quantities that are always compared, even if a timing rule above would match them
 # (simulation time and time steps, growth rates per simulated time unit).
 PHYSICAL_COLUMN_RULES: list[str] = [
-    r"t|T|dt|time|t_.*|.*_t|fit_t_.*",
+    r"t|T|dt|time|t_.*|dt_.*|.*_t|fit_t_.*",  # dt_ns: a time step in ns, not a measured time
     r".*growth.*|gamma.*|.*_rate_per_.*",
 ]
 _TIMING_RULES = [(re.compile(f), re.compile(c)) for f, c in TIMING_COLUMN_RULES]

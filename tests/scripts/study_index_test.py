@@ -78,6 +78,13 @@ class StudyIndexTest(unittest.TestCase):
             csvs = [c for c in os.listdir(os.path.join(base, name)) if c.endswith(".csv")]
             self.assertTrue(csvs, f"tests/study_quick/{name} holds no CSV")
 
+    def test_physical_times_are_compared_and_measured_times_are_not(self):
+        import compare_results
+        for column in ("dt_ns", "dt", "t", "dt_limit", "t_stop", "growth_rate"):  # simulated quantities
+            self.assertFalse(compare_results.is_timing_column("tl-time-step/runs.csv", column), column)
+        for column in ("cpu_s", "wall_seconds", "rate_ns", "us_per_particle_step", "peak_rss_MB"):  # measurements
+            self.assertTrue(compare_results.is_timing_column("gms-speed/runs.csv", column), column)
+
     def test_quick_comparison_catches_a_changed_value(self):
         # compare_results --subset (what tests/scripts/study_quick_test.py runs): equal to itself, and one value moved
         # by 1e-5 relative (above the tests' 1e-6) fails, as does a missing file.
