@@ -32,6 +32,13 @@ struct RunCost {
   double us_cpu() const { return 1e6 * cpu / (static_cast<double>(steps) * particles); }
 };
 
+/// The cost columns of a run's row in a CSV table (wall,cpu,us_per_particle_step,us_cpu,neighbour_builds): the
+/// seconds and the microseconds per particle-step with 4 significant digits, and the neighbour-list builds.
+inline std::vector<std::string> cost_cells(const RunCost& c) {
+  return {format_number(c.wall, 4), format_number(c.cpu, 4), format_number(c.us_per_particle_step(), 4),
+          format_number(c.us_cpu(), 4), std::to_string(c.neighbour_builds)};
+}
+
 /// run_rate_form with the calling thread's CPU time measured around it.
 template <int Dim>
 RateFormRunResult timed_run(const RateFormScheme<Dim>& scheme, const Eigen::VectorXd& y0, const RateFormRunOptions& o,

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "common/gms.hpp"
 #include "slab_case.hpp"
 #include "slab_run.hpp"
 #include "sphstab/core/format.hpp"
@@ -53,50 +54,48 @@ inline void write_runs(const std::string& out, const std::vector<SlabRun>& runs)
          "separation_junction_distance,end_displacement_at_break,x_narrowest_before_break,"
          "width_narrowest_before_break\n";
   for (const SlabRun& r : runs) {
-    runs_csv << csv_line({r.c.tag,
-                          format_number(r.c.dp),
-                          format_number(r.c.eps),
-                          std::to_string(r.columns),
-                          std::to_string(r.rows),
-                          std::to_string(r.particles),
-                          std::to_string(r.driven),
-                          format_number(r.h),
-                          format_number(r.dt, 8),
-                          std::to_string(r.cost.steps),
-                          std::to_string(r.chunks),
-                          format_number(r.t_stop),
-                          r.status,
-                          format_number(r.cost.wall, 4),
-                          format_number(r.cost.cpu, 4),
-                          format_number(r.cost.us_per_particle_step(), 4),
-                          format_number(r.cost.us_cpu(), 4),
-                          std::to_string(r.cost.neighbour_builds),
-                          format_number(r.width0),
-                          format_number(r.t_neck),
-                          format_number(r.x_neck),
-                          format_number(r.width_neck),
-                          format_number(r.t_w95),
-                          format_number(r.t_w10),
-                          format_number(r.brk.t),
-                          std::to_string(r.brk.cracks()),
-                          format_number(r.brk.left.x),
-                          format_number(r.brk.left.y),
-                          format_number(r.brk.right.x),
-                          format_number(r.brk.right.y),
-                          format_number(r.brk.left.junction_distance),
-                          format_number(r.brk.right.junction_distance),
-                          format_number(r.brk.left.position),
-                          format_number(r.brk.right.position),
-                          format_number(r.brk.left.width_before),
-                          format_number(r.brk.right.width_before),
-                          format_number(r.brk_support.t),
-                          std::to_string(r.brk_support.cracks()),
-                          format_number(r.brk_support.left.x),
-                          format_number(r.brk_support.right.x),
-                          format_number(r.brk_support.junction_distance()),
-                          format_number(end_disp(r.brk.t)),
-                          format_number(r.brk.x_narrowest),
-                          format_number(r.brk.width_narrowest)});
+    std::vector<std::string> row{r.c.tag,
+                                 format_number(r.c.dp),
+                                 format_number(r.c.eps),
+                                 std::to_string(r.columns),
+                                 std::to_string(r.rows),
+                                 std::to_string(r.particles),
+                                 std::to_string(r.driven),
+                                 format_number(r.h),
+                                 format_number(r.dt, 8),
+                                 std::to_string(r.cost.steps),
+                                 std::to_string(r.chunks),
+                                 format_number(r.t_stop),
+                                 r.status};
+    const std::vector<std::string> cost = study::cost_cells(r.cost);
+    row.insert(row.end(), cost.begin(), cost.end());
+    row.insert(row.end(), {format_number(r.width0),
+                           format_number(r.t_neck),
+                           format_number(r.x_neck),
+                           format_number(r.width_neck),
+                           format_number(r.t_w95),
+                           format_number(r.t_w10),
+                           format_number(r.brk.t),
+                           std::to_string(r.brk.cracks()),
+                           format_number(r.brk.left.x),
+                           format_number(r.brk.left.y),
+                           format_number(r.brk.right.x),
+                           format_number(r.brk.right.y),
+                           format_number(r.brk.left.junction_distance),
+                           format_number(r.brk.right.junction_distance),
+                           format_number(r.brk.left.position),
+                           format_number(r.brk.right.position),
+                           format_number(r.brk.left.width_before),
+                           format_number(r.brk.right.width_before),
+                           format_number(r.brk_support.t),
+                           std::to_string(r.brk_support.cracks()),
+                           format_number(r.brk_support.left.x),
+                           format_number(r.brk_support.right.x),
+                           format_number(r.brk_support.junction_distance()),
+                           format_number(end_disp(r.brk.t)),
+                           format_number(r.brk.x_narrowest),
+                           format_number(r.brk.width_narrowest)});
+    runs_csv << csv_line(row);
   }
 }
 
