@@ -73,8 +73,15 @@ class StudyIndexTest(unittest.TestCase):
         for name in sorted(folders(os.path.relpath(base, ROOT))):
             driver = os.path.join(ROOT, "studies", name, "main.cpp")
             self.assertTrue(os.path.isfile(driver), f"tests/study_quick/{name}: no studies/{name}/main.cpp")
+            # The flag is declared in the driver or in a header it includes (its own, or studies/common/).
             with open(driver, encoding="utf-8") as f:
-                self.assertIn('"--quick"', f.read(), f"studies/{name} has no --quick case")
+                text = f.read()
+            for header in re.findall(r'#include "([^"]+\.hpp)"', text):
+                for path in (os.path.join(ROOT, "studies", name, header), os.path.join(ROOT, "studies", header)):
+                    if os.path.isfile(path):
+                        with open(path, encoding="utf-8") as f:
+                            text += f.read()
+            self.assertIn('"--quick"', text, f"studies/{name} has no --quick case")
             csvs = [c for c in os.listdir(os.path.join(base, name)) if c.endswith(".csv")]
             self.assertTrue(csvs, f"tests/study_quick/{name} holds no CSV")
 
