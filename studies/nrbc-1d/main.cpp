@@ -9,12 +9,12 @@
 // numbers in nrbc_summary.hpp.
 #include <CLI/CLI.hpp>
 #include <filesystem>
-#include <iostream>
 #include <string>
 #include <vector>
 
 #include "bar_problem.hpp"
 #include "bar_run.hpp"
+#include "common/driver.hpp"
 #include "common/study.hpp"
 #include "nrbc_summary.hpp"
 #include "nrbc_tables.hpp"
@@ -82,10 +82,8 @@ int main(int argc, char** argv) try {
   sum.set("tssfac", tssfac, 3);
   sum.set("c", bar_speed(), 5);
   sum.set("runs", static_cast<long>(runs.size() + sweep_runs.size() + hruns.size()));
-  sum.set("wall_seconds", study::seconds_since(t0), 3);
-  sum.write(out);
+  study::write_summary(sum, out, t0);
   return 0;
 } catch (const std::exception& e) {
-  std::cerr << "nrbc-1d: " << e.what() << "\n";
-  return 1;
+  return study::exit_on_error("nrbc-1d", e);
 }

@@ -11,11 +11,11 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "common/driver.hpp"
 #include "common/study.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/forms/rate_form.hpp"
@@ -220,12 +220,8 @@ int main(int argc, char** argv) try {
         cases.push_back({.boundary = b, .field = field, .n = n, .cfl = cfl, .t_end = t_end});
   }
   // Most expensive (the references) first; rows stay in case order.
-  std::vector<std::size_t> order(cases.size());
-  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return cases[a].margin > cases[b].margin; });
-  std::vector<SquareRun> runs(cases.size());
-  study::parallel_for(cases.size(), threads, [&](std::size_t k) { runs[order[k]] = run_square(cases[order[k]]); });
+  const std::vector<SquareRun> runs = study::run_costliest_first(
+      cases, threads, [](const SquareCase& c) { return c.margin; }, run_square);
 
   study::Summary sum;
   CsvWriter w(out + "/runs.csv", {"boundary", "field", "timing", "particles", "absorbing", "layers", "status",
@@ -263,10 +259,8 @@ int main(int argc, char** argv) try {
   sum.set("reference_side", n + 2 * margin);
   sum.set("cfl", cfl, 3);
   sum.set("t_end", t_end, 3);
-  sum.set("wall_seconds", study::seconds_since(t0), 3);
-  sum.write(out);
+  study::write_summary(sum, out, t0);
   return 0;
 } catch (const std::exception& e) {
-  std::cerr << "nrbc-2d: " << e.what() << "\n";
-  return 1;
+  return study::exit_on_error("nrbc-2d", e);
 }

@@ -14,11 +14,11 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "common/driver.hpp"
 #include "common/study.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/forms/rate_form.hpp"
@@ -201,13 +201,9 @@ int main(int argc, char** argv) try {
     for (bool normalised : {true, false})
       if (normalised || cond == Condition::P)
         cases.push_back({.condition = cond, .ny = 0, .nx = 4 * nx, .lambda = 4 * lambda, .normalised = normalised});
-  std::vector<std::size_t> order(cases.size());
-  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return std::max(cases[a].ny, 6) * cases[a].nx > std::max(cases[b].ny, 6) * cases[b].nx;
-  });
-  std::vector<StripRun> runs(cases.size());
-  study::parallel_for(cases.size(), threads, [&](std::size_t k) { runs[order[k]] = run_strip(cases[order[k]]); });
+  // The largest strips (particles: a normal-incidence strip is 6 across) first; rows stay in case order.
+  const std::vector<StripRun> runs = study::run_costliest_first(
+      cases, threads, [](const StripCase& c) { return std::max(c.ny, 6) * c.nx; }, run_strip);
 
   CsvWriter w(out + "/runs.csv", {"condition", "gradient", "ny", "lambda", "theta_deg", "particles", "absorbing",
                                   "status", "measured", "analytic", "periodic_check", "cpu_seconds"});
@@ -242,10 +238,8 @@ int main(int argc, char** argv) try {
   sum.set("nx", nx);
   sum.set("lambda", lambda, 3);
   sum.set("periodic_worst", 100 * worst_periodic, 2);
-  sum.set("wall_seconds", study::seconds_since(t0), 3);
-  sum.write(out);
+  study::write_summary(sum, out, t0);
   return 0;
 } catch (const std::exception& e) {
-  std::cerr << "nrbc-plane-wave: " << e.what() << "\n";
-  return 1;
+  return study::exit_on_error("nrbc-plane-wave", e);
 }
