@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "sphstab/core/format.hpp"
 #include "sphstab/kernel/kernel.hpp"
 #include "sphstab/numerics/dual.hpp"
 #include "sphstab/operators/operators.hpp"
@@ -75,7 +76,7 @@ void check_divisor(const Vector<Scalar>& s, const char* who, const char* what) {
   for (Eigen::Index i = 0; i < s.size(); ++i)
     if (!(re(s[i]) != 0.0) || !finite(s[i]))
       throw std::invalid_argument(std::string(who) + ": " + what + " of particle " + std::to_string(i) +
-                                  " is zero or non-finite (got " + std::to_string(re(s[i])) + ")");
+                                  " is zero or non-finite (got " + format_number(re(s[i])) + ")");
 }
 
 /// A + diag(d); the diagonal is added in place where stored, inserted where missing.

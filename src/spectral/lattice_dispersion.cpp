@@ -20,6 +20,7 @@
 #include <string>
 
 #include "sphstab/core/checked_arithmetic.hpp"
+#include "sphstab/core/format.hpp"
 #include "sphstab/models/artificial_stress.hpp"
 
 namespace sphstab {
@@ -28,7 +29,7 @@ namespace {
 
 void check_positive(const char* who, const char* what, double v) {
   if (!(v > 0) || !std::isfinite(v))
-    throw std::invalid_argument(std::string(who) + ": " + what + " must be finite and > 0 (got " + std::to_string(v) +
+    throw std::invalid_argument(std::string(who) + ": " + what + " must be finite and > 0 (got " + format_number(v) +
                                 ")");
 }
 

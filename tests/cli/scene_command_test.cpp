@@ -146,6 +146,29 @@ TEST(SceneCommand, RunThatStopsKeepsRowsAndFrames) {
   EXPECT_TRUE(std::filesystem::exists(dir / "scene.pvd"));
 }
 
+TEST(SceneCommand, StopMessageQuotesValuesInShortForm) {
+  // Issue 36: an artificial stress of 1e308 drives a density to about -1e170, which the stop message used to print
+  // with std::to_string as a 170-digit fixed-point number.
+  const test::CliOutcome r = run({"scene", "plate", "--t-end", "1", "--eps", "1e308"}, "huge");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string::size_type at = r.err.find("scene: stopped:");
+  ASSERT_NE(at, std::string::npos) << r.err;
+  const std::string line = r.err.substr(at, r.err.find('\n', at) - at);
+  EXPECT_LT(line.size(), 200u) << line;
+  EXPECT_NE(line.find("e+"), std::string::npos) << line;  // the value in exponent form
+}
+
+TEST(SceneCommand, LargeSceneIsAnnouncedBeforeItIsBuilt) {
+  // Issue 36: a scene of millions of particles spent minutes building with nothing on the screen. 2 pi 7 / 0.02^2 =
+  // 1.1e5 rings particles, at 2 kB each.
+  const test::CliOutcome r = run({"scene", "rings", "--dp", "0.02", "--t-end", "0.001"}, "announce");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("scene: building rings (about 1.1e+05 particles, ~220 MB)"), std::string::npos) << r.err;
+  const test::CliOutcome small = run({"scene", "rings", "--dp", "0.3", "--t-end", "0.001"}, "quiet");
+  ASSERT_EQ(small.exit_code, 0) << small.err;
+  EXPECT_EQ(small.err.find("scene: building"), std::string::npos) << small.err;
+}
+
 TEST(SceneCommand, BadInputIsOneLine) {
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
       {{"scene", "plate", "--thickness", "0"}, "--thickness"},

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "sphstab/core/format.hpp"
 #include "sphstab/models/artificial_stress.hpp"
 #include "sphstab/numerics/real_part.hpp"
 
@@ -69,8 +70,8 @@ inline SymmetricTensor2<Scalar> particle_artificial_stress(const SymmetricTensor
                                                            double epsilon) {
   using detail::re;
   if (!(re(density) > 0) || !std::isfinite(re(density)))
-    throw std::invalid_argument("artificial_stress: density must be finite and > 0 (got " +
-                                std::to_string(re(density)) + ")");
+    throw std::invalid_argument("artificial_stress: density must be finite and > 0 (got " + format_number(re(density)) +
+                                ")");
   const PrincipalFrame<Scalar> f = principal_frame<kFrame>(sigma);
   const bool major_tensile = re(f.major) > 0, minor_tensile = re(f.minor) > 0;  // minor tensile => major tensile
   const Scalar k = -epsilon / (density * density);
