@@ -1,8 +1,9 @@
 #pragma once
 /// \file rate_form_swegle.hpp
 /// The Swegle test with the rate-form scheme [Powell2012, ch. 4 §2.2], shared by the study drivers
-/// studies/swegle-rate-form (which formulations grow, and does the linearisation say so) and studies/swegle-nonlinear
-/// (is that growth linear, amplitude-dependent or the integrator's):
+/// studies/swegle-rate-form (which formulations grow, and does the linearisation say so), studies/swegle-nonlinear
+/// (is that growth linear, amplitude-dependent or the integrator's) and studies/swegle-powell (Powell's own MCM
+/// configuration, which takes the block, its residual and the growth fit from here):
 /// - the options of a run (--out, --n, --t-end, --quick) and the constants of its measurement (fit onset, stop);
 /// - the formulations: the terms of the scheme practitioners switch on, one at a time and together;
 /// - the block with the mirror class (px, py) = (-1, +1) of its free velocity DOFs, where the kick (+x at the centre)
