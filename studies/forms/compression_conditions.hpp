@@ -31,9 +31,9 @@ namespace forms_study {
 using namespace sphstab;
 using study::sig;
 
-/// min over 0 <= k h <= 60 of F(k) / F(0), F(k) = 2 int_0^{2h} W(r) cos(k r) dr (h = 1), as in
+/// min over 0 <= k h <= 60 (in steps of dk) of F(k) / F(0), F(k) = 2 int_0^{2h} W(r) cos(k r) dr (h = 1), as in
 /// tests/kernel/kernel_test.cpp.
-inline double min_fourier_transform(KernelType type) {
+inline double min_fourier_transform(KernelType type, double dk = 0.01) {
   Kernel<1> w(type);
   auto f = [&](double k) {
     return 2 * integrate_gauss_legendre([&](double r) { return w.value(r, 1.0) * std::cos(k * r); }, 0.0,
@@ -41,7 +41,7 @@ inline double min_fourier_transform(KernelType type) {
   };
   const double f0 = f(0.0);
   double lo = 1e300;
-  for (double k = 0.0; k <= 60.0; k += 0.01) lo = std::min(lo, f(k) / f0);
+  for (double k = 0.0; k <= 60.0; k += dk) lo = std::min(lo, f(k) / f0);
   return lo;
 }
 
@@ -93,11 +93,13 @@ struct Conditions {
   std::map<std::string, double> ft_min;  ///< per kernel name: min_fourier_transform
 };
 
-/// The conditions for every kernel and h/dx in `hs`; progress on stdout, one line per kernel.
-inline Conditions compression_conditions(const std::vector<double>& hs, int n, const TcritTable& tcrit) {
+/// The conditions for every kernel and h/dx in `hs`; progress on stdout, one line per kernel. dk: the step of
+/// min_fourier_transform (--quick: 0.1).
+inline Conditions compression_conditions(const std::vector<double>& hs, int n, const TcritTable& tcrit,
+                                         double dk = 0.01) {
   Conditions c;
   for (KernelType type : all_kernel_types()) {
-    c.ft_min[kernel_name(type)] = min_fourier_transform(type);
+    c.ft_min[kernel_name(type)] = min_fourier_transform(type, dk);
     for (double h : hs)
       c.rows.push_back(
           compression_condition(type, h, n, c.ft_min[kernel_name(type)], tcrit.cons_minus.at({kernel_name(type), h})));

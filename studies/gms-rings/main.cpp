@@ -57,9 +57,9 @@ int main(int argc, char** argv) try {
                  "times of the frozen spectra (the first also with the viscosity on), cm/c0")
       ->delimiter(',')
       ->check(CLI::Range(0.0, 1e4));
-  app.add_flag("--quick", quick, "pipeline check: t_end 20, 20 SI steps, 3 frames");
+  app.add_flag("--quick", quick, "pipeline check: dp 0.2, t_end 20, 5 SI steps, 3 frames, spectra at dp 0.5");
   CLI11_PARSE(app, argc, argv);
-  if (quick) t_end = 20, si_steps = 20, frames = std::min(frames, 3), dp_spectrum = 0.4, spectrum_times = {5};
+  if (quick) dp = 0.2, t_end = 20, si_steps = 5, frames = std::min(frames, 3), dp_spectrum = 0.5, spectrum_times = {5};
   std::sort(spectrum_times.begin(), spectrum_times.end());
   const auto t0 = study::Clock::now();
   const std::string load_start = study::load_average();

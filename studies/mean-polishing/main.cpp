@@ -39,8 +39,11 @@ int main(int argc, char** argv) {
   app.add_option("--out", out, "output directory");
   app.add_option("--n", n, "free particles of the main sweep");
   app.add_option("--n-check", n_check, "free particles of the size check");
-  app.add_flag("--quick", quick, "h/dx in steps of 0.5 only (smoke run)");
+  app.add_flag("--quick", quick,
+               "pipeline check: h/dx in steps of 0.5 only, and unless given --n 16 and --n-check 24 (seconds)");
   CLI11_PARSE(app, argc, argv);
+  if (quick && app.count("--n") == 0) n = 16;
+  if (quick && app.count("--n-check") == 0) n_check = 24;
   std::filesystem::create_directories(out);
   const auto start = Clock::now();
   const std::vector<KernelType> kernels{KernelType::CubicSpline, KernelType::WendlandC2, KernelType::QuinticSpline};

@@ -43,8 +43,9 @@ int main(int argc, char** argv) try {
   app.add_option("--cfl-sweep", sweep, "CFL values of the sweep")->delimiter(',')->check(CLI::Range(0.01, 2.0));
   app.add_option("--h", h_values, "h / dx of the h-study")->delimiter(',')->check(CLI::Range(1.0, 4.0));
   app.add_flag("--quick", quick,
-               "pipeline check: Table 2.1 in full, the sweep at the tuned step only, h / dx 1.3 "
-               "only, and the step limits of the half-step timing with one absorbing layer and the upwind eight");
+               "pipeline check: every run to 10 us; Table 2.1 in full, the sweep at the tuned step only, h / dx 1.3 "
+               "only, and the step limits of SPH with one absorbing layer and NCXSPH with the upwind eight (half-step "
+               "timing)");
   CLI11_PARSE(app, argc, argv);
   if (quick) sweep = {cfl}, h_values = {1.3};
   const auto t0 = study::Clock::now();
@@ -57,18 +58,23 @@ int main(int argc, char** argv) try {
   // symmetric bar with both timings and on the free end.
   const double cfl_mcm = tssfac * 1.3;
   const std::vector<Variant> variants = table_variants(cfl_mcm, cfl);
-  const std::vector<BarRun> runs = run_all(table_cases(variants, cfl), threads);
+  const auto quick_length = [&](std::vector<BarCase> cases) {  // --quick: every run to 10 us, as the h-study's
+    if (quick)
+      for (BarCase& c : cases) c.t_to = 10;
+    return cases;
+  };
+  const std::vector<BarRun> runs = run_all(quick_length(table_cases(variants, cfl)), threads);
   write_table(out + "/table.csv", runs);
   write_series(out, runs);
   summarise_table(sum, runs, variants, cfl);
 
   // 2. CFL sweep: stable or not, and the error, for the truncated bars at each dt (both timings).
-  const std::vector<BarRun> sweep_runs = run_all(sweep_cases(sweep), threads);
+  const std::vector<BarRun> sweep_runs = run_all(quick_length(sweep_cases(sweep)), threads);
   write_table(out + "/cfl_sweep.csv", sweep_runs);
 
   // 3. The largest stable CFL of every truncated configuration (bisection on whole runs to 20 us), and from the
   // linearised step (spectral radius at rest, undamped and damped).
-  const StepLimits limits = step_limits(limit_cases(quick), cfl, threads);
+  const StepLimits limits = step_limits(quick_length(limit_cases(quick)), cfl, threads);
   write_dt_limit(out, limits);
   summarise_step_limits(sum, limits);
 

@@ -188,13 +188,18 @@ int main(int argc, char** argv) try {
   std::string out = "results/nrbc-2d";
   int threads = 2, n = 50, margin = 124;
   double cfl = 0.3, t_end = 4;
+  bool quick = false;
   app.add_option("--out", out, "output directory");
   app.add_option("--threads", threads, "concurrent runs")->check(CLI::Range(1, 64));
   app.add_option("--n", n, "particles per side of the block (Powell 50)")->check(CLI::Range(8, 400));
   app.add_option("--margin", margin, "reference: particles added on each side")->check(CLI::Range(0, 1000));
   app.add_option("--cfl", cfl, "dt = cfl dx / c_p")->check(CLI::Range(0.01, 2.0));
   app.add_option("--t-end", t_end, "run length (us)")->check(CLI::Range(0.1, 100.0));
+  app.add_flag("--quick", quick,
+               "pipeline check: every case on a 20 x 20 block to 1 us (the waves from the disc have reached the "
+               "boundary), the reference 13 particles wider on each side");
   CLI11_PARSE(app, argc, argv);
+  if (quick) n = 20, margin = 13, t_end = std::min(t_end, 1.0);
   const auto t0 = study::Clock::now();
   fs::create_directories(out + "/series");
   // The reference's own (moving, free) boundary must not be heard in the block before t_end: margin dx > c_p t_end.

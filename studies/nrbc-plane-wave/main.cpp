@@ -175,21 +175,25 @@ int main(int argc, char** argv) try {
   std::string out = "results/nrbc-plane-wave";
   int threads = 2, nx = 400;
   double lambda = 12;
+  bool quick = false;
+  std::vector<double> degrees{15, 30, 45, 60};  // the oblique angles of the tables
   app.add_option("--out", out, "output directory");
   app.add_option("--threads", threads, "concurrent runs")->check(CLI::Range(1, 64));
   app.add_option("--nx", nx, "particles along the strip")->check(CLI::Range(100, 5000));
   app.add_option("--lambda", lambda, "wavelength in particle spacings")->check(CLI::Range(4.0, 100.0));
+  app.add_flag("--quick", quick,
+               "pipeline check: a strip of 50 particles, wavelength 6 dx, theta 0 and 45 degrees only");
   CLI11_PARSE(app, argc, argv);
+  if (quick) nx = 50, lambda = 6, degrees = {45};
   const auto t0 = study::Clock::now();
   fs::create_directories(out + "/series");
   // Angle tables at lambda and 2 lambda (the strip's length in proportion): periods across the strip for theta = 0
-  // and about 15, 30, 45 and 60 degrees; then normal incidence at 4 lambda.
+  // and about 15, 30, 45 and 60 degrees (--quick: 45); then normal incidence at 4 lambda.
   std::vector<StripCase> cases;
   for (double l : {lambda, 2 * lambda}) {
     const int n = static_cast<int>(std::lround(nx * l / lambda));
     std::vector<int> periods{0};
-    for (double deg : {15.0, 30.0, 45.0, 60.0})
-      periods.push_back(static_cast<int>(std::lround(l / std::sin(deg * M_PI / 180))));
+    for (double deg : degrees) periods.push_back(static_cast<int>(std::lround(l / std::sin(deg * M_PI / 180))));
     for (int ny : periods) {
       for (Condition cond : {Condition::Periodic, Condition::P, Condition::M, Condition::HPowell, Condition::HHigdon,
                              Condition::Traction})

@@ -30,14 +30,14 @@ using namespace swegle_nonlinear;
 int main(int argc, char** argv) {
   CLI::App app{"Swegle test, rate-form scheme: linear, nonlinear or integrator-made growth?"};
   Options o{.out = "results/swegle-nonlinear", .n = 11, .t_end = 30};
-  const QuickCase quick{9, 15, "basic SPH only, a 9 x 9 block, 15 us, block sizes 7 and 9"};
+  const QuickCase quick{7, 10, "basic SPH only, a 7 x 7 block, 10 us, block sizes 5 and 7"};
   if (const auto exit = parse_options(app, o, quick, argc, argv)) return *exit;
   const auto t0 = study::Clock::now();
 
   const std::vector<Formulation> forms =
       o.quick ? formulations({"sph"}) : formulations({"sph", "ncsph", "ncsph-anti", "ssph", "ssph-printed"});
   const std::vector<double> xis = {0.98, 1.02};
-  const std::vector<int> sizes = o.quick ? std::vector<int>{7, 9} : std::vector<int>{9, 11, 13, 15, 17, 21};
+  const std::vector<int> sizes = o.quick ? std::vector<int>{5, 7} : std::vector<int>{9, 11, 13, 15, 17, 21};
   SwegleOptions so;
   so.n = o.n;
   so.layer_supports = 3;  // S-SPH reads neighbours of neighbours: every corrected form starts in exact equilibrium

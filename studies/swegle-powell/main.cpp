@@ -37,12 +37,12 @@ int main(int argc, char** argv) {
   app.add_option("--n", n, "free particles per side of the main block (odd)")->check(CLI::Range(5, 61));
   app.add_option("--t-end", t_end, "run length (us)")->check(CLI::PositiveNumber);
   app.add_option("--threads", threads, "concurrent cases")->check(CLI::Range(1, 64));
-  app.add_flag("--quick", quick, "h = 1.3 only, an 11 x 11 block, 20 us, no size or sensitivity sets");
+  app.add_flag("--quick", quick, "h = 1.1 only, a 7 x 7 block, 10 us, no size or sensitivity sets");
   CLI11_PARSE(app, argc, argv);
   const auto t0 = study::Clock::now();
   std::filesystem::create_directories(out);
   set_threads(1);  // cases run side by side (parallel_for); each scheme on one thread
-  if (quick) n = 11, t_end = std::min(t_end, 20.0);
+  if (quick) n = 7, t_end = std::min(t_end, 10.0);
 
   // ---- The formulations, the cases and the blocks (h, n, layers) they need, built once. ----
   const std::vector<Formulation> forms = formulations();
