@@ -4,8 +4,10 @@
 // first stop, with the scene's measures recorded at every step and snapshots of every particle at given times.
 //
 // Formulations: "sph", "ncsph", "ssph" (MCM's rate forms, powell_formulation_options) run with the staggered leap-frog
-// (algorithm 1.1) and the velocity smoothing (2.71); "tl" (Powell's linear TL-SPH) and "tl-svk" (the same operators
-// with St Venant-Kirchhoff finite strain) with the velocity-Verlet leap-frog; all at dt = TSSFAC h / c_P.
+// (algorithm 1.1) and the velocity smoothing (2.71); "ssph-g", a sensitivity of the studies, not one of Powell's: his
+// S-SPH with the means of G itself instead of the first-step Shepard gradient's (4.18) (first_step_shepard = false);
+// "tl" (Powell's linear TL-SPH) and "tl-svk" (the same operators with St Venant-Kirchhoff finite strain) with the
+// velocity-Verlet leap-frog; all at dt = TSSFAC h / c_P.
 //
 // Writes signals.csv (t, global KE and the study's measures per run), runs.csv (status, steps, CPU seconds),
 // a VTK series of every run with snapshots (Settings::vtk_dir: <form>_<case>/series.pvd, a frame every vtk_every us;
@@ -39,18 +41,18 @@
 #include "sphstab/analysis/fragments.hpp"
 #include "sphstab/forms/rate_form_state.hpp"
 #include "sphstab/growth/stability_verdict.hpp"
-#include "sphstab/jacobian/complex_step_jacobian.hpp"
 #include "sphstab/integrate/leapfrog.hpp"
 #include "sphstab/integrate/rate_form_run.hpp"
 #include "sphstab/io/csv.hpp"
 #include "sphstab/io/rate_form_vtk.hpp"
 #include "sphstab/io/vtk.hpp"
+#include "sphstab/jacobian/complex_step_jacobian.hpp"
 #include "sphstab/problems/powell_impact.hpp"
 
 namespace sphstab::study::impact {
 
 struct Case {
-  std::string form;                    ///< sph | ncsph | ssph | tl | tl-svk
+  std::string form;                    ///< sph | ncsph | ssph | ssph-g | tl | tl-svk
   std::string name;                    ///< the case column (e.g. "compression")
   PowellImpactOptions scene;           ///< problem, spacing, speed, t_end, ...; the scheme is set from `form`
   std::vector<double> snapshot_times;  ///< empty: no snapshots
@@ -65,7 +67,7 @@ struct Settings {
   /// The verdicts' detection floor is ln(energy_ratio) / (2 t_end): the slowest amplitude growth that raises the
   /// kinetic energy by this factor within the run.
   double verdict_energy_ratio = 100;
-  std::string vtk_dir;    ///< VTK series of the runs with snapshots go to vtk_dir/<form>_<case>/ (empty: none)
+  std::string vtk_dir;     ///< VTK series of the runs with snapshots go to vtk_dir/<form>_<case>/ (empty: none)
   double vtk_every = 0.5;  ///< us between VTK frames
 };
 
@@ -133,6 +135,15 @@ struct Outcome {
 
 inline bool is_tl(const std::string& form) { return form == "tl" || form == "tl-svk"; }
 
+/// The rate-form scheme of a formulation: Powell's (powell_formulation_options), or "ssph-g", his S-SPH with the means
+/// of G itself (first_step_shepard = false, everything else his): a sensitivity of the studies, not in the library.
+inline RateFormOptions formulation_options(const std::string& form) {
+  if (form != "ssph-g") return powell_formulation_options(form);
+  RateFormOptions o = powell_formulation_options("ssph");
+  o.first_step_shepard = false;
+  return o;
+}
+
 /// Records the particle order at the first record at or after each multiple of `every` (not of a non-finite state,
 /// which the run reports as its stop).
 inline void maybe_order(Outcome& o, const Eigen::Matrix2Xd& x, double dx, double t, double every) {
@@ -155,7 +166,7 @@ inline Outcome run_case(const Case& c, const Settings& settings) {
   Outcome o;
   const bool tl = is_tl(c.form);
   PowellImpactOptions po = c.scene;
-  po.scheme = powell_formulation_options(tl ? "sph" : c.form);
+  po.scheme = formulation_options(tl ? "sph" : c.form);
   const Scene<2> scene = powell_impact_scene(po);
   const int a = impact_particle_a(po);
   const auto& disc = scene.scheme->discretisation();
@@ -255,8 +266,8 @@ inline Outcome run_case(const Case& c, const Settings& settings) {
         for (int i = 0; i < disc.size(); ++i) s.p[i] = m.pressure(v.u, i);
       });
       vtk.maybe_write(v.time, [&](const std::string& path) {  // TL: positions, displacement, TL pressure
-        VtkField u{"displacement", 2, Eigen::VectorXd::Zero(2 * disc.size())}, p{"pressure", 1,
-                                                                                Eigen::VectorXd(disc.size())};
+        VtkField u{"displacement", 2, Eigen::VectorXd::Zero(2 * disc.size())},
+            p{"pressure", 1, Eigen::VectorXd(disc.size())};
         for (int i = 0; i < disc.size(); ++i) {
           u.values.segment<2>(2 * i) = x.col(i) - x0.col(i);
           p.values[i] = m.pressure(v.u, i);
@@ -323,17 +334,18 @@ inline std::vector<Outcome> run_cases(const std::vector<Case>& cases, const Sett
   return outcomes;
 }
 
-/// signals.csv, runs.csv, snapshots.csv and order.csv in `out`; returns the number of completed runs.
+/// signals.csv, runs.csv, snapshots.csv and order.csv in `out`, each name preceded by `prefix` (e.g. "sensitivity_");
+/// returns the number of completed runs.
 inline int write_runs(const std::string& out, const std::vector<Case>& cases, const std::vector<Outcome>& outcomes,
-                      const Settings& settings) {
+                      const Settings& settings, const std::string& prefix = "") {
   std::vector<std::string> columns{"formulation", "case", "dx", "t", "kinetic_energy"};
   columns.insert(columns.end(), settings.measures.begin(), settings.measures.end());
-  CsvWriter signals(out + "/signals.csv", columns, false);
-  CsvWriter runs(out + "/runs.csv", {"formulation", "case", "dx", "v0", "particles", "particle_A", "x_A", "y_A", "dt",
-                                     "steps", "status", "t_stop", "cpu_seconds", "message"});
-  CsvWriter snaps(out + "/snapshots.csv",
+  CsvWriter signals(out + "/" + prefix + "signals.csv", columns, false);
+  CsvWriter runs(out + "/" + prefix + "runs.csv", {"formulation", "case", "dx", "v0", "particles", "particle_A", "x_A",
+                                                   "y_A", "dt", "steps", "status", "t_stop", "cpu_seconds", "message"});
+  CsvWriter snaps(out + "/" + prefix + "snapshots.csv",
                   {"formulation", "case", "dx", "t", "particle", "x0", "y0", "x", "y", "pressure"}, false);
-  CsvWriter order(out + "/order.csv",
+  CsvWriter order(out + "/" + prefix + "order.csv",
                   {"formulation", "case", "dx", "t", "clumped_share", "fragments", "largest_fragment_share"});
   int completed = 0;
   for (std::size_t k = 0; k < cases.size(); ++k) {
@@ -359,19 +371,51 @@ inline int write_runs(const std::string& out, const std::vector<Case>& cases, co
 /// verdicts.csv: one row per case and verdict time (reached = 0: the run stopped before it; the rates are then empty).
 inline void write_verdicts(const std::string& out, const std::vector<Case>& cases,
                            const std::vector<Outcome>& outcomes) {
-  CsvWriter w(out + "/verdicts.csv",
-              {"formulation", "case", "dx", "t_wanted", "t", "reached", "class", "semi_discrete_growth", "map_growth",
-               "integrator_excess", "floor", "lambda_max", "resolution", "map_route", "mode_particle", "mode_x",
-               "mode_y", "mode_share", "acceleration_max", "status", "reason"});
+  CsvWriter w(out + "/verdicts.csv", {"formulation",
+                                      "case",
+                                      "dx",
+                                      "t_wanted",
+                                      "t",
+                                      "reached",
+                                      "class",
+                                      "semi_discrete_growth",
+                                      "map_growth",
+                                      "integrator_excess",
+                                      "floor",
+                                      "lambda_max",
+                                      "resolution",
+                                      "map_route",
+                                      "mode_particle",
+                                      "mode_x",
+                                      "mode_y",
+                                      "mode_share",
+                                      "acceleration_max",
+                                      "status",
+                                      "reason"});
   for (std::size_t k = 0; k < cases.size(); ++k)
     for (const VerdictRecord& r : outcomes[k].verdicts) {
       const StabilityVerdict& v = r.verdict;
       const bool ok = r.reached && v.status == Status::Successful;
-      w.row({cases[k].form, cases[k].name, cases[k].scene.spacing, r.wanted, r.reached ? r.t : std::nan(""),
-             r.reached ? 1 : 0, ok ? v.letter() : std::string("-"), v.semi_discrete_growth, v.map_growth,
-             v.integrator_excess, v.floor, v.lambda_max, v.resolution, v.map_route, v.semi_discrete_mode.particle,
-             r.mode_position.x(), r.mode_position.y(), v.semi_discrete_mode.particle_share,
-             r.reached ? r.acceleration_max : std::nan(""), r.reached ? status_name(v.status) : std::string("not-reached"),
+      w.row({cases[k].form,
+             cases[k].name,
+             cases[k].scene.spacing,
+             r.wanted,
+             r.reached ? r.t : std::nan(""),
+             r.reached ? 1 : 0,
+             ok ? v.letter() : std::string("-"),
+             v.semi_discrete_growth,
+             v.map_growth,
+             v.integrator_excess,
+             v.floor,
+             v.lambda_max,
+             v.resolution,
+             v.map_route,
+             v.semi_discrete_mode.particle,
+             r.mode_position.x(),
+             r.mode_position.y(),
+             v.semi_discrete_mode.particle_share,
+             r.reached ? r.acceleration_max : std::nan(""),
+             r.reached ? status_name(v.status) : std::string("not-reached"),
              r.reached ? v.reason : std::string("the run stopped before this time")});
     }
 }

@@ -5,7 +5,8 @@ import math
 
 from claims import approx, check
 
-LABEL = {"sph": "basic SPH", "ncsph": "NCSPH", "ssph": "S-SPH", "tl": "TL-SPH", "tl-svk": "TL-SPH (SVK)"}
+LABEL = {"sph": "basic SPH", "ncsph": "NCSPH", "ssph": "S-SPH", "ssph-g": "S-SPH (means of G)", "tl": "TL-SPH",
+         "tl-svk": "TL-SPH (SVK)"}
 
 
 def completed_counts(r, forms):

@@ -10,10 +10,10 @@ import numpy as np
 
 from plot_common import num, plt, read
 
-LABEL = {"sph": "basic SPH", "ncsph": "NCSPH", "ssph": "S-SPH", "tl": "TL-SPH", "tl-svk": "TL-SPH (SVK)",
-         "fe": "FE", "fe-linear": "FE (linear)", "fe-svk": "FE (SVK)"}
-COLOUR = {"sph": "tab:red", "ncsph": "tab:orange", "ssph": "tab:blue", "tl": "tab:green", "tl-svk": "tab:olive",
-          "fe": "k", "fe-linear": "0.5", "fe-svk": "k"}
+LABEL = {"sph": "basic SPH", "ncsph": "NCSPH", "ssph": "S-SPH", "ssph-g": "S-SPH (means of G)", "tl": "TL-SPH",
+         "tl-svk": "TL-SPH (SVK)", "fe": "FE", "fe-linear": "FE (linear)", "fe-svk": "FE (SVK)"}
+COLOUR = {"sph": "tab:red", "ncsph": "tab:orange", "ssph": "tab:blue", "ssph-g": "tab:purple", "tl": "tab:green",
+          "tl-svk": "tab:olive", "fe": "k", "fe-linear": "0.5", "fe-svk": "k"}
 CLUMP, SHARE, GAP = 0.5, 0.01, 2.0  # thresholds of the statement tables (README.md of each study)
 
 

@@ -8,8 +8,14 @@
 // c_P). The finite-element reference and the errors against it are the post-processing step (plot.py, with
 // ../common/impact_fe.py).
 //
+// Two sensitivities (why S-SPH fails here), run after the study's own cases and written to their own files: S-SPH
+// with the means of G itself instead of the first-step Shepard gradient's (4.18), "ssph-g" (common/impact.hpp), at
+// Powell's load and every resolution (case "load"); and every formulation at half Powell's load, v0 = 0.15 cm/us, at
+// the snapshot resolution (case "half-load").
+//
 // Writes to --out DIR: signals.csv (t, global KE, the deflection of the bottom mid-span particle, pressure and speed
 // there, per run), runs.csv, snapshots.csv (every particle at t = 10 and 20 us at the snapshot resolution),
+// sensitivity_{signals,runs,snapshots,order}.csv (the sensitivities' runs; snapshots at the last snapshot time),
 // summary.json (common/impact.hpp runs and writes the cases). Units g, cm, us (stress in Mbar).
 #include <CLI/CLI.hpp>
 #include <cmath>
@@ -28,9 +34,10 @@ int main(int argc, char** argv) try {
   double snapshot_spacing = 0.02;                                 // the MCM deck's
   double verdict_spacing = 0.1;  // dense eigenvalues: 160 particles, one clamped layer at each end
   const std::vector<std::string> formulations{"sph", "ncsph", "ssph", "tl", "tl-svk"};
-  const double speed = 0.3;  // [§4.3]
-  const double clamp = 0.1;  // cm: five layers at dx = 0.02 [Fig. 4.13]
-  double t_end = 20;         // us
+  const double speed = 0.3;               // [§4.3]
+  const double half_speed = 0.5 * speed;  // the load sensitivity: v0 / c_S about 0.47 instead of 0.93
+  const double clamp = 0.1;               // cm: five layers at dx = 0.02 [Fig. 4.13]
+  double t_end = 20;                      // us
   std::vector<double> snapshot_times{10, 20};
   int threads = 2;
   bool quick = false;
@@ -44,7 +51,7 @@ int main(int argc, char** argv) try {
   app.add_option("--verdict-spacing", verdict_spacing,
                  "dx (cm) of the runs whose states get a stability verdict, dividing the 0.1 cm clamp")
       ->check(CLI::Range(0.02, 0.1));
-  app.add_flag("--quick", quick, "one coarse resolution (dx 0.05), to t = 5 us");
+  app.add_flag("--quick", quick, "one coarse resolution (dx 0.05), to t = 5 us, verdicts at t = 2.5 us only");
   CLI11_PARSE(app, argc, argv);
   if (!std::isfinite(t_end) || !(t_end > 0))  // NaN would mean the scene's default t_end
     throw std::invalid_argument("--t-end must be finite and > 0");
@@ -53,12 +60,12 @@ int main(int argc, char** argv) try {
   settings.vtk_dir = out + "/vtk";
   set_threads(1);  // cases run side by side; each on one thread (CPU seconds are per run)
 
-  const auto make = [&](double dx, const std::string& f) {
+  const auto make = [&](double dx, const std::string& f, double v0 = std::nan(""), const std::string& name = "load") {
     return study::impact::Case{.form = f,
-                               .name = "load",
+                               .name = name,
                                .scene = {.problem = ImpactProblem::Beam,
                                          .spacing = dx,
-                                         .speed = speed,
+                                         .speed = std::isnan(v0) ? speed : v0,
                                          .t_end = t_end,
                                          .clamp_layers = impact_clamp_layers(clamp, dx)}};
   };
@@ -71,11 +78,27 @@ int main(int argc, char** argv) try {
   for (const std::string& f : formulations) {  // the initial state and mid-run
     verdict_cases.push_back(make(verdict_spacing, f));
     verdict_cases.back().verdict_times = {0, 10 <= t_end ? 10 : 0.5 * t_end};
+    if (quick) verdict_cases.back().verdict_times = {0.5 * t_end};  // one dense verdict per formulation, mid-run
+  }
+  // The sensitivities: S-SPH with the means of G at Powell's load (every resolution), and every formulation (with
+  // ssph-g) at half the load at the snapshot resolution; snapshots at the last snapshot time only.
+  std::vector<study::impact::Case> sensitivity_cases;
+  for (double dx : spacings) {
+    sensitivity_cases.push_back(make(dx, "ssph-g"));
+    if (std::abs(dx - snapshot_spacing) < 1e-12) sensitivity_cases.back().snapshot_times = {snapshot_times.back()};
+  }
+  for (const std::string& f : {"sph", "ncsph", "ssph", "ssph-g", "tl", "tl-svk"}) {
+    sensitivity_cases.push_back(make(snapshot_spacing, f, half_speed, "half-load"));
+    sensitivity_cases.back().snapshot_times = {snapshot_times.back()};
   }
   const auto wall0 = study::Clock::now();
   const auto outcomes = study::impact::run_cases(cases, settings, threads);
   const int completed = study::impact::write_runs(out, cases, outcomes, settings);
   study::impact::write_verdicts(out, verdict_cases, study::impact::run_cases(verdict_cases, settings, threads));
+  const auto sensitivity_wall0 = study::Clock::now();
+  const int sensitivity_completed = study::impact::write_runs(
+      out, sensitivity_cases, study::impact::run_cases(sensitivity_cases, settings, threads), settings, "sensitivity_");
+  const double sensitivity_wall = study::seconds_since(sensitivity_wall0);
   const PowellImpactOptions beam = problem_defaults({.problem = ImpactProblem::Beam});
   study::Summary s;
   study::impact::set_run_keys(s, cases.size(), completed, spacings, snapshot_spacing, speed, settings, t_end, quick,
@@ -85,6 +108,10 @@ int main(int argc, char** argv) try {
   s.set("height", beam.height);
   s.set("section", beam.split * beam.length);
   s.set("clamp", clamp);
+  s.set("half_speed", half_speed);
+  s.set("sensitivity_runs", static_cast<long>(sensitivity_cases.size()));
+  s.set("sensitivity_completed", sensitivity_completed);
+  s.set("sensitivity_wall_seconds", sensitivity_wall);
   s.write(out);
   return 0;
 } catch (const std::exception& e) {
