@@ -72,22 +72,22 @@ struct PlateRun {
   Eigen::VectorXd y_end;
 };
 
-RateFormMaterial material_of(const PlateCase& c) {
-  if (std::isnan(c.youngs)) return {.density = 1, .bulk_modulus = 1, .shear_modulus = c.mu};
-  return RateFormMaterial::from_youngs(c.youngs, c.poisson, c.density);
+ElasticMaterial material_of(const PlateCase& c) {
+  if (std::isnan(c.youngs)) return ElasticMaterial::from_bulk_shear(1, c.mu, 1);
+  return ElasticMaterial::from_young_poisson(c.youngs, c.poisson, c.density);
 }
 IsotropicModuli moduli_of(const PlateCase& c) {
-  const RateFormMaterial m = material_of(c);
-  return isotropic_moduli(m.bulk_modulus, m.shear_modulus);
+  const ElasticMaterial m = material_of(c);
+  return isotropic_moduli(m.bulk_modulus(), m.mu());
 }
 double thin_period(const PlateCase& c) {
   const IsotropicModuli m = moduli_of(c);
-  return thin_plate_period(m.youngs, m.poisson, material_of(c).density, c.thickness, c.length);
+  return thin_plate_period(m.youngs, m.poisson, material_of(c).density(), c.thickness, c.length);
 }
 double timoshenko_period(const PlateCase& c) {
   const IsotropicModuli m = moduli_of(c);
-  return timoshenko_cantilever_period(m.youngs / (1 - m.poisson * m.poisson), material_of(c).shear_modulus, 5.0 / 6,
-                                      material_of(c).density, c.thickness, c.length);
+  return timoshenko_cantilever_period(m.youngs / (1 - m.poisson * m.poisson), material_of(c).mu(), 5.0 / 6,
+                                      material_of(c).density(), c.thickness, c.length);
 }
 /// The GMS-unit plate of thickness H and shear modulus mu (for the theory columns).
 PlateCase gms_plate(double H, double mu) {
@@ -450,7 +450,7 @@ int main(int argc, char** argv) {
     PlateCase si = base;
     si.length = 0.2, si.thickness = 0.02, si.across = 10, si.h_factor = 1.3;
     si.youngs = 2e6, si.poisson = 0.3975, si.density = 1000, si.tip_speed = 0.05;
-    si.mu = material_of(si).shear_modulus;
+    si.mu = material_of(si).mu();
     si.periods = 1.0 / thin_period(si);
     si = with_tag(si);
     si_group.push_back(si);
