@@ -77,7 +77,7 @@ struct Scene {
 };
 
 Scene rings_si(PairLoop loop) {
-  const RateFormMaterial m = RateFormMaterial::from_youngs(1e7, 0.3975, 1.0);
+  const ElasticMaterial m = ElasticMaterial::from_young_poisson(1e7, 0.3975, 1.0);
   const double dx = 5e-4;
   const CollidingRings r = make_colliding_rings(
       {.inner_radius = 0.03, .outer_radius = 0.04, .spacing = dx, .gap = 2e-3, .speed = 0.059 * m.sound_speed()});
@@ -91,7 +91,7 @@ Scene rings_si(PairLoop loop) {
 }
 
 Scene lattice(int side, PairLoop loop) {
-  const RateFormMaterial m{.density = 1, .bulk_modulus = 1, .shear_modulus = 0.22};
+  const ElasticMaterial m = ElasticMaterial::from_bulk_shear(1, 0.22, 1);
   Scene s{.name = "Lattice", .dx = 1.0, .steps = side >= 1000 ? 2 : 6};
   s.scheme = std::make_unique<RateFormScheme<2>>(
       make_discretisation(make_lattice<2>(LatticeType::Square, side, {.spacing = 1.0, .periodic = true}),

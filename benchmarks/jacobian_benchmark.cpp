@@ -40,7 +40,8 @@ std::unique_ptr<ForceFunction> make_force(int dim, int n, MomentumForm form) {
   Kernel<2> k(KernelType::CubicSpline);
   auto d =
       make_discretisation(make_lattice<2>(LatticeType::Square, n, {.spacing = 1.0, .support_radius = 2 * h}), k, h);
-  return std::make_unique<ElasticForm2D>(d, ElasticMaterial{}, form, PreStrain::from_area_ratio(1.001));
+  return std::make_unique<ElasticForm2D>(d, ElasticMaterial::from_lame(1.0, 1.0, 1.0), form,
+                                         PreStrain::from_area_ratio(1.001));
 }
 
 /// Mean CPU seconds of one call of f, repeated for at least 0.2 s.

@@ -69,7 +69,7 @@ constexpr double kXi = 1.02;       // volume strain: a pressurised lattice, so t
 constexpr double kTol = 1e-12;     // relative agreement demanded of every route
 constexpr double kPerturb = 1e-2;  // relative size of the random state perturbation
 
-RateFormMaterial steel() { return RateFormMaterial::from_youngs(2.1, 0.3, 7.8); }
+ElasticMaterial steel() { return ElasticMaterial::from_young_poisson(2.1, 0.3, 7.8); }
 
 /// The Gray-Monaghan-Swift configuration of the plate, rings and slab scenes, and their material.
 RateFormOptions gms_options() {
@@ -81,7 +81,7 @@ RateFormOptions gms_options() {
           .artificial_stress = 0.3,
           .artificial_stress_exponent = 4};
 }
-RateFormMaterial gms_material() { return {.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.22}; }
+ElasticMaterial gms_material() { return ElasticMaterial::from_bulk_shear(1.0, 0.22, 1.0); }
 
 /// The routes below implement only the plain subset on an all-free (periodic) set without driven particles.
 void require_subset(const Scheme& s, const char* who) {
@@ -96,8 +96,8 @@ void require_subset(const Scheme& s, const char* who) {
 
 /// sigma = S - p I of the particle whose (rho, Sxx, Syy, Sxy) start at offset ro.
 Mat2 sigma_at(const Scheme& s, const Eigen::VectorXd& y, int ro) {
-  const RateFormMaterial& m = s.material();
-  const double pressure = m.bulk_modulus * (y[ro] / m.density - 1.0);
+  const ElasticMaterial& m = s.material();
+  const double pressure = m.bulk_modulus() * (y[ro] / m.density() - 1.0);
   Mat2 sig;
   sig << y[ro + 1] - pressure, y[ro + 3], y[ro + 3], y[ro + 2] - pressure;
   return sig;
@@ -105,7 +105,7 @@ Mat2 sigma_at(const Scheme& s, const Eigen::VectorXd& y, int ro) {
 
 /// Jaumann rate of the stored deviator (3 x 3 with D_zz = 0, as the library), written at dydt[ro + 1 ..].
 void write_jaumann(const Scheme& s, const Eigen::VectorXd& y, int ro, const Mat2& L, Eigen::VectorXd& dydt) {
-  const double mu = s.material().shear_modulus;
+  const double mu = s.material().mu();
   const Mat2 D = 0.5 * (L + L.transpose()), W = 0.5 * (L - L.transpose());
   Mat2 dev;
   dev << y[ro + 1], y[ro + 3], y[ro + 3], y[ro + 2];
@@ -135,7 +135,7 @@ class FusedPrealloc {
     const ParticleSet<2>& p = d.particles;
     const NeighbourList& nl = d.neighbours;
     const int n = p.size();
-    const double h = d.h, rho0 = m_s.material().density, K = m_s.material().bulk_modulus;
+    const double h = d.h, rho0 = m_s.material().density(), K = m_s.material().bulk_modulus();
     const Eigen::VectorXd& mass = m_s.mass();
     for (int i = 0; i < n; ++i) {
       const int xo = m_s.position_offset(i), ro = m_s.density_offset(i);
@@ -240,7 +240,7 @@ class LibraryBefore {
     const NeighbourList& nl = d.neighbours;
     const Kernel<2>& kernel = d.kernel;
     const int n = p.size();
-    const double h = d.h, rho0 = m_s.material().density, K = m_s.material().bulk_modulus;
+    const double h = d.h, rho0 = m_s.material().density(), K = m_s.material().bulk_modulus();
     const RateFormOptions& o = m_s.options();
     const Eigen::VectorXd& mass = m_s.mass();
     for (int i = 0; i < n; ++i) {
@@ -582,7 +582,7 @@ Eigen::VectorXd perturbed_state(const Scheme& s, unsigned seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-kPerturb, kPerturb);
   const double dx = s.discretisation().particles.spacing, c0 = s.material().sound_speed(),
-               K = s.material().bulk_modulus;
+               K = s.material().bulk_modulus();
   for (int i = 0; i < s.discretisation().size(); ++i) {
     for (int a = 0; a < 2; ++a) y[s.position_offset(i) + a] += u(rng) * dx;
     for (int a = 0; a < 2; ++a) y[s.velocity_offset(i) + a] = u(rng) * c0;
@@ -613,7 +613,7 @@ struct Checks {
 Checks check_routes(const std::shared_ptr<const Discretisation<2>>& disc, unsigned seed) {
   Checks c;
   for (ContinuityForm form : {ContinuityForm::Summation, ContinuityForm::Divergence}) {
-    const Scheme s(disc, steel(), {.continuity = form}, steel().density / kXi);
+    const Scheme s(disc, steel(), {.continuity = form}, steel().density() / kXi);
     const Eigen::VectorXd y = perturbed_state(s, seed);
     Eigen::VectorXd ref, f = Eigen::VectorXd::Zero(s.size());
     s.rate(y, ref);
@@ -637,7 +637,7 @@ Checks check_routes(const std::shared_ptr<const Discretisation<2>>& disc, unsign
     c.compared += ref.size();
     RateFormOptions go = gms_options();
     go.continuity = form;
-    const Scheme g(disc, gms_material(), go, gms_material().density / kXi);
+    const Scheme g(disc, gms_material(), go, gms_material().density() / kXi);
     const Eigen::VectorXd yg = perturbed_state(g, seed + 1);
     g.rate(yg, ref);
     LibraryBefore(g).rate(yg, f);
@@ -722,7 +722,7 @@ Problem& problem(int side, double h_over_dx) {
   P->side = side;
   P->h_over_dx = h_over_dx;
   P->disc = lattice(side, h_over_dx);
-  P->scheme = std::make_unique<Scheme>(P->disc, steel(), RateFormOptions{}, steel().density / kXi);
+  P->scheme = std::make_unique<Scheme>(P->disc, steel(), RateFormOptions{}, steel().density() / kXi);
   P->y = perturbed_state(*P->scheme, 7);
   P->checks = check_routes(P->disc, 7);
   g_problem = std::move(P);
@@ -837,7 +837,7 @@ void bm_route(benchmark::State& state, int side, double h_over_dx, Route r) {
     return;
   }
   if (gms_route(r) && !P.gms) {
-    P.gms = std::make_unique<Scheme>(P.disc, gms_material(), gms_options(), gms_material().density / kXi);
+    P.gms = std::make_unique<Scheme>(P.disc, gms_material(), gms_options(), gms_material().density() / kXi);
     P.y_gms = perturbed_state(*P.gms, 7);
   }
   Eigen::VectorXd dydt = Eigen::VectorXd::Zero(s.size());
@@ -939,8 +939,8 @@ int self_check() {
     }
   {  // the measure must see a real difference: the two continuity forms on one state
     const auto disc = lattice(12, 1.3);
-    const Scheme a(disc, steel(), {.continuity = ContinuityForm::Summation}, steel().density / kXi);
-    const Scheme b(disc, steel(), {.continuity = ContinuityForm::Divergence}, steel().density / kXi);
+    const Scheme a(disc, steel(), {.continuity = ContinuityForm::Summation}, steel().density() / kXi);
+    const Scheme b(disc, steel(), {.continuity = ContinuityForm::Divergence}, steel().density() / kXi);
     const Eigen::VectorXd y = perturbed_state(a, 5);
     Eigen::VectorXd fa, fb;
     a.rate(y, fa);

@@ -60,7 +60,7 @@ Problem& problem(int side) {
   lo.periodic = true;
   P->particles = make_lattice<2>(LatticeType::Square, side, lo);
   Kernel<2> k(KernelType::CubicSpline);
-  LinearElasticOptions o{.density = kRho, .lame_lambda = kLambda, .shear_modulus = kMu};
+  LinearElasticOptions o{.material = ElasticMaterial::from_lame(kLambda, kMu, kRho)};
   auto t0 = std::chrono::steady_clock::now();
   P->tl = std::make_unique<LinearElasticSph<2>>(P->particles, k, P->h, o);
   auto t1 = std::chrono::steady_clock::now();

@@ -14,7 +14,8 @@
 namespace bench {
 
 constexpr double kH = 1.3;
-const sphstab::ElasticMaterial kMaterial{.lambda = 1.2115384615384615, .mu = 0.8076923076923077, .rho = 7.8};
+const sphstab::ElasticMaterial kMaterial =
+    sphstab::ElasticMaterial::from_lame(1.2115384615384615, 0.8076923076923077, 7.8);
 
 inline double peak_rss_mb() {
   rusage u{};

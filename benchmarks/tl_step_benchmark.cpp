@@ -51,7 +51,7 @@ namespace {
 using namespace sphstab;
 
 constexpr double kHOverDx = 1.3, kRho = 7.8;
-const LameParameters kLame{.lambda = 1.21154, .mu = 0.80769};
+const ElasticMaterial kLame = ElasticMaterial::from_lame(1.21154, 0.80769, kRho);
 
 double peak_rss_mb() {
   rusage u{};
@@ -102,7 +102,7 @@ Scene& scene(int side, const Variant& v) {
   FiniteStrainOptions<2> options;
   if (v.ncsph) options.gradient = make_gradient_provider<2>(Correction::Ncsph);
   s->tl = std::make_unique<FiniteStrainTotalLagrangian<2>>(disc, material, kRho, options);
-  const double cp = std::sqrt((kLame.lambda + 2 * kLame.mu) / kRho);
+  const double cp = std::sqrt((kLame.lambda() + 2 * kLame.mu()) / kRho);
   s->dt = 0.3 * h / cp;
   std::mt19937_64 rng(static_cast<std::uint64_t>(side));
   std::uniform_real_distribution<double> un(-1, 1);

@@ -32,7 +32,7 @@ py::tuple elastic_linearisation(int dim, int n, const std::string& kernel_name, 
   } else if (dim == 2) {
     const LatticeType type = parse_lattice_type(lattice);
     const PreStrainKind kind = parse_prestrain_kind(prestrain);
-    const ElasticMaterial material{.lambda = lambda, .mu = mu, .rho = 1.0};
+    const ElasticMaterial material = ElasticMaterial::from_lame(lambda, mu, 1.0);
     material.validate("elastic_linearisation");
     const Kernel<2> kernel(kt);
     py::gil_scoped_release release;
@@ -62,7 +62,7 @@ std::vector<StrainCase> sweep(const std::string& lattice, int n, bool periodic, 
   if (n < 1) throw std::invalid_argument("--n must be > 0 (got " + std::to_string(n) + ")");
   s.base.n = n;
   s.base.periodic = periodic;
-  s.base.material = {.lambda = lambda, .mu = mu, .rho = 1.0};
+  s.base.material = ElasticMaterial::from_lame(lambda, mu, 1.0);
   s.base.material.validate("critical_strain");
   s.base.prestrain = parse_prestrain_kind(prestrain);
   s.kernels.clear();

@@ -114,9 +114,10 @@ void bind_scenes(py::module_& m) {
       .def_property_readonly("scheme_options", [](const Scene2& s) { return s.scheme->options(); })
       .def_property_readonly("material",
                              [](const Scene2& s) {
-                               const RateFormMaterial& mat = s.scheme->material();
-                               return py::dict(py::arg("rho0") = mat.density, py::arg("bulk_modulus") = mat.bulk_modulus,
-                                               py::arg("shear_modulus") = mat.shear_modulus);
+                               const ElasticMaterial& mat = s.scheme->material();
+                               return py::dict(py::arg("rho0") = mat.density(),
+                                               py::arg("bulk_modulus") = mat.bulk_modulus(),
+                                               py::arg("shear_modulus") = mat.mu());
                              })
       .def_property_readonly("measures",
                              [](const Scene2& s) {
@@ -165,7 +166,8 @@ void bind_scenes(py::module_& m) {
          double eps) {
         GmsSceneOptions o;
         o.scheme = gms_scheme_options(eps);
-        o.material.shear_modulus = 0.3;  // GMS §7.3 (as `sphstab scene slab`)
+        // GMS §7.3 (as `sphstab scene slab`): mu = 0.3, K and rho0 kept.
+        o.material = ElasticMaterial::from_bulk_shear(o.material.bulk_modulus(), 0.3, o.material.density());
         return gms_slab_scene({.length = length, .width = width, .spacing = spacing, .end_zone = end_zone,
                                .acceleration = acceleration},
                               yield_stress, o);

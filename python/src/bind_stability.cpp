@@ -73,7 +73,7 @@ StateStability state_stability_of(const Eigen::MatrixXd& x, const Eigen::VectorX
 /// J = dF/dy of the rate-form scheme built at the state (coloured complex step, as `sphstab jacobian rate-form`),
 /// with the state's layout: per particle the offsets of x, v, rho and S in y (-1 where it carries none).
 template <int Dim>
-py::tuple jacobian_at(const ParticleState<Dim>& s, const std::string& kernel, const RateFormMaterial& material,
+py::tuple jacobian_at(const ParticleState<Dim>& s, const std::string& kernel, const ElasticMaterial& material,
                       const RateFormOptions& options) {
   RateFormAtState<Dim> at;
   SparseMatrix<> J;
@@ -98,7 +98,7 @@ py::tuple jacobian_at(const ParticleState<Dim>& s, const std::string& kernel, co
 /// eigenvalues of Jhat(k).
 template <int Dim>
 py::dict dispersion(const std::string& lattice, int n, const std::string& kernel_name, double h_over_dx, double dx,
-                    double xi, const RateFormMaterial& material, const RateFormOptions& options,
+                    double xi, const ElasticMaterial& material, const RateFormOptions& options,
                     const Eigen::MatrixXd& k) {
   if (k.cols() != Dim)
     throw std::invalid_argument("rate_form_dispersion: k must have " + std::to_string(Dim) + " columns (got " +
@@ -114,7 +114,7 @@ py::dict dispersion(const std::string& lattice, int n, const std::string& kernel
     py::gil_scoped_release release;
     const ParticleSet<Dim> set = make_lattice<Dim>(
         parse_lattice_type(lattice), n, {.spacing = dx, .support_radius = kernel.support_radius(h), .periodic = true});
-    const RateFormScheme<Dim> scheme(make_discretisation(set, kernel, h), material, options, material.density / xi);
+    const RateFormScheme<Dim> scheme(make_discretisation(set, kernel, h), material, options, material.density() / xi);
     const RateFormSymbol<Dim> symbol = rate_form_symbol(scheme, scheme.uniform_state());
     for (Eigen::Index q = 0; q < k.rows(); ++q) {
       const RateFormDispersion d = rate_form_dispersion(symbol, Eigen::Matrix<double, Dim, 1>(k.row(q).transpose()));
@@ -256,7 +256,7 @@ void bind_stability(py::module_& m) {
          const std::string& lattice) {
         StateStabilityOptions o;
         o.kernel = parse_kernel_type(kernel);
-        o.material = {.density = rho0, .bulk_modulus = bulk_modulus, .shear_modulus = shear_modulus};
+        o.material = ElasticMaterial::from_bulk_shear(bulk_modulus, shear_modulus, rho0);
         o.scheme = scheme;
         select_rate_form_integrator(o.run, integrator);
         o.run.leapfrog_xsph = leapfrog_xsph;
@@ -279,7 +279,7 @@ void bind_stability(py::module_& m) {
          const Eigen::MatrixXd& v, const Eigen::MatrixXd& deviator, const std::vector<bool>& fixed, double spacing,
          const std::string& kernel, double rho0, double bulk_modulus, double shear_modulus,
          const RateFormOptions& scheme) {
-        const RateFormMaterial material{.density = rho0, .bulk_modulus = bulk_modulus, .shear_modulus = shear_modulus};
+        const ElasticMaterial material = ElasticMaterial::from_bulk_shear(bulk_modulus, shear_modulus, rho0);
         if (x.cols() == 1)
           return jacobian_at<1>(make_state<1>(x, density, mass, h, v, deviator, fixed, spacing), kernel, material,
                                 scheme);
@@ -297,7 +297,7 @@ void bind_stability(py::module_& m) {
       [](const std::string& lattice, int n, const std::string& kernel, double h_over_dx, double dx, double xi,
          double rho0, double bulk_modulus, double shear_modulus, const RateFormOptions& scheme,
          const Eigen::MatrixXd& k) {
-        const RateFormMaterial material{.density = rho0, .bulk_modulus = bulk_modulus, .shear_modulus = shear_modulus};
+        const ElasticMaterial material = ElasticMaterial::from_bulk_shear(bulk_modulus, shear_modulus, rho0);
         if (parse_lattice_type(lattice) == LatticeType::Line)
           return dispersion<1>(lattice, n, kernel, h_over_dx, dx, xi, material, scheme, k);
         return dispersion<2>(lattice, n, kernel, h_over_dx, dx, xi, material, scheme, k);
@@ -331,8 +331,8 @@ void bind_stability(py::module_& m) {
   m.def(
       "material_from_youngs",
       [](double youngs, double poisson, double density) {
-        const RateFormMaterial mat = RateFormMaterial::from_youngs(youngs, poisson, density);
-        return py::make_tuple(mat.density, mat.bulk_modulus, mat.shear_modulus);
+        const ElasticMaterial mat = ElasticMaterial::from_young_poisson(youngs, poisson, density);
+        return py::make_tuple(mat.density(), mat.bulk_modulus(), mat.mu());
       },
       py::arg("youngs"), py::arg("poisson"), py::arg("density"),
       "(rho0, K, mu) of Young's modulus E, Poisson's ratio nu and rho0 (3D moduli).");

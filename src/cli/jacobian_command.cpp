@@ -77,9 +77,8 @@ void run_elastic(const ElasticArgs& a) {
   } else {
     const LatticeType type = parse_lattice_type(a.lattice);
     const PreStrainKind kind = parse_prestrain_kind(a.prestrain);
-    const ElasticMaterial material{.lambda = parse_double(a.lambda, "jacobian elastic: --lambda"),
-                                   .mu = parse_double(a.mu, "jacobian elastic: --mu"),
-                                   .rho = 1.0};
+    const ElasticMaterial material = ElasticMaterial::from_lame(parse_double(a.lambda, "jacobian elastic: --lambda"),
+                                                                parse_double(a.mu, "jacobian elastic: --mu"), 1.0);
     material.validate("jacobian elastic");
     const Kernel<2> kernel(kt);
     const double support = kernel.support_radius(h), side = n + 2 * std::floor(support + 2);
@@ -111,7 +110,7 @@ void run_elastic(const ElasticArgs& a) {
 template <int Dim>
 void export_rate_form(const RateFormSetup& s, const std::filesystem::path& dir, const std::string& out) {
   const auto disc = rate_form_block_discretisation<Dim>(block_options(s, s.kernels.front(), s.h_over_dx.front()));
-  const RateFormScheme<Dim> scheme(disc, s.material, s.options, s.material.density / s.xi.front());
+  const RateFormScheme<Dim> scheme(disc, s.material, s.options, s.material.density() / s.xi.front());
   const Eigen::VectorXd y = scheme.uniform_state();
   const SparseMatrix<> J = jacobian(scheme, y);
   write_matrix_market((dir / "J.mtx").string(), J,

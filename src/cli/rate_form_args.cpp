@@ -103,9 +103,9 @@ RateFormSetup parse_rate_form_args(const RateFormArgs& a, const std::string& com
   for (double h : s.h_over_dx) check_length(h * s.dx, c + "--h x --dx");
   for (double xi : s.xi)
     if (!(xi > 0)) throw std::invalid_argument(c + "--xi must be > 0 (got " + format_number(xi, 10) + ")");
-  s.material =
-      RateFormMaterial::from_youngs(parse_double(a.youngs, c + "--youngs"), parse_double(a.poisson, c + "--poisson"),
-                                    parse_double(a.density, c + "--density"));
+  s.material = ElasticMaterial::from_young_poisson(parse_double(a.youngs, c + "--youngs"),
+                                                   parse_double(a.poisson, c + "--poisson"),
+                                                   parse_double(a.density, c + "--density"));
   RateFormOptions& o = s.options;
   o.continuity = parse_continuity_form(a.continuity);
   o.xsph = parse_double(a.xsph, c + "--xsph");

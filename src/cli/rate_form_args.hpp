@@ -48,7 +48,7 @@ struct RateFormSetup {
   std::vector<KernelType> kernels;
   std::vector<double> h_over_dx, xi;
   double dx = 0;
-  RateFormMaterial material;
+  ElasticMaterial material = ElasticMaterial::from_bulk_shear(1.0, 0.0, 1.0);
   RateFormOptions options;
 };
 

@@ -194,7 +194,7 @@ class Snapshots {
       }
       const int ro = m_s.density_offset(i);
       rho[i] = ro >= 0 ? y[ro] : m_s.initial_density();
-      p[i] = m_s.material().bulk_modulus * (rho[i] / m_s.material().density - 1);
+      p[i] = m_s.material().bulk_modulus() * (rho[i] / m_s.material().density() - 1);
       if (ro >= 0) {
         S.template segment<ks>(ks * i) = y.template segment<ks>(ro + 1);
         vm[i] = von_mises_stress<Dim>(y.template segment<ks>(ro + 1));

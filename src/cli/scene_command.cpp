@@ -101,7 +101,7 @@ Scene<2> make_scene(const SceneArgs& a) {
     const double nu = checked(a.nu, "--nu (Poisson's ratio)", -1, true, 0.5, true);
     mu = 3 * (1 - 2 * nu) / (2 * (1 + nu));
   }
-  GmsSceneOptions o{.material = {.density = 1, .bulk_modulus = 1, .shear_modulus = mu},
+  GmsSceneOptions o{.material = ElasticMaterial::from_bulk_shear(1, mu, 1),
                     .scheme = gms_scheme_options(checked(a.eps, "--eps (artificial stress)", 0, false, kInf, true))};
   // GMS's scheme (plain gradient, symmetric momentum) takes the pair loop: auto is pairs (issue 35).
   o.scheme.pair_loop = a.pair_loop == "auto" ? PairLoop::Pairs : parse_pair_loop(a.pair_loop);

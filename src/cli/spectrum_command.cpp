@@ -34,7 +34,7 @@ std::string num(double v) { return format_number(v, 10); }
 
 template <int Dim>
 void run(const RateFormSetup& setup, const VerdictSetup& verdict) {
-  const RateFormMaterial& material = setup.material;
+  const ElasticMaterial& material = setup.material;
   std::string out =
       "dim,lattice,N,periodic,kernel,h_over_dx,xi,density,pressure,states,reduced,growth_rate,lambda_imag,"
       "mode_kx_over_pi,mode_ky_over_pi,equilibrium_residual,status,reason";
@@ -47,7 +47,7 @@ void run(const RateFormSetup& setup, const VerdictSetup& verdict) {
     for (double h : setup.h_over_dx) {
       const auto disc = rate_form_block_discretisation<Dim>(block_options(setup, kt, h));
       for (double xi : setup.xi) {
-        const double rho = material.density / xi;
+        const double rho = material.density() / xi;
         const RateFormScheme<Dim> scheme(disc, material, setup.options, rho);
         const Eigen::VectorXd y = scheme.uniform_state();
         Eigen::VectorXd f;
@@ -76,7 +76,7 @@ void run(const RateFormSetup& setup, const VerdictSetup& verdict) {
                                      num(h),
                                      num(xi),
                                      num(rho),
-                                     num(material.bulk_modulus * (rho / material.density - 1)),
+                                     num(material.bulk_modulus() * (rho / material.density() - 1)),
                                      std::to_string(s.states),
                                      std::to_string(s.reduced),
                                      num(s.growth_rate),

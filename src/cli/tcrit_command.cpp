@@ -113,7 +113,7 @@ class SweepProgress {
 /// and h values, validated in this order.
 struct ElasticSweep {
   PreStrainKind kind;
-  ElasticMaterial material;
+  ElasticMaterial material = ElasticMaterial::from_lame(1.0, 1.0, 1.0);
   std::vector<KernelType> kernels;
   std::vector<MomentumForm> forms;
   std::vector<double> hs;
@@ -122,8 +122,8 @@ struct ElasticSweep {
 ElasticSweep parse_elastic_sweep(const TcritArgs& a) {
   ElasticSweep sw;
   sw.kind = parse_prestrain_kind(a.prestrain);
-  sw.material = {
-      .lambda = parse_double(a.lambda, "tcrit: --lambda"), .mu = parse_double(a.mu, "tcrit: --mu"), .rho = 1.0};
+  sw.material =
+      ElasticMaterial::from_lame(parse_double(a.lambda, "tcrit: --lambda"), parse_double(a.mu, "tcrit: --mu"), 1.0);
   sw.material.validate("tcrit");
   for (const auto& k : split_list(a.kernel, ',', "tcrit: --kernel")) sw.kernels.push_back(parse_kernel_type(k));
   for (const auto& f : split_list(a.form, ',', "tcrit: --form")) sw.forms.push_back(parse_momentum_form(f));

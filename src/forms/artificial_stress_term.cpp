@@ -29,7 +29,7 @@ std::string ArtificialStressTerm::name() const {
 template <class Scalar>
 void ArtificialStressTerm::add_impl(const ElasticTermContext<Scalar>& c, ParticleAccelerations<Scalar>& acc) const {
   const Discretisation<2>& d = *m_disc;
-  const double rho = c.material.rho;
+  const double rho = c.material.density();
   const Eigen::Matrix<Scalar, Eigen::Dynamic, 1> density =
       Eigen::Matrix<Scalar, Eigen::Dynamic, 1>::Constant(d.size(), Scalar(rho));
   const TensorField2<Scalar> R =

@@ -26,16 +26,6 @@ constexpr NamedValue<PreStrainKind> kPreStrainNames[] = {{PreStrainKind::Isotrop
 PreStrainKind parse_prestrain_kind(const std::string& name) { return parse_named(name, kPreStrainNames, "pre-strain"); }
 std::string prestrain_kind_name(PreStrainKind kind) { return name_of(kind, kPreStrainNames); }
 
-void ElasticMaterial::validate(const char* who) const {
-  if (!std::isfinite(lambda) || !std::isfinite(mu) || !std::isfinite(rho) || !(mu > 0) || !(rho > 0) ||
-      !(lambda + mu > 0)) {
-    std::ostringstream s;
-    s << who << ": material needs finite mu > 0, rho > 0 and lambda + mu > 0 (got lambda = " << lambda
-      << ", mu = " << mu << ", rho = " << rho << ")";
-    throw std::invalid_argument(s.str());
-  }
-}
-
 PreStrain PreStrain::from_area_ratio(double xi) {
   if (!(xi > 0) || !std::isfinite(xi))
     throw std::invalid_argument("PreStrain::from_area_ratio: area ratio V/V0 must be finite and > 0 (got " +
@@ -46,10 +36,10 @@ PreStrain PreStrain::from_area_ratio(double xi) {
 Eigen::Matrix2d PreStrain::stress(const ElasticMaterial& m) const {
   Eigen::Matrix2d s = Eigen::Matrix2d::Zero();
   if (kind == PreStrainKind::Isotropic) {
-    s.diagonal().setConstant(2.0 * (m.lambda + m.mu) * strain);
+    s.diagonal().setConstant(2.0 * (m.lambda() + m.mu()) * strain);
   } else {
-    s.diagonal().setConstant(m.lambda * strain);
-    s(0, 0) += 2.0 * m.mu * strain;
+    s.diagonal().setConstant(m.lambda() * strain);
+    s(0, 0) += 2.0 * m.mu() * strain;
   }
   return s;
 }
@@ -124,7 +114,7 @@ void ElasticForm2D::set_terms(std::vector<std::shared_ptr<const ElasticTerm2D>> 
 Eigen::VectorXd ElasticForm2D::dof_mass() const {
   Eigen::VectorXd m(dofs());
   for (int f = 0; f < m_disc->free_count(); ++f)
-    m[2 * f] = m[2 * f + 1] = m_material.rho * m_disc->particles.volume[m_disc->free[f]];
+    m[2 * f] = m[2 * f + 1] = m_material.density() * m_disc->particles.volume[m_disc->free[f]];
   return m;
 }
 
@@ -184,9 +174,9 @@ Eigen::Matrix<Scalar, 1, 3> stress_of(const Eigen::Matrix<Scalar, 1, 4>& D, cons
   const Scalar exx = D[0], eyy = D[3], exy = 0.5 * (D[1] + D[2]);
   const Scalar tr = exx + eyy;
   Eigen::Matrix<Scalar, 1, 3> s;
-  s[0] = m.lambda * tr + 2.0 * m.mu * exx + s0(0, 0);
-  s[1] = m.lambda * tr + 2.0 * m.mu * eyy + s0(1, 1);
-  s[2] = 2.0 * m.mu * exy + s0(0, 1);
+  s[0] = m.lambda() * tr + 2.0 * m.mu() * exx + s0(0, 0);
+  s[1] = m.lambda() * tr + 2.0 * m.mu() * eyy + s0(1, 1);
+  s[2] = 2.0 * m.mu() * exy + s0(0, 1);
   return s;
 }
 }  // namespace
@@ -206,7 +196,7 @@ void ElasticForm2D::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u,
   Eigen::Matrix<Scalar, Eigen::Dynamic, 3> sig(d.size(), 3);
   for (int i = 0; i < d.size(); ++i)
     sig.row(i) = stress_of<Scalar>(Eigen::Matrix<Scalar, 1, 4>(grad.row(i)), m_material, s0);
-  const double inv_rho = 1.0 / m_material.rho;
+  const double inv_rho = 1.0 / m_material.density();
   a.resize(d.dofs());
 
   if (cons) {
@@ -282,7 +272,7 @@ Scalar ElasticForm2D::energy(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& u) 
   Operators<2, Scalar> ops;
   strain_state(u, uall, grad, ops, false);
   const Eigen::Matrix2d s0 = m_prestrain.stress(m_material);
-  const double lam = m_material.lambda, mu = m_material.mu;
+  const double lam = m_material.lambda(), mu = m_material.mu();
   Scalar e(0);
   for (int i = 0; i < m_disc->size(); ++i) {
     const Scalar exx = grad(i, 0), eyy = grad(i, 3), exy = 0.5 * (grad(i, 1) + grad(i, 2));

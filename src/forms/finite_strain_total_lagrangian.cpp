@@ -45,7 +45,7 @@ FiniteStrainTotalLagrangian<Dim>::FiniteStrainTotalLagrangian(std::shared_ptr<co
   m_K = m_plain_strain ? m_G : std::make_shared<const std::array<SparseMatrix<>, Dim>>(std::move(K));
 
   // Hourglass control [Ganzenmueller2015]: the pair coefficients, once at the reference positions.
-  m_hg = HourglassControl<Dim>(d, m_options.hourglass > 0 ? m_material->lame().young() : 0.0, m_rho,
+  m_hg = HourglassControl<Dim>(d, m_options.hourglass > 0 ? m_material->material().young() : 0.0, m_rho,
                                {.coefficient = m_options.hourglass, .projection = m_options.hourglass_projection},
                                kFiniteStrainWho);
 }

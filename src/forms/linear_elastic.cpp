@@ -33,9 +33,7 @@ LinearElasticSph<Dim>::LinearElasticSph(const ParticleSet<Dim>& particles, const
   m_p.validate("LinearElasticSph");
   if (!(h > 0) || !std::isfinite(h))
     throw std::invalid_argument("LinearElasticSph: h must be finite and > 0 (got " + format_number(h) + ")");
-  if (!(opt.density > 0) || !(opt.shear_modulus > 0) || !std::isfinite(opt.lame_lambda) ||
-      !(opt.lame_lambda + 2.0 * opt.shear_modulus / Dim > 0))
-    throw std::invalid_argument("LinearElasticSph: need density > 0, shear modulus > 0 and a positive bulk modulus");
+  opt.material.validate("LinearElasticSph");
   if (opt.gradient == StrainGradient::Corrected || opt.divergence == StressDivergence::Adjoint)
     throw std::invalid_argument("LinearElasticSph: only Plain/Minus gradients and Plain/Plus/Minus divergences");
   if (!(opt.skin >= 0)) throw std::invalid_argument("LinearElasticSph: skin must be >= 0");
@@ -102,7 +100,7 @@ void LinearElasticSph<Dim>::build_tl() {
 
 template <int Dim>
 double LinearElasticSph<Dim>::p_wave_speed() const {
-  return std::sqrt((m_opt.lame_lambda + 2.0 * m_opt.shear_modulus) / m_opt.density);
+  return std::sqrt((m_opt.material.lambda() + 2.0 * m_opt.material.mu()) / m_opt.material.density());
 }
 
 template <int Dim>
@@ -147,7 +145,7 @@ void LinearElasticSph<Dim>::gradient_pass(const int* outer, const int* inner, co
 template <int Dim>
 void LinearElasticSph<Dim>::stress_from_gradients(int N) const {
   constexpr int S = stress_components(Dim);
-  const double lam = m_opt.lame_lambda, mu = m_opt.shear_modulus;
+  const double lam = m_opt.material.lambda(), mu = m_opt.material.mu();
 #pragma omp parallel for schedule(static) num_threads(threads_for(N))
   for (int i = 0; i < N; ++i) {
     const double* g = m_grad.data() + static_cast<long>(i) * Dim * Dim;  // g[a*Dim+b] = ∂_a u_b
@@ -169,7 +167,7 @@ void LinearElasticSph<Dim>::divergence_pass(const int* outer, const int* inner,
                                             Eigen::VectorXd& a_out) const {
   constexpr int S = stress_components(Dim);
   const double* sig = m_sig.data();
-  const double inv_rho = 1.0 / m_opt.density;
+  const double inv_rho = 1.0 / m_opt.material.density();
 #pragma omp parallel for schedule(static) num_threads(threads_for(rows))
   for (int i = 0; i < rows; ++i) {
     double acc[Dim] = {};
@@ -352,7 +350,7 @@ void LinearElasticSph<Dim>::acceleration_pair_loop(const Eigen::VectorXd& u, Eig
   }
   stress_from_gradients(N);
   // Pass 2: divergence at the free particles.
-  const double inv_rho = 1.0 / m_opt.density;
+  const double inv_rho = 1.0 / m_opt.material.density();
 #pragma omp parallel for schedule(static) num_threads(threads_for(m_nfree))
   for (int i = 0; i < m_nfree; ++i) {
     double acc[Dim] = {};
@@ -407,7 +405,7 @@ SecondOrderSystem LinearElasticSph<Dim>::system(bool pair_loop) const {
     s.acceleration = [this](const Eigen::VectorXd& u, Eigen::VectorXd& a) { acceleration(u, a); };
   s.strain_energy = [this](const Eigen::VectorXd& u) { return strain_energy(u); };
   s.dofs_per_particle = Dim;
-  s.mass = m_opt.density * m_p.volume.head(m_nfree);
+  s.mass = m_opt.material.density() * m_p.volume.head(m_nfree);
   s.reference_positions.resize(static_cast<long>(m_nfree) * Dim);
   for (int i = 0; i < m_nfree; ++i)
     for (int b = 0; b < Dim; ++b) s.reference_positions[static_cast<long>(i) * Dim + b] = m_p.x(i, b);

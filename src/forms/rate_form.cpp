@@ -1,4 +1,4 @@
-// RateFormScheme<Dim> (forms/rate_form.hpp): the material, the option parsers and the scheme's set-up members for
+// RateFormScheme<Dim> (forms/rate_form.hpp): the option parsers and the scheme's set-up members for
 // Dim = 1 and 2. The rates themselves (evaluate, absorb, rate) are in rate_form/evaluate.hpp, instantiated by
 // rate_form_rate_*.cpp, one dimension and scalar per translation unit so that they compile side by side.
 #include "sphstab/forms/rate_form.hpp"
@@ -16,31 +16,6 @@
 #include "sphstab/core/named_values.hpp"
 
 namespace sphstab {
-
-RateFormMaterial RateFormMaterial::from_youngs(double youngs_modulus, double poisson_ratio, double density) {
-  if (!(youngs_modulus > 0) || !std::isfinite(youngs_modulus))
-    throw std::invalid_argument("RateFormMaterial: Young's modulus must be finite and > 0 (got " +
-                                format_number(youngs_modulus) + ")");
-  if (!(poisson_ratio > -1 && poisson_ratio < 0.5))
-    throw std::invalid_argument("RateFormMaterial: Poisson's ratio must lie in (-1, 1/2) (got " +
-                                format_number(poisson_ratio) + ")");
-  RateFormMaterial m{.density = density,
-                     .bulk_modulus = youngs_modulus / (3 * (1 - 2 * poisson_ratio)),
-                     .shear_modulus = youngs_modulus / (2 * (1 + poisson_ratio))};
-  m.validate("RateFormMaterial");
-  return m;
-}
-
-double RateFormMaterial::sound_speed() const { return std::sqrt(bulk_modulus / density); }
-double RateFormMaterial::p_wave_speed() const { return std::sqrt((bulk_modulus + 4 * shear_modulus / 3) / density); }
-
-void RateFormMaterial::validate(const char* who) const {
-  const auto ok = [](double v, bool strict) { return std::isfinite(v) && (strict ? v > 0 : v >= 0); };
-  if (!ok(density, true) || !ok(bulk_modulus, true) || !ok(shear_modulus, false))
-    throw std::invalid_argument(std::string(who) + ": need density > 0, bulk modulus > 0, shear modulus >= 0 (got " +
-                                format_number(density) + ", " + format_number(bulk_modulus) + ", " +
-                                format_number(shear_modulus) + ")");
-}
 
 constexpr NamedValue<ContinuityForm> kContinuityNames[] = {{ContinuityForm::Summation, "summation"},
                                                            {ContinuityForm::Divergence, "divergence"}};
@@ -71,13 +46,13 @@ PairLoop parse_pair_loop(const std::string& name) { return parse_named(name, kPa
 using rate_form_detail::uses_local_means;
 
 template <int Dim>
-RateFormScheme<Dim>::RateFormScheme(std::shared_ptr<const Discretisation<Dim>> disc, const RateFormMaterial& material,
+RateFormScheme<Dim>::RateFormScheme(std::shared_ptr<const Discretisation<Dim>> disc, const ElasticMaterial& material,
                                     const RateFormOptions& options, double density, const Eigen::VectorXd& deviator)
     : m_disc(std::move(disc)), m_material(material), m_options(options) {
   const char* who = "RateFormScheme";
   if (!m_disc) throw std::invalid_argument("RateFormScheme: null discretisation");
-  m_material.validate(who);
-  m_density = std::isnan(density) ? material.density : density;
+  m_material.validate(who, ShearModulusRule::NonNegative);  // mu = 0: a fluid (the EOS alone)
+  m_density = std::isnan(density) ? material.density() : density;
   if (!(m_density > 0) || !std::isfinite(m_density))
     throw std::invalid_argument("RateFormScheme: density must be finite and > 0 (got " + format_number(m_density) +
                                 ")");
@@ -369,8 +344,8 @@ Eigen::VectorXd RateFormScheme<Dim>::variable_scale() const {
       s.segment(m_x_off[i] + Dim, Dim).setConstant(m_material.p_wave_speed());
     }
     if (m_rho_off[i] >= 0) {
-      s[m_rho_off[i]] = m_material.density;
-      s.segment(m_rho_off[i] + 1, kStress).setConstant(m_material.bulk_modulus);
+      s[m_rho_off[i]] = m_material.density();
+      s.segment(m_rho_off[i] + 1, kStress).setConstant(m_material.bulk_modulus());
     }
   }
   return s;

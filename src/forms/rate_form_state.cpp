@@ -63,12 +63,12 @@ template <int Dim>
 std::vector<Eigen::Matrix<double, Dim, Dim>> rate_form_stresses(const RateFormScheme<Dim>& s,
                                                                 const Eigen::VectorXd& y) {
   check_size(s, y, "rate_form_stresses");
-  const RateFormMaterial& m = s.material();
+  const ElasticMaterial& m = s.material();
   const Eigen::VectorXd rho = rate_form_densities(s, y);
   const auto S = rate_form_deviators(s, y);
   std::vector<Eigen::Matrix<double, Dim, Dim>> sigma(rho.size());
   for (int i = 0; i < rho.size(); ++i) {
-    const double p = m.bulk_modulus * (rho[i] / m.density - 1);
+    const double p = m.bulk_modulus() * (rho[i] / m.density() - 1);
     if constexpr (Dim == 1)
       sigma[i](0, 0) = S(0, i) - p;
     else

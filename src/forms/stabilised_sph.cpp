@@ -152,8 +152,8 @@ void StabilisedSphTerm::add_impl(const ElasticTermContext<Scalar>& c, ParticleAc
   // Switch state from the real parts of the stresses (frozen for complex steps).
   const Eigen::MatrixX3d real_stress = c.stress.unaryExpr([](const Scalar& s) { return re(s); });
   const SwitchState on =
-      switch_state(real_stress, m_options.switch_tolerance * (c.material.lambda + 2 * c.material.mu));
-  const double inv_rho = 1.0 / c.material.rho;
+      switch_state(real_stress, m_options.switch_tolerance * (c.material.lambda() + 2 * c.material.mu()));
+  const double inv_rho = 1.0 / c.material.density();
   const Scalar* g0 = ops.G[0].valuePtr();
   const Scalar* g1 = ops.G[1].valuePtr();
   const auto& sig = c.stress;
@@ -212,7 +212,7 @@ const StabilisedSphTerm* find_stabilised_sph_term(const ElasticForm2D& force) {
 std::shared_ptr<ElasticForm2D> freeze_switch(const ElasticForm2D& force, const Eigen::VectorXd& u) {
   const StabilisedSphTerm* term = find_stabilised_sph_term(force);
   if (!term) throw std::invalid_argument("freeze_switch: the force function has no S-SPH term");
-  const double tol = term->options().switch_tolerance * (force.material().lambda + 2 * force.material().mu);
+  const double tol = term->options().switch_tolerance * (force.material().lambda() + 2 * force.material().mu());
   auto frozen_term = term->frozen(term->switch_state(force.stress(u), tol));
   std::vector<std::shared_ptr<const ElasticTerm2D>> terms;
   for (const auto& t : force.terms()) terms.push_back(t.get() == term ? frozen_term : t);

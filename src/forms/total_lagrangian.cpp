@@ -18,9 +18,7 @@ TotalLagrangianForm2D::TotalLagrangianForm2D(std::shared_ptr<const Discretisatio
     if (m_disc->free[f] != f)
       throw std::invalid_argument("TotalLagrangianForm2D: the free particles must come first (lattice ordering)");
   LinearElasticOptions opt;
-  opt.density = material.rho;
-  opt.lame_lambda = material.lambda;
-  opt.shear_modulus = material.mu;
+  opt.material = material;
   opt.gradient = StrainGradient::Minus;
   opt.divergence = StressDivergence::Plus;
   opt.frame = LagrangianFrame::Total;
@@ -40,7 +38,7 @@ void TotalLagrangianForm2D::compute_offset() {
     Eigen::Vector2d g = Eigen::Vector2d::Zero();
     for (int b = 0; b < 2; ++b)
       for (SparseMatrix<>::InnerIterator it(ops.G[b], i); it; ++it) g[b] += it.value();
-    const Eigen::Vector2d a = (2.0 / m_material.rho) * (s0 * g);
+    const Eigen::Vector2d a = (2.0 / m_material.density()) * (s0 * g);
     m_a0[2 * f] = a[0];
     m_a0[2 * f + 1] = a[1];
   }
@@ -90,7 +88,7 @@ SparsityPattern TotalLagrangianForm2D::dof_pattern() const {
 Eigen::VectorXd TotalLagrangianForm2D::dof_mass() const {
   Eigen::VectorXd m(dofs());
   for (int f = 0; f < m_disc->free_count(); ++f)
-    m[2 * f] = m[2 * f + 1] = m_material.rho * m_disc->particles.volume[m_disc->free[f]];
+    m[2 * f] = m[2 * f + 1] = m_material.density() * m_disc->particles.volume[m_disc->free[f]];
   return m;
 }
 

@@ -41,7 +41,7 @@ VariationalTotalLagrangian<Dim>::VariationalTotalLagrangian(std::shared_ptr<cons
     for (int i = 0; i < N; ++i)
       for (SparseMatrix<>::InnerIterator it(K[b], i); it; ++it) m_rowsum(i, b) += it.value();
   m_K = std::make_shared<const std::array<SparseMatrix<>, Dim>>(std::move(K));
-  m_hg = HourglassControl<Dim>(d, hourglass.coefficient > 0 ? m_material->lame().young() : 0.0, m_rho, hourglass,
+  m_hg = HourglassControl<Dim>(d, hourglass.coefficient > 0 ? m_material->material().young() : 0.0, m_rho, hourglass,
                                kVariationalWho);
 }
 

@@ -46,7 +46,7 @@ void require_positive(const Eigen::VectorXd& v, const char* name) {
 
 template <int Dim>
 RateFormAtState<Dim> rate_form_at_state(const ParticleState<Dim>& s, KernelType kernel_type,
-                                        const RateFormMaterial& material, const RateFormOptions& options) {
+                                        const ElasticMaterial& material, const RateFormOptions& options) {
   constexpr int kStress = RateFormScheme<Dim>::kStress;
   const Eigen::Index n = s.x.rows();
   if (n == 0) refuse("no particles (x has 0 rows)");
@@ -67,7 +67,7 @@ RateFormAtState<Dim> rate_form_at_state(const ParticleState<Dim>& s, KernelType 
   if (!(s.spacing >= 0) || !std::isfinite(s.spacing))
     refuse("spacing must be finite and >= 0 (got " + format_number(s.spacing) + ")");
   if (s.spacing > 0) check_length(s.spacing, "state: spacing");
-  material.validate("state");
+  material.validate("state", ShearModulusRule::NonNegative);
   const auto is_fixed = [&](Eigen::Index i) { return !s.fixed.empty() && s.fixed[i]; };
   bool any_free = false;
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -82,7 +82,7 @@ RateFormAtState<Dim> rate_form_at_state(const ParticleState<Dim>& s, KernelType 
 
   // The masses are rho_ref V_i. Fixed particles that do not evolve keep the scheme's uniform initial density and
   // deviator, so then rho_ref and the deviator are theirs and must be uniform; otherwise rho_ref = rho0.
-  double rho_ref = material.density;
+  double rho_ref = material.density();
   Eigen::VectorXd frozen_deviator = Eigen::VectorXd::Zero(kStress);
   if (!options.evolve_fixed) {
     Eigen::Index first = -1;
@@ -170,9 +170,9 @@ StateStability state_stability(const ParticleState<Dim>& s, const StateStability
   return r;
 }
 
-template RateFormAtState<1> rate_form_at_state<1>(const ParticleState<1>&, KernelType, const RateFormMaterial&,
+template RateFormAtState<1> rate_form_at_state<1>(const ParticleState<1>&, KernelType, const ElasticMaterial&,
                                                   const RateFormOptions&);
-template RateFormAtState<2> rate_form_at_state<2>(const ParticleState<2>&, KernelType, const RateFormMaterial&,
+template RateFormAtState<2> rate_form_at_state<2>(const ParticleState<2>&, KernelType, const ElasticMaterial&,
                                                   const RateFormOptions&);
 template StateStability state_stability<1>(const ParticleState<1>&, const StateStabilityOptions&);
 template StateStability state_stability<2>(const ParticleState<2>&, const StateStabilityOptions&);

@@ -13,14 +13,14 @@ void write_rate_form_vtp(const std::string& path, const RateFormScheme<Dim>& sch
   const Eigen::Matrix<double, Dim, Eigen::Dynamic> v = rate_form_velocities(scheme, y);
   const std::vector<Eigen::Matrix<double, Dim, Dim>> sigma = rate_form_stresses(scheme, y);
   const Eigen::VectorXd rho = rate_form_densities(scheme, y);
-  const RateFormMaterial& m = scheme.material();
+  const ElasticMaterial& m = scheme.material();
   const auto S = rate_form_deviators(scheme, y);
   Eigen::VectorXd sxx(n), syy(n), sxy(n), p(n), eq(n), fixed(n), driven(n);
   for (int i = 0; i < n; ++i) {
     sxx[i] = sigma[i](0, 0);
     syy[i] = sigma[i](Dim - 1, Dim - 1);
     sxy[i] = sigma[i](0, Dim - 1);
-    p[i] = m.bulk_modulus * (rho[i] / m.density - 1);  // the 2D S is not traceless (plane strain S_zz)
+    p[i] = m.bulk_modulus() * (rho[i] / m.density() - 1);  // the 2D S is not traceless (plane strain S_zz)
     eq[i] = von_mises_stress<Dim>(S.col(i));
     fixed[i] = scheme.position_offset(i) < 0;
     driven[i] = scheme.is_driven(i);

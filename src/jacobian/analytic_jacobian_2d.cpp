@@ -112,7 +112,7 @@ Linearisation analytic_jacobian_2d(const Discretisation<2>& d, const Operators<2
 
   const bool cons = form == MomentumForm::Conservative;
   const double alpha = cons ? 1.0 : momentum_form_alpha(form);
-  const double inv_rho = 1.0 / material.rho, lam = material.lambda, mu = material.mu;
+  const double inv_rho = 1.0 / material.density(), lam = material.lambda(), mu = material.mu();
   const Eigen::Matrix2d s0 = PreStrain{kind, 1.0}.stress(material);
 
   // A0: fused Gustavson product over (i free, j in N(i), k free in N(j)) with a dense block accumulator.

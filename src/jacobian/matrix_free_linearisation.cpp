@@ -66,7 +66,7 @@ Eigen::Matrix2d prestress<2>(PreStrainKind kind, const ElasticMaterial& material
 
 template <>
 Eigen::Matrix3d prestress<3>(PreStrainKind kind, const ElasticMaterial& m) {
-  const double lam = m.lambda, mu = m.mu;
+  const double lam = m.lambda(), mu = m.mu();
   Eigen::Matrix3d s = Eigen::Matrix3d::Zero();
   if (kind == PreStrainKind::Isotropic)
     s.diagonal().setConstant(3 * lam + 2 * mu);
@@ -119,9 +119,9 @@ void MatrixFreeLinearisation<Dim>::build(const Discretisation<Dim>& d, const Ope
   const NeighbourList& nl = d.neighbours;
   const bool cons = form == MomentumForm::Conservative;
   m_form = form;
-  m_inv_rho = 1.0 / material.rho;
-  m_lambda = material.lambda;
-  m_mu = material.mu;
+  m_inv_rho = 1.0 / material.density();
+  m_lambda = material.lambda();
+  m_mu = material.mu();
   m_alpha = cons ? 1.0 : momentum_form_alpha(form);
   m_a1_factor = cons ? 2.0 * m_inv_rho : (1.0 + momentum_form_alpha(form)) * m_inv_rho;
   m_s0 = prestress<Dim>(kind, material);

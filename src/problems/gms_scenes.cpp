@@ -46,8 +46,8 @@ Scene<2> gms_plate_scene(const CantileverPlateOptions& plate, double tip_speed, 
       s.scheme->set_velocity(s.y0, i, Eigen::Vector2d(0, cantilever_mode_velocity(p.x(i, 0), plate.length, tip_speed)));
     if (p.x(i, 0) > plate.length - s.spacing) tip.push_back(i);
   }
-  const IsotropicModuli m = isotropic_moduli(o.material.bulk_modulus, o.material.shear_modulus);
-  s.t_end = 1.25 * thin_plate_period(m.youngs, m.poisson, o.material.density, plate.thickness, plate.length);
+  const IsotropicModuli m = isotropic_moduli(o.material.bulk_modulus(), o.material.mu());
+  s.t_end = 1.25 * thin_plate_period(m.youngs, m.poisson, o.material.density(), plate.thickness, plate.length);
   s.measures.push_back(
       {"tip_deflection", [tip, y_ref = p.x.col(1).eval()](const Eigen::Matrix2Xd& x, const Eigen::VectorXd&) {
          double u = 0;

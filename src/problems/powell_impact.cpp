@@ -211,7 +211,7 @@ Scene<2> powell_impact_scene(const PowellImpactOptions& options) {
   const int a = particle_a(q, o);
   const RateFormScheme<2>& scheme = *s.scheme;
   const int rho_a = scheme.density_offset(a), v_a = scheme.velocity_offset(a);
-  const double y_a = q.x(a, 1), K = o.material.bulk_modulus, rho0 = o.material.density;
+  const double y_a = q.x(a, 1), K = o.material.bulk_modulus(), rho0 = o.material.density();
   s.measures.push_back({"pressure_A", [rho_a, K, rho0](const Eigen::Matrix2Xd&, const Eigen::VectorXd& y) {
                           return K * (y[rho_a] / rho0 - 1);  // GMS (2.7)
                         }});
@@ -240,27 +240,28 @@ ImpactTotalLagrangian impact_total_lagrangian(const Scene<2>& scene, ImpactTLMod
   const RateFormScheme<2>& scheme = *scene.scheme;
   // Aliasing: the discretisation lives as long as the scheme that owns it.
   const std::shared_ptr<const Discretisation<2>> disc(scene.scheme, &scheme.discretisation());
-  const RateFormMaterial& m = scheme.material();
-  const ElasticMaterial material{
-      .lambda = m.bulk_modulus - 2.0 * m.shear_modulus / 3.0, .mu = m.shear_modulus, .rho = m.density};
+  const ElasticMaterial& m = scheme.material();
+  // lambda = K - 2 mu / 3 from the scheme's K (not the E, nu lambda of from_young_poisson): the TL runs have always
+  // used this derived value, and a last-bit change would show in the impact studies' long runs.
+  const ElasticMaterial material = ElasticMaterial::from_bulk_shear(m.bulk_modulus(), m.mu(), m.density());
   ImpactTotalLagrangian tl;
   if (model == ImpactTLModel::Linear) {
     auto form = std::make_shared<const TotalLagrangianForm2D>(disc, material);
     tl.form = form;
     tl.system.strain_energy = [form](const Eigen::VectorXd& u) { return form->strain_energy(u); };
   } else {
-    const auto svk = std::make_shared<const StVenantKirchhoff<2>>(LameParameters{material.lambda, material.mu});
-    auto form = std::make_shared<const FiniteStrainTotalLagrangian<2>>(disc, svk, m.density);
+    const auto svk = std::make_shared<const StVenantKirchhoff<2>>(material);
+    auto form = std::make_shared<const FiniteStrainTotalLagrangian<2>>(disc, svk, m.density());
     tl.form = form;
     // Not thread-safe (scratch arrays): one form per run, as here.
     tl.system.strain_energy = [form](const Eigen::VectorXd& u) { return form->strain_energy(u); };
   }
   tl.system.acceleration = acceleration_function(tl.form);
   tl.system.dofs_per_particle = 2;
-  tl.system.mass = m.density * disc->particles.volume(disc->free);
+  tl.system.mass = m.density() * disc->particles.volume(disc->free);
   tl.system.reference_positions = disc->free_positions().transpose().reshaped();
   const Eigen::Matrix2Xd v = rate_form_velocities(scheme, scene.y0);
-  const double K = m.bulk_modulus;
+  const double K = m.bulk_modulus();
   const bool finite = model == ImpactTLModel::StVenantKirchhoff;
   tl.pressure = [disc, K, finite](const Eigen::VectorXd& u, int i) {
     if (i < 0 || i >= disc->size())

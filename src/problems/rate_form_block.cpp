@@ -40,7 +40,7 @@ Scene<Dim> rate_form_block_scene(const RateFormBlockOptions& o) {
   s.spacing = o.spacing;
   s.t_end = std::numeric_limits<double>::quiet_NaN();
   s.scheme = std::make_shared<RateFormScheme<Dim>>(rate_form_block_discretisation<Dim>(o), o.material, o.scheme,
-                                                   o.material.density / o.xi);
+                                                   o.material.density() / o.xi);
   const RateFormScheme<Dim>& scheme = *s.scheme;
   s.y0 = scheme.uniform_state();
   const Discretisation<Dim>& d = scheme.discretisation();

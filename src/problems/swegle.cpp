@@ -8,23 +8,12 @@
 
 namespace sphstab {
 
-ElasticMaterial plane_strain_material(double E, double nu, double rho) {
-  if (!(E > 0) || !std::isfinite(E) || !(nu > -1 && nu < 0.5) || !(rho > 0) || !std::isfinite(rho))
-    throw std::invalid_argument(
-        "plane_strain_material: need E > 0, -1 < nu < 1/2 and rho > 0 (got E = " + std::to_string(E) +
-        ", nu = " + std::to_string(nu) + ", rho = " + std::to_string(rho) + ")");
-  ElasticMaterial m;
-  m.lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
-  m.mu = E / (2 * (1 + nu));
-  m.rho = rho;
-  return m;
-}
-
 double SwegleScene::initial_kinetic_energy() const {
   const Discretisation<2>& d = *discretisation;
   double ke = 0;
   for (int f = 0; f < d.free_count(); ++f)
-    ke += 0.5 * material.rho * d.particles.volume[d.free[f]] * (v0[2 * f] * v0[2 * f] + v0[2 * f + 1] * v0[2 * f + 1]);
+    ke += 0.5 * material.density() * d.particles.volume[d.free[f]] *
+          (v0[2 * f] * v0[2 * f] + v0[2 * f + 1] * v0[2 * f + 1]);
   return ke;
 }
 
@@ -49,7 +38,7 @@ SwegleScene make_swegle_scene(const SwegleOptions& o) {
                                 std::to_string(o.layer_supports) + ")");
   SwegleScene s;
   s.options = o;
-  s.material = plane_strain_material(o.youngs_modulus, o.poisson_ratio, o.density);
+  s.material = ElasticMaterial::from_young_poisson(o.youngs_modulus, o.poisson_ratio, o.density);
   s.prestrain = PreStrain::from_area_ratio(o.area_ratio);
   s.h = o.h_over_dx * o.spacing;
   Kernel<2> kernel(o.kernel);
@@ -74,7 +63,7 @@ SwegleScene make_swegle_scene(const SwegleOptions& o) {
   const int f = d.free_slot[s.centre];
   s.v0[2 * f] = o.velocity * std::cos(o.direction_angle);
   s.v0[2 * f + 1] = o.velocity * std::sin(o.direction_angle);
-  s.wave_speed = std::sqrt((s.material.lambda + 2 * s.material.mu) / s.material.rho);
+  s.wave_speed = std::sqrt((s.material.lambda() + 2 * s.material.mu()) / s.material.density());
   return s;
 }
 

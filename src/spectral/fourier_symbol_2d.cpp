@@ -87,7 +87,7 @@ ElasticSymbol2D::Value ElasticSymbol2D::operator()(const Eigen::Vector2d& k) con
     v.s += std::sin(phase) * m_grad[m];
     v.l += (1 - std::cos(phase)) * m_hess[m];
   }
-  const double inv_rho = 1.0 / m_material.rho, lam = m_material.lambda, mu = m_material.mu;
+  const double inv_rho = 1.0 / m_material.density(), lam = m_material.lambda(), mu = m_material.mu();
   v.a0 = inv_rho * ((lam + mu) * v.s * v.s.transpose() + mu * v.s.squaredNorm() * Eigen::Matrix2d::Identity());
   if (m_form == MomentumForm::Conservative)
     v.a1 = -2 * inv_rho * (m_s0 * v.l + v.l * m_s0);

@@ -12,15 +12,15 @@ namespace sphstab {
 
 template <int Dim>
 RateFormCriticalStress rate_form_critical_stress(std::shared_ptr<const Discretisation<Dim>> disc,
-                                                 const RateFormMaterial& material, const RateFormOptions& options,
+                                                 const ElasticMaterial& material, const RateFormOptions& options,
                                                  const RateFormCriticalOptions& c) {
   if (!disc) throw std::invalid_argument("rate_form_critical_stress: null discretisation");
-  material.validate("rate_form_critical_stress");
+  material.validate("rate_form_critical_stress", ShearModulusRule::NonNegative);
   if (!(c.growth_tolerance > 0) || !(c.rtol > 0) || !(c.step > 1) || !(c.min > 0) || !(c.start > 0) ||
       !(c.max > c.min) || !std::isfinite(c.max))
     throw std::invalid_argument(
         "rate_form_critical_stress: need growth_tolerance > 0, rtol > 0, step > 1, 0 < min < max < inf, start > 0");
-  const double K = material.bulk_modulus, M = K + 4 * material.shear_modulus / 3, sgn = load_sign(c.direction);
+  const double K = material.bulk_modulus(), M = K + 4 * material.mu() / 3, sgn = load_sign(c.direction);
   // Tension: sigma0 < K (xi finite); keep a margin so the density stays well defined.
   const double max_tau = c.direction == LoadDirection::Tension ? std::min(c.max, 0.999 * K / M) : c.max;
   RateFormCriticalStress r;
@@ -29,7 +29,7 @@ RateFormCriticalStress rate_form_critical_stress(std::shared_ptr<const Discretis
   auto xi_of = [&](double tau) { return 1 / (1 - sgn * tau * M / K); };
   auto stable = [&](double tau) {
     ++r.evaluations;
-    const RateFormScheme<Dim> scheme(disc, material, options, material.density / xi_of(tau));
+    const RateFormScheme<Dim> scheme(disc, material, options, material.density() / xi_of(tau));
     const RateFormSpectrum s = rate_form_spectrum(scheme, scheme.uniform_state(), {.basis = c.basis});
     if (s.status != Status::Successful) {
       if (failure.empty()) failure = "spectrum at sigma0/M = " + format_number(sgn * tau) + ": " + s.reason;
@@ -60,10 +60,10 @@ RateFormCriticalStress rate_form_critical_stress(std::shared_ptr<const Discretis
 }
 
 template RateFormCriticalStress rate_form_critical_stress<1>(std::shared_ptr<const Discretisation<1>>,
-                                                             const RateFormMaterial&, const RateFormOptions&,
+                                                             const ElasticMaterial&, const RateFormOptions&,
                                                              const RateFormCriticalOptions&);
 template RateFormCriticalStress rate_form_critical_stress<2>(std::shared_ptr<const Discretisation<2>>,
-                                                             const RateFormMaterial&, const RateFormOptions&,
+                                                             const ElasticMaterial&, const RateFormOptions&,
                                                              const RateFormCriticalOptions&);
 
 }  // namespace sphstab

@@ -33,8 +33,8 @@ namespace sphstab::study::csm3 {
 using C = TurekHronCsm3;
 
 /// CSM3's material: lambda = 2 mu nu / (1 - 2 nu) = 2 MPa, mu = 0.5 MPa (E = 1.4 MPa).
-inline LameParameters lame() {
-  return LameParameters{.lambda = 2 * C::shear_modulus * C::poisson / (1 - 2 * C::poisson), .mu = C::shear_modulus};
+inline ElasticMaterial lame() {
+  return ElasticMaterial::from_lame(2 * C::shear_modulus * C::poisson / (1 - 2 * C::poisson), C::shear_modulus, 1.0);
 }
 
 /// Linear beam theory for the cantilever from the attachment on the faces to the tip (plane-strain bending modulus
@@ -43,13 +43,13 @@ struct BeamTheory {
   double length = 0, f_euler_bernoulli = 0, f_timoshenko = 0, static_tip_mm = 0;
 };
 inline BeamTheory beam_theory() {
-  const LameParameters l = lame();
+  const ElasticMaterial l = lame();
   const double young = l.young(), nu = l.poisson(), length = C::tip_x - C::attachment_x(C::bottom_y);
   BeamTheory b;
   b.length = length;
   b.f_euler_bernoulli = 1 / thin_plate_period(young, nu, C::density, C::thickness, length);
   b.f_timoshenko =
-      1 / timoshenko_cantilever_period(young / (1 - nu * nu), l.mu, 5.0 / 6.0, C::density, C::thickness, length);
+      1 / timoshenko_cantilever_period(young / (1 - nu * nu), l.mu(), 5.0 / 6.0, C::density, C::thickness, length);
   const double q = C::density * C::gravity * C::thickness, inertia = std::pow(C::thickness, 3) / 12;
   b.static_tip_mm = 1e3 * q * std::pow(length, 4) / (8 * young / (1 - nu * nu) * inertia);
   return b;

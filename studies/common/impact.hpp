@@ -205,8 +205,8 @@ inline Outcome run_case(const Case& c, const Settings& settings) {
       maybe_order(o, x, c.scene.spacing, t, settings.order_every);
       maybe_snapshot(o, c.snapshot_times, t, ro.dt, [&](Snapshot& s) {
         s.x = x;
-        s.p = scheme.material().bulk_modulus *
-              (rate_form_densities(scheme, y).array() / scheme.material().density - 1).matrix();
+        s.p = scheme.material().bulk_modulus() *
+              (rate_form_densities(scheme, y).array() / scheme.material().density() - 1).matrix();
       });
       keep_state(t, ro.dt, y);
       if (x.allFinite()) vtk.maybe_write(t, [&](const std::string& path) { write_rate_form_vtp(path, scheme, y); });

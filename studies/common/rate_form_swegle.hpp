@@ -133,14 +133,12 @@ inline Block make_block(const SwegleOptions& so) {
 }
 
 /// The scene's elastic material as the rate form's (E, nu, rho).
-inline RateFormMaterial steel(const SwegleOptions& so) {
-  return RateFormMaterial::from_youngs(so.youngs_modulus, so.poisson_ratio, so.density);
+inline ElasticMaterial steel(const SwegleOptions& so) {
+  return ElasticMaterial::from_young_poisson(so.youngs_modulus, so.poisson_ratio, so.density);
 }
 
 /// The runs' step, 0.3 h / c_P.
-inline double time_step(const SwegleScene& scene, const RateFormMaterial& m) {
-  return 0.3 * scene.h / m.p_wave_speed();
-}
+inline double time_step(const SwegleScene& scene, const ElasticMaterial& m) { return 0.3 * scene.h / m.p_wave_speed(); }
 
 /// The scene's kick: the initial velocity of the centre particle.
 inline Eigen::Vector2d kick(const SwegleScene& scene) {
@@ -151,7 +149,7 @@ inline Eigen::Vector2d kick(const SwegleScene& scene) {
 /// changes only the rates of x, rho and S at first, so its own immediate change of the accelerations is 0 at rest):
 /// the run measures growth from the kick only if the block starts in equilibrium.
 inline double equilibrium_residual(const RateFormScheme<2>& scheme, const SwegleScene& scene,
-                                   const RateFormMaterial& m) {
+                                   const ElasticMaterial& m) {
   const auto& d = scene.discretisation;
   Eigen::VectorXd f;
   scheme.rate(scheme.uniform_state(), f);
@@ -185,7 +183,7 @@ inline StabilityVerdict checked_verdict(const RateFormScheme<2>& scheme, const R
 }
 
 /// The summary's numbers of the setup: n, particles, c_P, dt, t_end, onset, stop_growth.
-inline void summarise_setup(Summary& s, const Options& o, const SwegleScene& scene, const RateFormMaterial& m,
+inline void summarise_setup(Summary& s, const Options& o, const SwegleScene& scene, const ElasticMaterial& m,
                             double dt) {
   s.set("n", o.n);
   s.set("particles", scene.discretisation->size());

@@ -73,8 +73,8 @@ int main(int argc, char** argv) {
 
   // ---- Key numbers and tables for summary.md.in. ----
   study::Summary sum;
-  sum.set("lambda", kMaterial.lambda, 6);
-  sum.set("mu", kMaterial.mu, 6);
+  sum.set("lambda", kMaterial.lambda(), 6);
+  sum.set("mu", kMaterial.mu(), 6);
   sum.set("n_main", n_main);
   sum.set("n_nonsymmetric", n_nonsym);
   sum.set("sweep_rows", static_cast<int>(sweep.size()));

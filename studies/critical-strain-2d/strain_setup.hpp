@@ -17,8 +17,8 @@ using study::seconds_since;
 
 // Plane strain, E = 2.1, nu = 0.3, rho = 7.8 (Powell's Swegle test); e_crit depends on nu only.
 inline const double kE = 2.1, kNu = 0.3, kRho = 7.8;
-inline const ElasticMaterial kMaterial{
-    .lambda = kE * kNu / ((1 + kNu) * (1 - 2 * kNu)), .mu = kE / (2 * (1 + kNu)), .rho = kRho};
+inline const ElasticMaterial kMaterial =
+    ElasticMaterial::from_lame(kE * kNu / ((1 + kNu) * (1 - 2 * kNu)), kE / (2 * (1 + kNu)), kRho);
 inline const std::vector<KernelType> kKernels{KernelType::CubicSpline, KernelType::QuinticSpline,
                                               KernelType::WendlandC2, KernelType::WendlandC4};
 inline const std::vector<LatticeType> kLattices{LatticeType::Square, LatticeType::Hexagonal};

@@ -75,8 +75,8 @@ int main(int argc, char** argv) {
   const auto t0 = study::Clock::now();
   std::filesystem::create_directories(out);
   // rho0 = 1, K = 1, mu = 0.3 (GMS units, nu = 0.36): M = 1.4.
-  const RateFormMaterial material{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};
-  const double M = material.bulk_modulus + 4 * material.shear_modulus / 3;
+  const ElasticMaterial material = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
+  const double M = material.bulk_modulus() + 4 * material.mu() / 3;
   const std::vector<LoadDirection> dirs = {LoadDirection::Tension, LoadDirection::Compression};
 
   // 1D bar: kernels x h / dx as Fig. 3.2, both directions.
@@ -111,7 +111,7 @@ int main(int argc, char** argv) {
           const RateFormCriticalStress r =
               rate_form_critical_stress<1>(disc, material, f.options, {.direction = dir, .max = 0.7});
           const double res = equilibrium_residual(
-              RateFormScheme<1>(disc, material, f.options, material.density / (1 + 0.01 * load_sign(dir))));
+              RateFormScheme<1>(disc, material, f.options, material.density() / (1 + 0.01 * load_sign(dir))));
           if (f.name == "sph" && std::isfinite(predicted) && std::isfinite(r.stress_over_modulus))
             worst_prediction =
                 std::max(worst_prediction, std::abs(r.stress_over_modulus - predicted) / std::abs(predicted));
@@ -133,8 +133,9 @@ int main(int argc, char** argv) {
 
   // 2D square and hexagonal blocks, cubic spline: the rate form beside the §3.3 plus and conservative forms at
   // isotropic pre-strain e (plane strain: sigma0 = 2 (lambda + mu) e in-plane, so sigma0 / M = 2 (lambda + mu) e / M).
-  const double lambda = material.bulk_modulus - 2 * material.shear_modulus / 3, mu = material.shear_modulus;
-  const ElasticMaterial elastic{.lambda = lambda, .mu = mu, .rho = material.density};
+  // The same material: its lambda is K - 2 mu / 3 (from_bulk_shear), as this study has always used.
+  const ElasticMaterial& elastic = material;
+  const double lambda = elastic.lambda(), mu = elastic.mu();
   const Kernel<2> k2(KernelType::CubicSpline);
   auto blocks = [&](LatticeType type, const std::string& file) {
     std::ofstream block(out + "/" + file);
@@ -158,7 +159,7 @@ int main(int argc, char** argv) {
           const RateFormCriticalStress r =
               rate_form_critical_stress<2>(disc, material, f.options, {.direction = dir, .max = 0.7, .rtol = 1e-6});
           const double res = equilibrium_residual(
-              RateFormScheme<2>(disc, material, f.options, material.density / (1 + 0.01 * load_sign(dir))));
+              RateFormScheme<2>(disc, material, f.options, material.density() / (1 + 0.01 * load_sign(dir))));
           block << csv_line({format_number(h, 4), load_direction_name(dir), f.name,
                              format_number(r.stress_over_modulus, 10), format_number(r.xi, 10),
                              format_number(r.growth_above, 6), std::to_string(r.evaluations), format_number(res, 3),

@@ -40,7 +40,7 @@ inline std::vector<Formulation> formulations(bool quick = false) {
 }
 
 // MCM-like steel in units of dx (the spectrum scales with c_P / dx).
-inline const RateFormMaterial kSteel = RateFormMaterial::from_youngs(2.1, 0.3, 7.8);
+inline const ElasticMaterial kSteel = ElasticMaterial::from_young_poisson(2.1, 0.3, 7.8);
 
 template <int Dim>
 inline RateFormSymbol<Dim> symbol_of(const RateFormOptions& o, double h, double xi, int n) {
@@ -48,7 +48,7 @@ inline RateFormSymbol<Dim> symbol_of(const RateFormOptions& o, double h, double 
   const ParticleSet<Dim> set =
       make_lattice<Dim>(Dim == 1 ? LatticeType::Line : LatticeType::Square, n,
                         {.spacing = 1.0, .support_radius = kernel.support_radius(h), .periodic = true});
-  const RateFormScheme<Dim> scheme(make_discretisation(set, kernel, h), kSteel, o, kSteel.density / xi);
+  const RateFormScheme<Dim> scheme(make_discretisation(set, kernel, h), kSteel, o, kSteel.density() / xi);
   return rate_form_symbol(scheme, scheme.uniform_state());
 }
 
@@ -56,11 +56,11 @@ inline RateFormSymbol<Dim> symbol_of(const RateFormOptions& o, double h, double 
 inline int box_for(double h) { return 2 * static_cast<int>(std::ceil(3 * 2 * h)) + 2; }
 
 inline UniformState gms_state(double xi) {
-  const double rho = kSteel.density / xi;
+  const double rho = kSteel.density() / xi;
   return {.density = rho,
           .sound_speed = kSteel.sound_speed(),
-          .shear_modulus = kSteel.shear_modulus,
-          .pressure = kSteel.bulk_modulus * (rho / kSteel.density - 1)};
+          .shear_modulus = kSteel.mu(),
+          .pressure = kSteel.bulk_modulus() * (rho / kSteel.density() - 1)};
 }
 
 }  // namespace dispersion_study

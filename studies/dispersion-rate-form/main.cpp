@@ -153,7 +153,8 @@ int main(int argc, char** argv) {
       Eigen::VectorXd dev(3);
       dev << 0.004, -0.002, 0.0;  // zeta = 0.003 (stress units of E = 2.1)
       const double xi = 1.01;
-      const RateFormScheme<2> scheme(make_discretisation(set, kernel, h), kSteel, f.options, kSteel.density / xi, dev);
+      const RateFormScheme<2> scheme(make_discretisation(set, kernel, h), kSteel, f.options, kSteel.density() / xi,
+                                     dev);
       const RateFormSymbol<2> symbol = rate_form_symbol(scheme, scheme.uniform_state());
       UniformState st = gms_state(xi);
       st.sxx = dev[0];
@@ -188,14 +189,14 @@ int main(int argc, char** argv) {
   double worst_1d = 0, worst_1d_abs = 0;
   int bar_rows = 0;
   const Kernel<1> kernel1(KernelType::CubicSpline);
-  const double M = kSteel.bulk_modulus + 4 * kSteel.shear_modulus / 3;
+  const double M = kSteel.bulk_modulus() + 4 * kSteel.mu() / 3;
   const int kgrid = 400;
   for (int ih = 0; ih <= 22; ih += quick ? 11 : 1) {
     const double h = 0.8 + 0.1 * ih;
     const int n = box_for(h);
     // Unstable at sigma0 = tau M if some grid k in (0, pi] has -omega^2 > 1e-14 c_P^2 k^2.
     auto unstable = [&](double tau) {
-      const RateFormSymbol<1> s = symbol_of<1>({}, h, 1.0 / (1 - tau * M / kSteel.bulk_modulus), n);
+      const RateFormSymbol<1> s = symbol_of<1>({}, h, 1.0 / (1 - tau * M / kSteel.bulk_modulus()), n);
       for (int q = 1; q <= kgrid; ++q) {
         const double k = M_PI * q / kgrid;
         if (-rate_form_dispersion(s, Eigen::Matrix<double, 1, 1>(k)).omega2[0].real() > 1e-14 * cp * cp * k * k)
@@ -217,7 +218,7 @@ int main(int argc, char** argv) {
       if (d > 1e-12 * fscale && f[q].g_abs2 / d < closed) closed = f[q].g_abs2 / d, k_at = M_PI * q / kgrid;
     }
     // sigma0 = -p = K (1 - rho/rho0) = K (1 - 1/xi) < K: search tau in (0, K/(2M)].
-    double tau = INFINITY, lo = 1e-9, hi = 0.5 * kSteel.bulk_modulus / M;
+    double tau = INFINITY, lo = 1e-9, hi = 0.5 * kSteel.bulk_modulus() / M;
     if (unstable(lo)) {
       tau = 0;
     } else if (unstable(hi)) {
@@ -229,7 +230,7 @@ int main(int argc, char** argv) {
     }
     // The search range is (1e-9, K/(2M)]. Below ~1e-6 the instability threshold of the search dominates (growth
     // as sqrt(tau - tau_c) against a fixed omega^2 floor): compare absolutely there, relatively above 1e-4.
-    const double cap = 0.5 * kSteel.bulk_modulus / M;
+    const double cap = 0.5 * kSteel.bulk_modulus() / M;
     const double tc = closed > cap ? INFINITY : closed < 1e-9 ? 0.0 : closed;
     const double diff = tau == tc ? 0.0 : std::abs(tau - tc);
     const double rel = tc >= 1e-4 && std::isfinite(tc) ? diff / tc : NAN;

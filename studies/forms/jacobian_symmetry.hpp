@@ -29,7 +29,7 @@ using study::sig;
 struct AsymmetrySetup {
   double h;
   int n1, n2;
-  ElasticMaterial material;
+  ElasticMaterial material = ElasticMaterial::from_lame(1.0, 1.0, 1.0);
 };
 
 struct AsymmetryConfig {

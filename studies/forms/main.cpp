@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
   write_compression_conditions(out + "/compression_conditions.csv", conditions.rows);
 
   // 4. Jacobian symmetry (the former form_asymmetry study: same configurations, kernel cubic, h = 1.3).
-  const AsymmetrySetup setup{.h = 1.3, .n1 = 40, .n2 = 12, .material = {.lambda = 1.0, .mu = 1.0, .rho = 1.0}};
+  const AsymmetrySetup setup{.h = 1.3, .n1 = 40, .n2 = 12, .material = ElasticMaterial::from_lame(1.0, 1.0, 1.0)};
   const std::vector<AsymRow> asym = jacobian_asymmetries(setup, forms);
   write_asymmetry(out + "/asymmetry.csv", asym);
   const std::vector<AmpRow> amp = asymmetry_vs_amplitude(setup, forms);

@@ -85,7 +85,7 @@ PlateCases study_cases(int across_h2, int across_h1, const std::vector<int>& con
   PlateCase si = base;
   si.length = 0.2, si.thickness = 0.02, si.across = si_across, si.h_factor = 1.3;
   si.youngs = 2e6, si.poisson = 0.3975, si.density = 1000, si.tip_speed = 0.05;
-  si.mu = material_of(si).shear_modulus;
+  si.mu = material_of(si).mu();
   si.periods = 1.0 / thin_period(si);
   g.si.push_back(with_tag(si));
   return g;

@@ -33,22 +33,22 @@ struct PlateCase {
   int vtk_frames = 0;          ///< VTK snapshots over the run (0: none)
 };
 
-inline RateFormMaterial material_of(const PlateCase& c) {
-  if (std::isnan(c.youngs)) return {.density = 1, .bulk_modulus = 1, .shear_modulus = c.mu};
-  return RateFormMaterial::from_youngs(c.youngs, c.poisson, c.density);
+inline ElasticMaterial material_of(const PlateCase& c) {
+  if (std::isnan(c.youngs)) return ElasticMaterial::from_bulk_shear(1, c.mu, 1);
+  return ElasticMaterial::from_young_poisson(c.youngs, c.poisson, c.density);
 }
 inline IsotropicModuli moduli_of(const PlateCase& c) {
-  const RateFormMaterial m = material_of(c);
-  return isotropic_moduli(m.bulk_modulus, m.shear_modulus);
+  const ElasticMaterial m = material_of(c);
+  return isotropic_moduli(m.bulk_modulus(), m.mu());
 }
 inline double thin_period(const PlateCase& c) {
   const IsotropicModuli m = moduli_of(c);
-  return thin_plate_period(m.youngs, m.poisson, material_of(c).density, c.thickness, c.length);
+  return thin_plate_period(m.youngs, m.poisson, material_of(c).density(), c.thickness, c.length);
 }
 inline double timoshenko_period(const PlateCase& c) {
   const IsotropicModuli m = moduli_of(c);
-  return timoshenko_cantilever_period(m.youngs / (1 - m.poisson * m.poisson), material_of(c).shear_modulus, 5.0 / 6,
-                                      material_of(c).density, c.thickness, c.length);
+  return timoshenko_cantilever_period(m.youngs / (1 - m.poisson * m.poisson), material_of(c).mu(), 5.0 / 6,
+                                      material_of(c).density(), c.thickness, c.length);
 }
 /// The GMS-unit plate of thickness H and shear modulus mu (for the theory columns).
 inline PlateCase gms_plate(double H, double mu) {

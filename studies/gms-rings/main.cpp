@@ -94,7 +94,7 @@ int main(int argc, char** argv) try {
   summarise_loops(s, runs);
   const RingRun& g = runs.front();
   const RingRun& si_run = find_run(runs, true, 0.3, PairLoop::Rows);
-  const RateFormMaterial si = si_material();
+  const ElasticMaterial si = si_material();
   s.set("particles", g.particles);
   s.set("per_ring", g.per_ring);
   s.set("break_share_pct", 100 * kBreakShare, 3);
@@ -110,8 +110,8 @@ int main(int argc, char** argv) try {
   s.set("si_particles", si_run.particles);
   s.set("si_per_ring", si_run.per_ring);
   s.set("si_sound_speed", si.sound_speed(), 4);
-  s.set("si_bulk_modulus", si.bulk_modulus, 4);
-  s.set("si_shear_modulus", si.shear_modulus, 4);
+  s.set("si_bulk_modulus", si.bulk_modulus(), 4);
+  s.set("si_shear_modulus", si.mu(), 4);
   s.set("si_speed", si_run.speed, 4);
   s.set("si_dt", si_run.dt, 3);
   s.set("si_mode", si_full ? "the whole collision (--si-full)"

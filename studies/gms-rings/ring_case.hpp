@@ -18,12 +18,10 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// GMS's material in GMS units: rho0 = 1, K = 1 (c0 = 1), mu = 0.22.
-inline RateFormMaterial gms_material() {
-  return RateFormMaterial{.density = 1, .bulk_modulus = 1, .shear_modulus = 0.22};
-}
+inline ElasticMaterial gms_material() { return ElasticMaterial::from_bulk_shear(1, 0.22, 1); }
 
 /// The SI material of the issue: E = 1e7 Pa, nu = 0.3975 (mu / K = 0.22, GMS's ratio), rho0 = 1 kg/m^3.
-inline RateFormMaterial si_material() { return RateFormMaterial::from_youngs(1e7, 0.3975, 1.0); }
+inline ElasticMaterial si_material() { return ElasticMaterial::from_young_poisson(1e7, 0.3975, 1.0); }
 
 struct RingCase {
   std::string tag;
@@ -62,7 +60,7 @@ inline std::vector<RingCase> ring_cases(double dp, double gap, double t_end, int
                      .t_end = t_end,
                      .frames = frames,
                      .skin = skin});
-  const RateFormMaterial si = si_material();
+  const ElasticMaterial si = si_material();
   for (double eps : {0.0, 0.3}) {
     RingCase c{.tag = "si_eps" + format_number(eps),
                .si = true,

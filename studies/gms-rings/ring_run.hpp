@@ -77,7 +77,7 @@ inline std::vector<int> body(const Fragments& f, int first) {
 /// Runs case c, writing its VTK frames to out/vtk/<tag>/ (with <tag>.pvd).
 inline RingRun run_rings(const RingCase& c, const std::string& out) {
   RingRun r{.c = c};
-  const RateFormMaterial mat = c.si ? si_material() : gms_material();
+  const ElasticMaterial mat = c.si ? si_material() : gms_material();
   r.u = c.si ? Units{.length = 0.01, .speed = mat.sound_speed()} : Units{};
   const double r_in = 3 * r.u.length, r_out = 4 * r.u.length;
   r.speed = 0.059 * mat.sound_speed();
@@ -117,7 +117,7 @@ inline RingRun run_rings(const RingCase& c, const std::string& out) {
     for (int i = 0; i < 2 * n; ++i) {
       const double vx = y[scheme.velocity_offset(i)];
       (i < n ? v0 : v1) += vx / n;
-      const double p = mat.bulk_modulus * (y[scheme.density_offset(i)] / mat.density - 1);
+      const double p = mat.bulk_modulus() * (y[scheme.density_offset(i)] / mat.density() - 1);
       smax = std::max(smax, y[scheme.stress_offset(i)] - p);
     }
     r.t.push_back(t / r.u.time());
@@ -129,7 +129,7 @@ inline RingRun run_rings(const RingCase& c, const std::string& out) {
     r.dbody.push_back(ring_distance(x, body(f0, 0), body(f1, n), 2 * support) / r.u.length);
     r.vx0.push_back(v0 / r.u.speed);
     r.vx1.push_back(v1 / r.u.speed);
-    r.sxx_max.push_back(smax / (mat.density * r.u.speed * r.u.speed));
+    r.sxx_max.push_back(smax / (mat.density() * r.u.speed * r.u.speed));
     r.frag_all.push_back(all.count());
     r.frag0.push_back(f0.count());
     r.frag1.push_back(f1.count());

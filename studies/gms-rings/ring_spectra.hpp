@@ -19,7 +19,7 @@ namespace grings {
 /// nearest, also with the viscosity on; the later ones: the rebound, with the rings in hoop tension).
 inline void frozen_spectra(double dp_spectrum, double gap, double skin, const std::vector<double>& times,
                            const std::string& out, study::Summary& sum) {
-  const RateFormMaterial mat = gms_material();
+  const ElasticMaterial mat = gms_material();
   const Scene<2> scene =
       gms_rings_scene({.inner_radius = 3, .outer_radius = 4, .spacing = dp_spectrum, .gap = gap, .speed = 0.059},
                       {.material = mat, .scheme = gms_scheme_options(0)});

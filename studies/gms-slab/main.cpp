@@ -108,7 +108,7 @@ int main(int argc, char** argv) try {
   s.set("chunk", chunk, 3);
   s.set("skin", skin, 3);
   s.set("neck_ratio", kNeckRatio, 3);
-  s.set("c_p", RateFormMaterial{.density = 1, .bulk_modulus = 1, .shear_modulus = kMu}.p_wave_speed(), 4);
+  s.set("c_p", ElasticMaterial::from_bulk_shear(1, kMu, 1).p_wave_speed(), 4);
   s.set("threads", threads);
   s.set("load_start", load_start);
   s.set("load_end", study::load_average());

@@ -80,7 +80,7 @@ inline SlabRun run_slab(const SlabCase& c, const std::string& out, std::vector<F
   r.driven = static_cast<int>(slab.driven.size());
   r.h = 1.5 * c.dp;
   const Kernel<2> kernel(KernelType::CubicSpline);
-  const RateFormMaterial mat{.density = 1, .bulk_modulus = 1, .shear_modulus = kMu};
+  const ElasticMaterial mat = ElasticMaterial::from_bulk_shear(1, kMu, 1);
   const Scene<2> scene = gms_slab_scene({.spacing = c.dp, .end_zone = kEndZone, .acceleration = kAcceleration}, kYield,
                                         {.material = mat, .scheme = gms_scheme_options(c.eps)});
   const RateFormScheme<2>& scheme = *scene.scheme;

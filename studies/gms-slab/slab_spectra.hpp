@@ -17,7 +17,7 @@ namespace gslab {
 /// linearisations: the von Mises return is not part of the rate (the run has it).
 inline void frozen_spectra(double dp_spectrum, double skin, const std::vector<double>& times, const std::string& out,
                            study::Summary& sum) {
-  const RateFormMaterial mat{.density = 1, .bulk_modulus = 1, .shear_modulus = kMu};
+  const ElasticMaterial mat = ElasticMaterial::from_bulk_shear(1, kMu, 1);
   const Scene<2> scene = gms_slab_scene({.spacing = dp_spectrum, .end_zone = kEndZone, .acceleration = kAcceleration},
                                         kYield, {.material = mat, .scheme = gms_scheme_options(0)});
   const double h = scene.scheme->discretisation().h;

@@ -100,7 +100,7 @@ inline BarScene make_bar(const BarCase& c) {
   const double h = c.h_over_dx * kDx;
   auto disc = make_discretisation(p, Kernel<1>(KernelType::CubicSpline), h);
   // Uniaxial modulus E: K = E, mu = 0 (the 1D scheme's longitudinal modulus is K + 4 mu / 3).
-  RateFormScheme<1> scheme(disc, {.density = kRho, .bulk_modulus = kE, .shear_modulus = 0},
+  RateFormScheme<1> scheme(disc, ElasticMaterial::from_bulk_shear(kE, 0, kRho),
                            {.continuity = ContinuityForm::Divergence,
                             .viscosity = c.viscosity,
                             .gradient = normalised(c.form) ? RateFormGradient::Ncsph : RateFormGradient::Plain});

@@ -119,7 +119,7 @@ SquareRun run_square(const SquareCase& c) {
       if (i >= c.margin && i < c.margin + c.n && j >= c.margin && j < c.margin + c.n) central.push_back(k);
     }
   auto disc = make_discretisation(p, Kernel<2>(KernelType::CubicSpline), c.h_over_dx * dx);
-  const RateFormMaterial mat = RateFormMaterial::from_youngs(2.1, 0.3, 7.8);
+  const ElasticMaterial mat = ElasticMaterial::from_young_poisson(2.1, 0.3, 7.8);
   RateFormScheme<2> scheme(
       disc, mat,
       {.continuity = ContinuityForm::Divergence,
@@ -203,7 +203,7 @@ int main(int argc, char** argv) try {
   const auto t0 = study::Clock::now();
   fs::create_directories(out + "/series");
   // The reference's own (moving, free) boundary must not be heard in the block before t_end: margin dx > c_p t_end.
-  const double cp = RateFormMaterial::from_youngs(2.1, 0.3, 7.8).p_wave_speed();
+  const double cp = ElasticMaterial::from_young_poisson(2.1, 0.3, 7.8).p_wave_speed();
   if (margin / static_cast<double>(n) <= cp * t_end)
     throw std::invalid_argument("margin " + std::to_string(margin) +
                                 " too small: the reference's boundary is heard at t = " +

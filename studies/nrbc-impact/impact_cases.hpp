@@ -14,7 +14,7 @@ namespace nrbc_impact {
 using namespace sphstab;
 
 constexpr double kDx = 0.02;  // Powell's grid (cm)
-const RateFormMaterial kSteel = RateFormMaterial::from_youngs(2.1, 0.3, 7.8);
+const ElasticMaterial kSteel = ElasticMaterial::from_young_poisson(2.1, 0.3, 7.8);
 
 enum class Side { None, Sides, Bottom };  ///< where the absorbing particles are
 enum class Boundary { Free, P, M, Traction };

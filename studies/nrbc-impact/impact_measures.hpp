@@ -91,7 +91,7 @@ inline const ImpactRun& reference_of(const std::vector<ImpactRun>& runs, const I
 inline Measures measure(const ImpactRun& r, const ImpactRun& rf, const Incident& in) {
   const std::vector<Probe> pr = probes();
   const std::size_t np = pr.size();
-  const double c_s = std::sqrt(kSteel.shear_modulus / kSteel.density);
+  const double c_s = std::sqrt(kSteel.mu() / kSteel.density());
   Measures ms{.reference = &rf};
   // Error: per probe, the largest |v - v_ref| over time over the largest |v_ref|; the largest of these over the
   // surface probes beyond the patch (s4..s9) and over the two at depth.

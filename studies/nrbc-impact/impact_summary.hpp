@@ -16,7 +16,7 @@ namespace nrbc_impact {
 /// The key numbers of the runs, and the settings of `base` (cfl, t_end) with the scheme's gradient.
 inline void summarise(study::Summary& sum, const std::vector<ImpactRun>& runs, const std::vector<Measures>& measures,
                       const Incident& in, const ImpactCase& base, const std::string& gradient) {
-  const double c_p = kSteel.p_wave_speed(), c_s = std::sqrt(kSteel.shear_modulus / kSteel.density);
+  const double c_p = kSteel.p_wave_speed(), c_s = std::sqrt(kSteel.mu() / kSteel.density());
   const double c_r = rayleigh_speed(c_p, c_s);
   std::string md;
   for (std::size_t k = 0; k < runs.size(); ++k) {

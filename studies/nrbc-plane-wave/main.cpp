@@ -32,7 +32,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr double kDx = 0.02;
-const RateFormMaterial kSteel = RateFormMaterial::from_youngs(2.1, 0.3, 7.8);
+const ElasticMaterial kSteel = ElasticMaterial::from_young_poisson(2.1, 0.3, 7.8);
 
 enum class Condition { Periodic, P, M, HPowell, HHigdon, Traction };
 const char* condition_name(Condition c) {
@@ -123,7 +123,7 @@ StripRun run_strip(const StripCase& c) {
                                   : c.condition == Condition::M ? AbsorbingCondition::Sochaki
                                                                 : AbsorbingCondition::ClaytonEngquist;
     const double scale = c.condition == Condition::HPowell ? kn : c.condition == Condition::HHigdon ? 1 / kn : 1.0;
-    r.analytic = reflected_energy(ac, kSteel.p_wave_speed(), std::sqrt(kSteel.shear_modulus / kSteel.density), r.theta,
+    r.analytic = reflected_energy(ac, kSteel.p_wave_speed(), std::sqrt(kSteel.mu() / kSteel.density()), r.theta,
                                   WaveKind::P, scale);
   } else {
     r.analytic = 1;

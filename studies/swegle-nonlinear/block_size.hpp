@@ -36,7 +36,7 @@ inline BlockSizes block_sizes(const Setup& s, const std::vector<Formulation>& fo
         SwegleOptions sm = s.block.scene.options;
         sm.n = m;
         const SwegleScene sc = make_swegle_scene(sm);
-        const RateFormScheme<2> scheme(sc.discretisation, s.steel, form.options, s.steel.density / xi);
+        const RateFormScheme<2> scheme(sc.discretisation, s.steel, form.options, s.steel.density() / xi);
         const auto tl = study::Clock::now();
         const RateFormSpectrum all = rate_form_spectrum(scheme, scheme.uniform_state());
         b.wall_linear += study::seconds_since(tl);

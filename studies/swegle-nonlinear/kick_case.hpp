@@ -31,7 +31,7 @@ struct KickCase {
 };
 
 inline KickCase run_case(const Setup& s, const Formulation& form, double xi) {
-  const RateFormScheme<2> scheme(s.block.scene.discretisation, s.steel, form.options, s.steel.density / xi);
+  const RateFormScheme<2> scheme(s.block.scene.discretisation, s.steel, form.options, s.steel.density() / xi);
   KickCase c{.form = form.name, .xi = xi};
   const Eigen::VectorXd y_rest = scheme.uniform_state();
   const auto tl = study::Clock::now();

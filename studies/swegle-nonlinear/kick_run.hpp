@@ -24,7 +24,7 @@ using namespace sphstab::study::rate_form_swegle;
 struct Setup {
   Options o;
   Block block;
-  RateFormMaterial steel;
+  ElasticMaterial steel = ElasticMaterial::from_bulk_shear(1.0, 0.0, 1.0);
   double dt = 0, floor = 0;
   std::vector<double> v0s;
 };

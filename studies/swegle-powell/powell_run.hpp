@@ -59,7 +59,7 @@ inline Outcome run_case(const Case& c, const Formulation& form, const rfs::Block
   const SwegleScene& scene = block.scene;
   const auto& disc = scene.discretisation;
   const SwegleOptions& so = scene.options;
-  const RateFormMaterial steel = rfs::steel(so);
+  const ElasticMaterial steel = rfs::steel(so);
   RateFormOptions o = form.options;
   if (!c.bulk) o.bulk_viscosity_quadratic = o.bulk_viscosity_linear = 0;
   const RateFormScheme<2> scheme(disc, steel, o, so.density / c.xi);

@@ -183,7 +183,7 @@ inline std::string set_table(const std::string& set, const MainSet& m, const std
 
 /// The setup: block, sweeps, MCM's constants, the steel's wave speeds, run length and detection floor.
 inline void summarise_setup(study::Summary& s, const Sweeps& sw, const SwegleScene& scene, double t_end, double floor) {
-  const RateFormMaterial steel = rfs::steel(scene.options);
+  const ElasticMaterial steel = rfs::steel(scene.options);
   s.set("n", sw.n);
   s.set("sizes",
         sw.sizes.empty() ? std::string("none") : std::to_string(sw.sizes[0]) + ", " + std::to_string(sw.sizes[1]));

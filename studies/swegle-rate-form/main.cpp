@@ -84,8 +84,8 @@ int main(int argc, char** argv) {
   sum.set("states", RateFormScheme<2>(scene.discretisation, s.steel).size());
   sum.set("reduced", 2 * scene.discretisation->free_count());
   sum.set("class_size", static_cast<int>(s.block(1).excited.cols()));
-  sum.set("bulk_modulus", s.steel.bulk_modulus, 4);
-  sum.set("shear_modulus", s.steel.shear_modulus, 4);
+  sum.set("bulk_modulus", s.steel.bulk_modulus(), 4);
+  sum.set("shear_modulus", s.steel.mu(), 4);
   sum.set("detect", s.detect, 3);
   std::string xi_list;
   for (double xi : xis) xi_list += (xi_list.empty() ? "" : ", ") + study::sig(xi);

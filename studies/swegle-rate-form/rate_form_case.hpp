@@ -25,7 +25,7 @@ using namespace sphstab::study::rate_form_swegle;
 struct Setup {
   Options o;
   std::vector<Block> blocks;
-  RateFormMaterial steel;
+  ElasticMaterial steel = ElasticMaterial::from_bulk_shear(1.0, 0.0, 1.0);
   double dt = 0, detect = 0;
 
   /// The block with the fixed layers a formulation needs.

@@ -22,11 +22,11 @@ inline const char* kRunsHeader =
     "wall_run,layer_supports,particles\n";
 
 inline void write_run(std::ostream& csv, const CaseResult& c, const Setup& s) {
-  const RateFormMaterial& steel = s.steel;
+  const ElasticMaterial& steel = s.steel;
   csv << csv_line({c.form,
                    format_number(c.xi),
                    format_number(c.rho, 8),
-                   format_number(steel.bulk_modulus * (c.rho / steel.density - 1), 8),
+                   format_number(steel.bulk_modulus() * (c.rho / steel.density() - 1), 8),
                    format_number(c.cls.growth_rate, 8),
                    format_number(std::abs(c.cls.lambda.imag()), 8),
                    format_number(c.all.growth_rate, 8),

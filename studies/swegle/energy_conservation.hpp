@@ -52,7 +52,7 @@ inline std::vector<EnergyRow> energy_conservation(const Config& c, double dt) {
       sys.acceleration = acceleration_function(force);
       sys.strain_energy = [force](const Eigen::VectorXd& u) { return force->strain_energy(u); };
       sys.dofs_per_particle = 2;
-      sys.mass = es.material.rho * es.discretisation->particles.volume.head(es.discretisation->free_count());
+      sys.mass = es.material.density() * es.discretisation->particles.volume.head(es.discretisation->free_count());
       LeapfrogOptions o;
       o.dt = h;
       o.t_end = T;

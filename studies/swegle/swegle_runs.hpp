@@ -71,7 +71,7 @@ inline Row run_2d_case(const Formulation& f, double xi, const Config& c, const C
   if (!r.equilibrium) {
     // Not in equilibrium at the lattice (symmetrised S-SPH in tension): find the nearby equilibrium u*, which the
     // run (damped by XSPH) approaches; the linear prediction is taken there.
-    const double scale = std::abs(r.sigma0) / (scene.material.rho * dx);
+    const double scale = std::abs(r.sigma0) / (scene.material.density() * dx);
     const Equilibrium eq =
         find_equilibrium(*force, zero, {.max_iterations = 15, .accel_scale = scale, .load_steps = 4});
     r.newton = eq.status == Status::Successful ? "converged" : eq.message;

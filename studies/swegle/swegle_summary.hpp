@@ -43,7 +43,7 @@ inline std::string xi_label(double xi) { return "xi = " + sig(xi, 6); }
 /// commutation error of a Jacobian with the block's reflections.
 inline void summarise_parameters(study::Summary& s, const SwegleScene& base, const Config& c, double dt,
                                  const std::vector<Row>& rows) {
-  s.set("lambda", base.material.lambda, 5), s.set("mu", base.material.mu, 5), s.set("c_P", base.wave_speed, 5);
+  s.set("lambda", base.material.lambda(), 5), s.set("mu", base.material.mu(), 5), s.set("c_P", base.wave_speed, 5);
   std::string xis;
   for (double xi : c.xis) xis += (xis.empty() ? "" : ", ") + sig(xi, 6);
   s.set("xi_list", xis);

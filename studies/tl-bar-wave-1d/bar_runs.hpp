@@ -32,7 +32,7 @@ struct Run {
 };
 
 /// The case table; cb = sqrt(E / rho) (1D stress), cl = sqrt((lambda + 2 mu) / rho) (1D strain).
-inline std::vector<Run> bar_runs(const LameParameters& lame, double cb, double cl) {
+inline std::vector<Run> bar_runs(const ElasticMaterial& lame, double cb, double cl) {
   return {
       {"hooke-1d-stress", std::make_shared<Hooke<1>>(lame, UniaxialState::Stress), cb},
       {"neo-hookean-1d-strain", std::make_shared<NeoHookean<1>>(lame, UniaxialState::Strain), cl},

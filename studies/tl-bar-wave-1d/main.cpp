@@ -44,8 +44,8 @@ int main(int argc, char** argv) {
   if (quick) n = 50;
   fs::create_directories(out);
   const auto t0 = study::Clock::now();
-  const LameParameters lame = LameParameters::from_young_poisson(kE, kNu);
-  const double cb = std::sqrt(kE / kRho), cl = std::sqrt((lame.lambda + 2 * lame.mu) / kRho);
+  const ElasticMaterial lame = ElasticMaterial::from_young_poisson(kE, kNu, kRho);
+  const double cb = std::sqrt(kE / kRho), cl = std::sqrt((lame.lambda() + 2 * lame.mu()) / kRho);
   const std::vector<Run> runs = bar_runs(lame, cb, cl);
   study::Summary summary;
   summary.set("n", n);

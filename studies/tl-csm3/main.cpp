@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
   const std::string other = others[0] + " and " + others[1];
 
   // ---- 1. The runs: the chosen form at every resolution, the other forms and the clamp sensitivity. ----
-  const LameParameters lame = study::csm3::lame();
+  const ElasticMaterial lame = study::csm3::lame();
   auto svk = std::make_shared<StVenantKirchhoff<2>>(lame);
   const Kernel<2> kernel(KernelType::WendlandC2);
   const CaseSettings settings{
@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
   summary.set("t_measure", t_measure, 3);
   summary.set("clamp_layers", clamp_layers);
   summary.set("wide_clamp", wide_clamp);
-  summary.set("lambda", lame.lambda, 4);
+  summary.set("lambda", lame.lambda(), 4);
   summary.set("snapshot_t", snapshot.t, 4);
   summary.set("snapshot_uy_mm", 1e3 * snapshot.uy, 4);
   summary.set("load", study::load_average());

@@ -82,7 +82,7 @@ int main(int argc, char** argv) {
   if (quick) resolutions = {300, 600};
   fs::create_directories(out);
   const auto t0 = study::Clock::now();
-  const LameParameters lame = LameParameters::from_young_poisson(kE, kNu);
+  const ElasticMaterial lame = ElasticMaterial::from_young_poisson(kE, kNu, 1.0);
   auto hooke = std::make_shared<Hooke<1>>(lame, UniaxialState::Stress);
   const double c1 = std::sqrt(kE / kRho1);
   CsvWriter ccsv(out + "/coefficients.csv",

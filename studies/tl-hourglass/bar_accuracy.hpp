@@ -39,7 +39,7 @@ struct BarResult {
 
 /// The bar with c_HG = chg; every second step of the probe at x = 0.10 goes to probe_csv.
 inline BarResult bar_run(const ib::Bar& bar, double chg, CsvWriter& probe_csv) {
-  const LameParameters lame = LameParameters::from_young_poisson(ib::kE, ib::kNu);
+  const ElasticMaterial lame = ElasticMaterial::from_young_poisson(ib::kE, ib::kNu, ib::kRho);
   const double c = std::sqrt(ib::kE / ib::kRho);
   const auto& disc = bar.disc;
   const std::vector<double>& x_fixed = bar.x_fixed;

@@ -66,7 +66,7 @@ std::shared_ptr<const Discretisation<Dim>> lattice(const Config& c) {
 template <int Dim>
 FiniteStrainTotalLagrangian<Dim> form(std::shared_ptr<const Discretisation<Dim>> d, const Variant& v, double chg,
                                       double E = 1.0, double rho = 1.0) {
-  auto m = std::make_shared<NeoHookean<Dim>>(LameParameters::from_young_poisson(E, kNu));
+  auto m = std::make_shared<NeoHookean<Dim>>(ElasticMaterial::from_young_poisson(E, kNu, 1.0));
   FiniteStrainOptions<Dim> o{.strain_sum = v.sum, .hourglass = chg, .hourglass_projection = v.projection};
   if (v.ncsph) o.gradient = make_gradient_provider<Dim>(Correction::Ncsph);
   return FiniteStrainTotalLagrangian<Dim>(d, m, rho, o);

@@ -70,9 +70,10 @@ int main(int argc, char** argv) {
   if (quick) across = 2, block = 8;
   fs::create_directories(out);
   const auto t0 = study::Clock::now();
-  const LameParameters lame{.lambda = 2 * C::shear_modulus * C::poisson / (1 - 2 * C::poisson), .mu = C::shear_modulus};
+  const ElasticMaterial lame =
+      ElasticMaterial::from_lame(2 * C::shear_modulus * C::poisson / (1 - 2 * C::poisson), C::shear_modulus, 1.0);
   auto svk = std::make_shared<StVenantKirchhoff<2>>(lame);
-  const double cp = std::sqrt((lame.lambda + 2 * lame.mu) / C::density);  // P-wave speed: the rate unit c / dx
+  const double cp = std::sqrt((lame.lambda() + 2 * lame.mu()) / C::density);  // P-wave speed: the rate unit c / dx
   const Kernel<2> kernel(KernelType::WendlandC2);
 
   const TurekHronBeam beam = turek_hron_beam({.across = across, .clamp_layers = 4});

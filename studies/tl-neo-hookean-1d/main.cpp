@@ -127,7 +127,7 @@ int main(int argc, char** argv) {
   // 3. loss of hyperbolicity at nu = 0.49
   {
     Bar bar(n, 0.49);
-    const double lam = bar.material->lame().lambda, mu = bar.mu();
+    const double lam = bar.material->material().lambda(), mu = bar.mu();
     summary.set("lambda_over_mu", lam / mu, 6);
     // analytic: dP/dF of the model changes sign (two roots; the first on [1, e^1.5], the second above)
     const auto g = [&](double f) { return bar.tangent(f); };

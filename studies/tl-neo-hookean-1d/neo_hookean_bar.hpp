@@ -39,7 +39,7 @@ struct Bar {
     ParticleSet<1> set =
         make_lattice<1>(LatticeType::Line, n, {.spacing = dx, .support_radius = 2 * kernel.support_radius(h)});
     disc = make_discretisation(set, kernel, h);
-    material = std::make_shared<NeoHookean<1>>(LameParameters::from_young_poisson(kE, nu));
+    material = std::make_shared<NeoHookean<1>>(ElasticMaterial::from_young_poisson(kE, nu, kRho));
     // the variational pair (plain reference gradient, difference strain, plus divergence): symmetric Jacobian
     tl = std::make_shared<FiniteStrainTotalLagrangian<1>>(disc, material, kRho);
     x_free = disc->free_positions().col(0);
@@ -54,8 +54,8 @@ struct Bar {
   }
   void set_stretch(double lambda) { tl->set_fixed_displacement((lambda - 1) * x_fixed); }
   Eigen::VectorXd homogeneous(double lambda) const { return (lambda - 1) * x_free; }
-  double c_l() const { return std::sqrt(material->lame().uniaxial_modulus(UniaxialState::Strain) / kRho); }
-  double mu() const { return material->lame().mu; }
+  double c_l() const { return std::sqrt(material->material().uniaxial_modulus(UniaxialState::Strain) / kRho); }
+  double mu() const { return material->material().mu(); }
   /// P = T11 (1D strain: J = F) of free particle f.
   double t11(const Eigen::VectorXd& u, int f) const { return tl->stresses(u)(disc->free[f], 0); }
   double F(const Eigen::VectorXd& u, int f) const { return tl->deformation_gradients(u)(disc->free[f], 0); }

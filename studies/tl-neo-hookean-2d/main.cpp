@@ -92,10 +92,10 @@ int main(int argc, char** argv) {
   const double h = kHOverDx * kDx;
   const int layers = static_cast<int>(std::ceil(2 * kernel.support_radius(h) / kDx - 1e-9));
   const auto disc = make_discretisation(block(layers), kernel, h);
-  auto material = std::make_shared<NeoHookean<2>>(LameParameters::from_young_poisson(kE, nu));
+  auto material = std::make_shared<NeoHookean<2>>(ElasticMaterial::from_young_poisson(kE, nu, kRho));
   FiniteStrainTotalLagrangian<2> tl(disc, material, kRho);
-  const double mu = material->lame().mu;
-  const double cl = std::sqrt(material->lame().uniaxial_modulus(UniaxialState::Strain) / kRho);
+  const double mu = material->material().mu();
+  const double cl = std::sqrt(material->material().uniaxial_modulus(UniaxialState::Strain) / kRho);
   const double t_load = ramp_transits * kNx * kDx / cl;
   Eigen::MatrixXd x_fixed(disc->size() - disc->free_count(), 2);
   for (int i = 0, k = 0; i < disc->size(); ++i)

@@ -40,7 +40,7 @@ inline DynamicOutcome dynamic_step(const Run& run, double c_hg, double transits,
   const PlateWithHole plate = make_plate_with_hole(
       {.radius = kA, .width = W, .spacing = dx, .ghost_depth = 2 * kernel.support_radius(h) + 0.5 * dx});
   const auto disc = make_discretisation(plate.particles, kernel, h);
-  const auto lame = LameParameters::from_young_poisson(run.youngs, run.nu);
+  const auto lame = ElasticMaterial::from_young_poisson(run.youngs, run.nu, 1.0);
   const auto material = std::make_shared<NeoHookean<2>>(lame);
   FiniteStrainTotalLagrangian<2> tl(disc, material, 1.0,
                                     {.gradient = make_gradient_provider<2>(Correction::Ncsph),
@@ -60,7 +60,7 @@ inline DynamicOutcome dynamic_step(const Run& run, double c_hg, double transits,
     x = y / y.norm();
   }
   o.dt = 0.4 * 2 / std::sqrt(mu_max);
-  const double cs = std::sqrt(lame.mu / 1.0);
+  const double cs = std::sqrt(lame.mu() / 1.0);
   o.t_end = transits * W / cs;
   SecondOrderSystem sys;
   Eigen::VectorXd a_all;

@@ -60,7 +60,7 @@ struct PlateSummary {
   /// The row of a suddenly loaded run; dt in units of the transit time W / c_s (c_s = sqrt(mu / rho), rho = 1, W = 5).
   void add_dynamic(const Run& run, const DynamicOutcome& d) {
     study::md_row(md_dyn, {study::sig(run.a_over_dx),
-                           study::sig(d.dt * std::sqrt(LameParameters::from_young_poisson(70, 0.49).mu) / 5, 3),
+                           study::sig(d.dt * std::sqrt(ElasticMaterial::from_young_poisson(70, 0.49, 1.0).mu()) / 5, 3),
                            std::to_string(d.steps), d.end, study::fixed(d.peak_hole, 2), study::fixed(d.peak_time, 2),
                            study::fixed(d.peak_all, 2)});
   }

@@ -54,7 +54,7 @@ inline Outcome solve(const Run& run, double c_hg, const std::string& out) {
   const PlateWithHole plate = make_plate_with_hole(
       {.radius = kA, .width = W, .spacing = dx, .ghost_depth = 2 * kernel.support_radius(h) + 0.5 * dx});
   const auto disc = make_discretisation(plate.particles, kernel, h);
-  const auto lame = LameParameters::from_young_poisson(run.youngs, run.nu);
+  const auto lame = ElasticMaterial::from_young_poisson(run.youngs, run.nu, 1.0);
   std::shared_ptr<const HyperelasticModel<2>> material;
   if (run.model == "hooke")
     material = std::make_shared<Hooke<2>>(lame);

@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
   if (quick) n = 500, steps = 1000, n_table = 100;
   fs::create_directories(out);
   const auto t0 = study::Clock::now();
-  const LameParameters lame = LameParameters::from_young_poisson(kE, kNu);
+  const ElasticMaterial lame = ElasticMaterial::from_young_poisson(kE, kNu, kRho);
   auto hooke = std::make_shared<Hooke<1>>(lame, UniaxialState::Stress);
   const double c = std::sqrt(kE / kRho);
   study::Summary summary;
@@ -101,7 +101,7 @@ int main(int argc, char** argv) {
   const std::vector<KernelType> kernels{KernelType::ModifiedMollifier, KernelType::Lucy, KernelType::CubicSpline,
                                         KernelType::Gaussian};
   const std::vector<double> supports{2, 2.5, 3, 3.5, 4, 4.5, 5, 5.5, 6, 7, 8, 10, 12};
-  auto unit = std::make_shared<Hooke<1>>(LameParameters::from_young_poisson(1.0, kNu), UniaxialState::Stress);
+  auto unit = std::make_shared<Hooke<1>>(ElasticMaterial::from_young_poisson(1.0, kNu, kRho), UniaxialState::Stress);
   for (const KernelType type : kernels) {
     const Kernel<1> kernel(type);
     for (const double s : supports) {

@@ -135,7 +135,7 @@ int main(int argc, char** argv) {
   if (!(t_ul > 0) || !std::isfinite(t_ul)) throw std::runtime_error("tl-ul-pairing: T_crit(UL) not finite");
 
   // TL, Hooke: A(T) from the complex-step Jacobian at the pre-stretched states u = eps X, eps = T / E.
-  const LameParameters lame = LameParameters::from_young_poisson(1.0, kNu);
+  const ElasticMaterial lame = ElasticMaterial::from_young_poisson(1.0, kNu, 1.0);
   auto hooke = std::make_shared<Hooke<1>>(lame, UniaxialState::Stress);
   const Eigen::VectorXd x_free = disc->free_positions().col(0);
   const double x_end = x_free.minCoeff() - 0.5;          // the bar's left end, between the free and the fixed particles

@@ -37,12 +37,12 @@ namespace pairing_rf {
 
 /// Linear EOS + hypoelastic shear with P-wave modulus `modulus` (the 1D bar's modulus in uniaxial strain), Poisson's
 /// ratio nu in (-1, 1/2) and zero-pressure density rho0: E_young = M (1 + nu)(1 - 2 nu) / (1 - nu).
-inline sphstab::RateFormMaterial material_with_modulus(double modulus, double nu, double rho0) {
-  return sphstab::RateFormMaterial::from_youngs(modulus * (1 + nu) * (1 - 2 * nu) / (1 - nu), nu, rho0);
+inline sphstab::ElasticMaterial material_with_modulus(double modulus, double nu, double rho0) {
+  return sphstab::ElasticMaterial::from_young_poisson(modulus * (1 + nu) * (1 - 2 * nu) / (1 - nu), nu, rho0);
 }
 
 /// P-wave modulus M = K + 4 mu / 3.
-inline double p_wave_modulus(const sphstab::RateFormMaterial& m) { return m.bulk_modulus + 4 * m.shear_modulus / 3; }
+inline double p_wave_modulus(const sphstab::ElasticMaterial& m) { return m.bulk_modulus() + 4 * m.mu() / 3; }
 
 /// A homogeneous uniaxial-strain stretch xi = V / V0 of the rate-form material from rest (see the file comment).
 struct StretchedState {
@@ -53,12 +53,12 @@ struct StretchedState {
   double stress = 0;    ///< sigma_xx = -p + S (tension positive)
 };
 
-inline StretchedState stretched_state_at(const sphstab::RateFormMaterial& m, double xi) {
+inline StretchedState stretched_state_at(const sphstab::ElasticMaterial& m, double xi) {
   StretchedState s;
   s.xi = xi;
-  s.density = m.density / xi;
-  s.pressure = m.bulk_modulus * (1 / xi - 1);
-  s.deviator = 4 * m.shear_modulus / 3 * std::log(xi);
+  s.density = m.density() / xi;
+  s.pressure = m.bulk_modulus() * (1 / xi - 1);
+  s.deviator = 4 * m.mu() / 3 * std::log(xi);
   s.stress = -s.pressure + s.deviator;
   return s;
 }
@@ -66,9 +66,9 @@ inline StretchedState stretched_state_at(const sphstab::RateFormMaterial& m, dou
 /// The stretched state with sigma_xx = stress (Newton on the monotone sigma(xi), d sigma / d xi = K / xi^2 +
 /// (4 mu / 3) / xi > 0, from xi = 1 + stress / M). Throws std::invalid_argument for a non-finite stress or when Newton
 /// does not converge in 100 steps.
-inline StretchedState stretched_state(const sphstab::RateFormMaterial& m, double stress) {
+inline StretchedState stretched_state(const sphstab::ElasticMaterial& m, double stress) {
   if (!std::isfinite(stress)) throw std::invalid_argument("stretched_state: stress must be finite");
-  const double K = m.bulk_modulus, g = 4 * m.shear_modulus / 3;
+  const double K = m.bulk_modulus(), g = 4 * m.mu() / 3;
   double xi = 1 + stress / (K + g);
   for (int it = 0; it < 100; ++it) {
     if (!(xi > 0)) break;

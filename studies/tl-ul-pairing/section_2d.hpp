@@ -150,8 +150,8 @@ struct CriticalRow {
 inline void critical_2d(const Options& o, const Kernel<2>& kernel, double h, bool complex_step,
                         std::vector<CriticalRow>& rows, std::vector<double>* tl_a1_relative = nullptr) {
   const auto disc = make_block(o.nx, o.ny, kernel, h);
-  const LameParameters lame = LameParameters::from_young_poisson(1.0, o.nu);
-  const ElasticMaterial material{.lambda = lame.lambda, .mu = lame.mu, .rho = 1.0};
+  const ElasticMaterial lame = ElasticMaterial::from_young_poisson(1.0, o.nu, 1.0);
+  const ElasticMaterial& material = lame;  // the small-strain forms and the finite-strain models: one material
   CriticalLoadOptions copt = CriticalLoadOptions::strain_2d();
   copt.want_mode = true;
   for (PreStrainKind kind : {PreStrainKind::UniaxialX, PreStrainKind::Isotropic}) {
@@ -214,8 +214,8 @@ inline void run(const Options& o, const std::string& out, study::Summary& summar
   const double h = o.h;
   const auto disc = make_block(o.nx, o.ny, kernel, h);
   const int nfree = disc->free_count();
-  const LameParameters lame = LameParameters::from_young_poisson(1.0, o.nu);
-  const ElasticMaterial material{.lambda = lame.lambda, .mu = lame.mu, .rho = 1.0};
+  const ElasticMaterial lame = ElasticMaterial::from_young_poisson(1.0, o.nu, 1.0);
+  const ElasticMaterial& material = lame;  // the small-strain forms and the finite-strain models: one material
   summary.set("kernel_2d", kernel_name(kernel.type()));
   summary.set("h_over_dx_2d", h, 4);
   summary.set("nx_2d", o.nx);

@@ -94,10 +94,10 @@ inline void run_section(const SectionInputs& in, const std::string& out, sphstab
                         std::string& md_runs) {
   using namespace sphstab;
   const double e_bar = 1.0;  // the bar's 1D modulus (E of the TL and UL forms)
-  const RateFormMaterial material = material_with_modulus(e_bar, in.nu, 1.0);
+  const ElasticMaterial material = material_with_modulus(e_bar, in.nu, 1.0);
   const double M = p_wave_modulus(material);
-  summary.set("rf_bulk", material.bulk_modulus, 4);
-  summary.set("rf_shear", material.shear_modulus, 4);
+  summary.set("rf_bulk", material.bulk_modulus(), 4);
+  summary.set("rf_shear", material.mu(), 4);
   summary.set("rf_m", M, 6);
   summary.set("rf_nu", in.nu, 3);
 
@@ -148,7 +148,7 @@ inline void run_section(const SectionInputs& in, const std::string& out, sphstab
       auto scheme_at = [&](double tau) {
         double rho = 0, dev = 0;
         if (family == "engine") {
-          rho = material.density * (1 - tau * M / material.bulk_modulus);  // rho0 / xi
+          rho = material.density() * (1 - tau * M / material.bulk_modulus());  // rho0 / xi
         } else {
           const StretchedState st = stretched_state(material, tau * M);
           rho = st.density, dev = st.deviator;
@@ -168,10 +168,10 @@ inline void run_section(const SectionInputs& in, const std::string& out, sphstab
       std::vector<std::pair<double, bool>> grid;
       for (int k = 0; k <= 137; ++k) {
         const double tau = std::pow(10.0, -7 + k / 20.0);
-        if (family == "engine" && tau * M >= 0.999 * material.bulk_modulus) continue;
+        if (family == "engine" && tau * M >= 0.999 * material.bulk_modulus()) continue;
         const auto [g, scale] = growth(tau);
         const bool u = g > 1e-7 * scale;
-        gcsv.row({v.run, family, tau, material.density / scheme_at(tau).initial_density(), g, g / scale, u ? 1 : 0});
+        gcsv.row({v.run, family, tau, material.density() / scheme_at(tau).initial_density(), g, g / scale, u ? 1 : 0});
         grid.emplace_back(tau, u);
       }
       const std::vector<UnstableInterval> bands = unstable_intervals(grid, unstable, 1e-8);

@@ -57,7 +57,7 @@ TEST(JacobianCommand, ElasticExportsAreTheAnalyticJacobians) {
                                    "e2");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const Kernel<2> kernel(KernelType::CubicSpline);
-    const ElasticMaterial m{.lambda = 1.2115384615384615, .mu = 0.80769230769230769, .rho = 1.0};
+    const ElasticMaterial m = ElasticMaterial::from_lame(1.2115384615384615, 0.80769230769230769, 1.0);
     const Linearisation lin = analytic_jacobian_2d(
         *make_discretisation(strain_lattice_2d(LatticeType::Hexagonal, kernel, 1.5, 6), kernel, 1.5), m,
         MomentumForm::Conservative, PreStrainKind::UniaxialX);
@@ -93,7 +93,7 @@ TEST(JacobianCommand, RateFormJacobianMatchesCentralDifferences) {
   a.n = "4", a.xsph = "0.5", a.artificial_stress = "0.3", a.continuity = "divergence";
   const cli::RateFormSetup s = cli::parse_rate_form_args(a, "test", false, 1, 1000, 1000);
   const auto disc = rate_form_block_discretisation<2>(cli::block_options(s, s.kernels.front(), s.h_over_dx.front()));
-  const RateFormScheme<2> scheme(disc, s.material, s.options, s.material.density / s.xi.front());
+  const RateFormScheme<2> scheme(disc, s.material, s.options, s.material.density() / s.xi.front());
   ASSERT_EQ(J.rows(), scheme.size());
   const Eigen::VectorXd y = scheme.uniform_state();
   const Eigen::MatrixXd Jd(J);

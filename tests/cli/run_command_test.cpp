@@ -43,7 +43,7 @@ RateFormScheme<1> bar(int n, double xi, bool periodic, PairLoop loop = PairLoop:
       make_lattice<1>(LatticeType::Line, n,
                       {.spacing = dx, .support_radius = kernel.support_radius(h), .periodic = periodic}),
       kernel, h);
-  return RateFormScheme<1>(disc, RateFormMaterial::from_youngs(2.1, 0.3, 7.8), {.pair_loop = loop}, 7.8 / xi);
+  return RateFormScheme<1>(disc, ElasticMaterial::from_young_poisson(2.1, 0.3, 7.8), {.pair_loop = loop}, 7.8 / xi);
 }
 
 std::vector<std::string> words(const std::string& s) {

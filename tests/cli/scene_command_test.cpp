@@ -42,7 +42,7 @@ const RateFormOptions kGms{.continuity = ContinuityForm::Divergence,
 TEST(SceneCommand, PlateSeriesIsTheLibrarysRun) {
   // GMS §7.1 at 4 across (dp = 0.5, h = 0.75), mu = 0.3, V_f = 0.02, dt = 0.5 h / c_P, skin 0.5 dp.
   const double L = 20, H = 2, vf = 0.02, dp = 0.5, h = 1.5 * dp;
-  const RateFormMaterial mat{.density = 1, .bulk_modulus = 1, .shear_modulus = 0.3};
+  const ElasticMaterial mat = ElasticMaterial::from_bulk_shear(1, 0.3, 1);
   const RateFormScheme<2> scheme(make_discretisation(make_cantilever_plate({.length = L, .thickness = H, .across = 4}),
                                                      Kernel<2>(KernelType::CubicSpline), h),
                                  mat, kGms);

@@ -194,7 +194,7 @@ TEST(TcritCommand, TwoDimensionalCriticalPreStrain) {
   EXPECT_EQ(row[col("quantity")], "critical-prestrain");
   EXPECT_EQ(row[col("criterion")], "definiteness");
   Kernel<2> k(KernelType::WendlandC4);
-  const ElasticMaterial nu03{.lambda = 1.2115384615384615, .mu = 0.80769230769230769, .rho = 1.0};
+  const ElasticMaterial nu03 = ElasticMaterial::from_lame(1.2115384615384615, 0.80769230769230769, 1.0);
   auto d = make_discretisation(strain_lattice_2d(LatticeType::Hexagonal, k, 1.4, 10), k, 1.4);
   const CriticalLoad ref =
       critical_load(analytic_jacobian_2d(*d, nu03, MomentumForm::Conservative, PreStrainKind::UniaxialX),
@@ -281,7 +281,7 @@ TEST(TcritCommand, ThreeDimensionalLobpcgAgreesWithTheUnpreconditionedIteration)
   const Kernel<3> k(KernelType::CubicSpline);
   const auto disc =
       make_discretisation(make_lattice<3>(LatticeType::Cubic, 6, {.support_radius = k.support_radius(1.3)}), k, 1.3);
-  const MatrixFreeLinearisation<3> lin(*disc, {.lambda = 1.2115384615384615, .mu = 0.80769230769230769, .rho = 1},
+  const MatrixFreeLinearisation<3> lin(*disc, ElasticMaterial::from_lame(1.2115384615384615, 0.80769230769230769, 1),
                                        MomentumForm::Conservative, PreStrainKind::Isotropic);
   const MatrixFreeCriticalLoad ref = matrix_free_critical_load(lin, LoadDirection::Tension,
                                                                {.method = MatrixFreeEigenMethod::BlockLobpcg,

@@ -16,8 +16,8 @@
 namespace sphstab {
 namespace body_force_test {
 
-const LameParameters kLame{.lambda = 1.2, .mu = 0.8};
 constexpr double kRho = 7.8;
+const ElasticMaterial kLame = ElasticMaterial::from_lame(1.2, 0.8, kRho);
 
 std::shared_ptr<const FiniteStrainTotalLagrangian<2>> inner_form(double perturbation = 0.1) {
   auto d = test::lattice_discretisation<2>({.n = 5, .perturbation = perturbation});

@@ -46,7 +46,7 @@ Coefficients reflection(double ratio, int n) {
   Eigen::VectorXd rho(disc->size());
   for (int i = 0; i < disc->size(); ++i) rho[i] = disc->particles.x(i, 0) < kStep ? kRho1 : ratio * kRho1;
   FiniteStrainTotalLagrangian<1> tl(
-      disc, std::make_shared<Hooke<1>>(LameParameters::from_young_poisson(kE, 0.3), UniaxialState::Stress), rho);
+      disc, std::make_shared<Hooke<1>>(ElasticMaterial::from_young_poisson(kE, 0.3, 1.0), UniaxialState::Stress), rho);
   std::vector<double> x_fixed;
   for (int i = 0; i < disc->size(); ++i)
     if (disc->free_slot[i] < 0) x_fixed.push_back(disc->particles.x(i, 0));

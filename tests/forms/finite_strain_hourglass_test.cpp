@@ -22,8 +22,8 @@ namespace sphstab {
 namespace finite_strain_hourglass_test {
 
 using test::random_vector;
-const LameParameters kLame{.lambda = 1.2, .mu = 0.8};
 constexpr double kRho = 7.8;
+const ElasticMaterial kLame = ElasticMaterial::from_lame(1.2, 0.8, kRho);
 
 double max_abs(const Eigen::MatrixXd& m) { return m.cwiseAbs().maxCoeff(); }
 

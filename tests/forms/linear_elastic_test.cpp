@@ -37,8 +37,7 @@ TEST(LinearElastic, SparseMatricesPairLoopAndReassemblyAgree) {
     lo.perturbation = periodic ? 0.0 : 0.1;  // irregular free block when clamped
     auto p = make_lattice<2>(LatticeType::Square, 9, lo);
     for (const Form& f : kForms) {
-      LinearElasticOptions o{
-          .density = 7.8, .lame_lambda = 1.2, .shear_modulus = 0.8, .gradient = f.g, .divergence = f.d};
+      LinearElasticOptions o{.material = ElasticMaterial::from_lame(1.2, 0.8, 7.8), .gradient = f.g, .divergence = f.d};
       LinearElasticSph<2> tl(p, k, h, o);
       o.frame = LagrangianFrame::Updated;
       o.skin = 0.3;
@@ -68,7 +67,7 @@ TEST(LinearElastic, VariationalPairConservesMomentumOnAPeriodicBox) {
   lo.periodic = true;
   lo.perturbation = 0.2;
   auto p = make_lattice<2>(LatticeType::Square, 10, lo);
-  LinearElasticSph<2> tl(p, k, 1.3, {.lame_lambda = 2.0, .shear_modulus = 1.0});
+  LinearElasticSph<2> tl(p, k, 1.3, {.material = ElasticMaterial::from_lame(2.0, 1.0, 1.0)});
   Eigen::VectorXd u = random_field(200, 0.1, 5), a;
   tl.acceleration(u, a);
   double px = 0, py = 0;
@@ -91,7 +90,7 @@ TEST(LinearElastic, PlaneWavesTravelAtM1TimesThePAndSSpeeds) {
     lo.periodic = true;
     auto p = make_lattice<2>(LatticeType::Square, n, lo);
     const double h = 1.3 / n, kk = 2 * M_PI;
-    LinearElasticSph<2> tl(p, k, h, {.density = rho, .lame_lambda = lam, .shear_modulus = mu});
+    LinearElasticSph<2> tl(p, k, h, {.material = ElasticMaterial::from_lame(lam, mu, rho)});
     auto G = gradient_matrix(p, find_neighbours(p, 2 * h), k, h, 0);
     double m1 = 0;
     for (SparseMatrix<>::InnerIterator it(G, 0); it; ++it) {
@@ -133,9 +132,8 @@ TEST(LinearElastic, OneDimensionalCaseEqualsTheElasticBar) {
     lo.spacing = bar.spacing();
     lo.fixed_layers = 0;
     auto p = make_lattice<1>(LatticeType::Line, 40, lo);
-    LinearElasticSph<1> le(
-        p, Kernel<1>(KernelType::CubicSpline), bar.h(),
-        {.density = 7.8, .lame_lambda = 0.5, .shear_modulus = 0.8, .gradient = f.g, .divergence = f.d});
+    LinearElasticSph<1> le(p, Kernel<1>(KernelType::CubicSpline), bar.h(),
+                           {.material = ElasticMaterial::from_lame(0.5, 0.8, 7.8), .gradient = f.g, .divergence = f.d});
     Eigen::VectorXd u = random_field(40, 1e-3, 9), a1, a2(40);
     le.acceleration(u, a1);
     bar.acceleration(u, a2);
@@ -144,7 +142,8 @@ TEST(LinearElastic, OneDimensionalCaseEqualsTheElasticBar) {
   auto p = make_lattice<2>(LatticeType::Square, 4, {.spacing = 1.0, .support_radius = 2.6});
   EXPECT_THROW(LinearElasticSph<2>(p, Kernel<2>(KernelType::CubicSpline), 1.3, {.gradient = StrainGradient::Corrected}),
                std::invalid_argument);
-  EXPECT_THROW(LinearElasticSph<2>(p, Kernel<2>(KernelType::CubicSpline), 1.3, {.shear_modulus = 0.0}),
+  EXPECT_THROW(LinearElasticSph<2>(p, Kernel<2>(KernelType::CubicSpline), 1.3,
+                                   {.material = ElasticMaterial::from_lame(1.0, 0.0, 1.0)}),
                std::invalid_argument);
 }
 

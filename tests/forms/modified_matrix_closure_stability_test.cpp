@@ -38,7 +38,8 @@ GrowthAnalysis closed_loop(int n, Closure closure) {
   ParticleSet<1> ext = set;  // the constrained ghosts as unknowns: a_I's derivative with respect to them
   for (int c : ghosts) ext.role[c] = Role::Free;
   const auto disc = make_discretisation(ext, kernel, h);
-  const auto hooke = std::make_shared<Hooke<1>>(LameParameters::from_young_poisson(1.0, 0.3), UniaxialState::Stress);
+  const auto hooke =
+      std::make_shared<Hooke<1>>(ElasticMaterial::from_young_poisson(1.0, 0.3, 1.0), UniaxialState::Stress);
   const FiniteStrainTotalLagrangian<1> tl(disc, hooke, 1.0);
   const Eigen::MatrixXd A_ext(jacobian(tl, Eigen::VectorXd::Zero(tl.dofs())));
   // u_ext = E u_I: identity on the interior, the closure on the ghosts (ModifiedMatrixDirichlet::apply is linear;

@@ -29,7 +29,7 @@ Result linearise(bool periodic, bool variational) {
   const ParticleSet<2> set = periodic ? make_lattice<2>(LatticeType::Square, 8, {.spacing = dx, .periodic = true})
                                       : make_lattice<2>(LatticeType::Square, 8, {.spacing = dx, .fixed_layers = 0});
   const auto disc = make_discretisation(set, kernel, h);
-  const auto svk = std::make_shared<StVenantKirchhoff<2>>(LameParameters{.lambda = 2e6, .mu = 0.5e6});
+  const auto svk = std::make_shared<StVenantKirchhoff<2>>(ElasticMaterial::from_lame(2e6, 0.5e6, 1.0));
   std::unique_ptr<ForceFunction> tl;
   if (variational) {
     tl = std::make_unique<VariationalTotalLagrangian<2>>(disc, svk, 1000.0,

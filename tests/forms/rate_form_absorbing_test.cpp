@@ -18,7 +18,7 @@
 namespace sphstab {
 namespace rate_form_absorbing_test {
 
-const RateFormMaterial kSteel = RateFormMaterial::from_youngs(2.1, 0.3, 7.8);  // Powell's g, cm, us
+const ElasticMaterial kSteel = ElasticMaterial::from_young_poisson(2.1, 0.3, 7.8);  // Powell's g, cm, us
 const Kernel<2> kCubic2(KernelType::CubicSpline);
 const Kernel<1> kCubic1(KernelType::CubicSpline);
 using Vec2 = Eigen::Vector2d;
@@ -46,7 +46,7 @@ std::shared_ptr<const Discretisation<1>> bar(int n, double dx = 0.01) {
   for (int i = 0; i < n; ++i) p.x(i, 0) = (i + 0.5) * dx;
   return make_discretisation(p, kCubic1, 1.3 * dx);
 }
-const RateFormMaterial kBar{.density = 7.8, .bulk_modulus = 2.1, .shear_modulus = 0};
+const ElasticMaterial kBar = ElasticMaterial::from_bulk_shear(2.1, 0, 7.8);
 
 /// The right column of a block (outward normal +x) and its top row (normal +y), corner excluded from the row.
 AbsorbingParticles<2> right_and_top(int nx, int ny, AbsorbingCondition condition, bool upwind) {
@@ -62,7 +62,7 @@ TEST(RateFormAbsorbing, LinearVelocityGivesTheConditionExactlyWithNcsph) {
   const auto disc = block(7, 6);
   const Eigen::Matrix2d A{{0.013, -0.004}, {0.007, -0.011}};
   const Vec2 v0(0.002, -0.003);
-  const double c_p = kSteel.p_wave_speed(), c_s = std::sqrt(kSteel.shear_modulus / kSteel.density);
+  const double c_p = kSteel.p_wave_speed(), c_s = std::sqrt(kSteel.mu() / kSteel.density());
   // The same with a plain-gradient scheme whose absorbing particles normalise their own gradient (`normalised`).
   for (AbsorbingCondition condition : {AbsorbingCondition::ClaytonEngquist, AbsorbingCondition::Sochaki})
     for (bool upwind : {false, true})
@@ -177,7 +177,7 @@ TEST(RateFormAbsorbing, PulseLeavesThroughThreeLayersAndReflectsFromAFreeEnd) {
     Eigen::VectorXd y = s.uniform_state();
     for (int i = 60; i < 75; ++i) {
       y[s.velocity_offset(i)] = 0.01;
-      y[s.density_offset(i)] = kBar.density * (1 + 0.01 / c);  // compressive: rho = rho0 (1 + v / c)
+      y[s.density_offset(i)] = kBar.density() * (1 + 0.01 / c);  // compressive: rho = rho0 (1 + v / c)
     }
     const double ke0 = s.kinetic_energy(y);
     const RateFormRunResult r =
@@ -237,7 +237,7 @@ TEST(RateFormAbsorbing, SpeedScaleIsTheConditionWithScaledSpeeds) {
   // field the acceleration equals the condition's with the scaled speeds.
   const auto disc = block(7, 6);
   const Eigen::Matrix2d A{{0.013, -0.004}, {0.007, -0.011}};
-  const double c_p = kSteel.p_wave_speed(), c_s = std::sqrt(kSteel.shear_modulus / kSteel.density);
+  const double c_p = kSteel.p_wave_speed(), c_s = std::sqrt(kSteel.mu() / kSteel.density());
   RateFormScheme<2> s(disc, kSteel, {.gradient = RateFormGradient::Ncsph});
   AbsorbingParticles<2> b = right_and_top(7, 6, AbsorbingCondition::ClaytonEngquist, false);
   for (std::size_t q = 0; q < b.particles.size(); ++q) b.speed_scale.push_back(0.5 + 0.1 * static_cast<double>(q));
@@ -263,7 +263,7 @@ TEST(RateFormAbsorbing, ViscousTractionAddsTheDashpotToTheMomentumEquation) {
   AbsorbingParticles<2> b = right_and_top(6, 5, AbsorbingCondition::ViscousTraction, false);
   b.traction_depth = 0.02;
   face.set_absorbing(b);
-  const double c_p = kSteel.p_wave_speed(), c_s = std::sqrt(kSteel.shear_modulus / kSteel.density);
+  const double c_p = kSteel.p_wave_speed(), c_s = std::sqrt(kSteel.mu() / kSteel.density());
   const Eigen::VectorXd y = plain.uniform_state() + random_vector(plain.size(), 1e-3, 3);
   Eigen::VectorXd f, g;
   plain.rate(y, f);
@@ -307,7 +307,7 @@ TEST(RateFormAbsorbing, ViscousEndAbsorbsAPulseInOneDimension) {
   Eigen::VectorXd y = s.uniform_state();
   for (int i = 60; i < 75; ++i) {
     y[s.velocity_offset(i)] = 0.01;
-    y[s.density_offset(i)] = kBar.density * (1 + 0.01 / c);
+    y[s.density_offset(i)] = kBar.density() * (1 + 0.01 / c);
   }
   const double ke0 = s.kinetic_energy(y);
   const RateFormRunResult r =

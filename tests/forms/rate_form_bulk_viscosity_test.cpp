@@ -22,7 +22,7 @@
 namespace sphstab {
 namespace rate_form_bulk_viscosity_test {
 
-const RateFormMaterial kMaterial{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};
+const ElasticMaterial kMaterial = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
 constexpr double kQ1 = 1.5, kQ2 = 0.06;  // the MCM deck's QBVC, LBVC
 
 /// A moving state on a perturbed periodic lattice: velocities of both signs of divergence.

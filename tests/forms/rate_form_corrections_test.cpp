@@ -19,7 +19,7 @@
 namespace sphstab {
 namespace rate_form_corrections_test {
 
-const RateFormMaterial kGms{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};
+const ElasticMaterial kGms = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
 
 /// The state's fields, unpacked independently of the scheme's evaluation (fixed particles: reference positions,
 /// v = 0).
@@ -43,8 +43,8 @@ Fields unpack(const RateFormScheme<2>& s, const Eigen::VectorXd& y) {
     f.current.volume[i] = s.mass()[i] / f.rho[i];
     Eigen::Matrix2d sig;
     sig << y[r + 1], y[r + 3], y[r + 3], y[r + 2];
-    f.sigma.push_back(sig -
-                      s.material().bulk_modulus * (f.rho[i] / s.material().density - 1) * Eigen::Matrix2d::Identity());
+    f.sigma.push_back(sig - s.material().bulk_modulus() * (f.rho[i] / s.material().density() - 1) *
+                                Eigen::Matrix2d::Identity());
   }
   return f;
 }
@@ -80,7 +80,7 @@ TEST(RateFormCorrections, NcsphVelocityGradientIsExactForLinearFieldsUpToTheBoun
     double err = 0;
     for (int i = 0; i < disc->size(); ++i) {
       const int r = s.density_offset(i);
-      const Eigen::Matrix2d dev = 2 * kGms.shear_modulus * (D - D.trace() / 3 * Eigen::Matrix2d::Identity());
+      const Eigen::Matrix2d dev = 2 * kGms.mu() * (D - D.trace() / 3 * Eigen::Matrix2d::Identity());
       err = std::max({err, std::abs(f[r] + 1.1 * A.trace()), std::abs(f[r + 1] - dev(0, 0)),
                       std::abs(f[r + 2] - dev(1, 1)), std::abs(f[r + 3] - dev(0, 1))});
     }

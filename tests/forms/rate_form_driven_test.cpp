@@ -20,7 +20,7 @@
 namespace sphstab {
 namespace rate_form_driven_test {
 
-const RateFormMaterial kGms{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.22};
+const ElasticMaterial kGms = ElasticMaterial::from_bulk_shear(1.0, 0.22, 1.0);
 const Kernel<2> kCubic(KernelType::CubicSpline);
 using Vec2 = Eigen::Vector2d;
 
@@ -154,7 +154,7 @@ double middle_axial_stress(const RateFormScheme<2>& s, const Eigen::VectorXd& y)
   for (int i = 0; i < s.discretisation().size(); ++i)
     if (std::abs(s.discretisation().particles.x(i, 0) - 12.0) < 2) {
       const int r = s.density_offset(i);
-      sum += y[r + 1] - kGms.bulk_modulus * (y[r] / kGms.density - 1);
+      sum += y[r + 1] - kGms.bulk_modulus() * (y[r] / kGms.density() - 1);
       ++count;
     }
   return sum / count;

@@ -16,7 +16,7 @@
 namespace sphstab {
 namespace rate_form_state_test {
 
-const RateFormMaterial kMaterial{.density = 2.0, .bulk_modulus = 3.0, .shear_modulus = 0.5};
+const ElasticMaterial kMaterial = ElasticMaterial::from_bulk_shear(3.0, 0.5, 2.0);
 
 /// A 4 x 3 block at dx = 1 whose bottom row is fixed.
 std::shared_ptr<const Discretisation<2>> block() {

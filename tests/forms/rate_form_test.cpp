@@ -25,7 +25,7 @@ RateFormOptions all_terms() {
 }
 
 /// rho0 = c0 = 1 (K = 1), mu = 0.3: the GMS units.
-const RateFormMaterial kGms{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};
+const ElasticMaterial kGms = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
 
 TEST(RateForm, UniformLatticeIsAnEquilibriumToRounding) {
   for (bool periodic : {false, true})
@@ -52,19 +52,19 @@ TEST(RateForm, StateLayoutAndBadInput) {
   const RateFormScheme<2> frozen(disc, kGms, {.evolve_fixed = false});
   EXPECT_EQ(frozen.size(), 16 * 8);
   EXPECT_THROW(RateFormScheme<2>(nullptr, kGms), std::invalid_argument);
-  EXPECT_THROW(RateFormScheme<2>(disc, {.density = 1, .bulk_modulus = 0}), std::invalid_argument);
+  EXPECT_THROW(RateFormScheme<2>(disc, ElasticMaterial::from_bulk_shear(0, 0.0, 1)), std::invalid_argument);
   EXPECT_THROW(RateFormScheme<2>(disc, kGms, {.xsph = -0.1}), std::invalid_argument);
   EXPECT_THROW(RateFormScheme<2>(disc, kGms, {}, 0.0), std::invalid_argument);
   EXPECT_THROW(RateFormScheme<2>(disc, kGms, {}, 1.0, Eigen::VectorXd::Zero(2)), std::invalid_argument);
-  EXPECT_THROW(RateFormMaterial::from_youngs(2.1, 0.5, 7.8), std::invalid_argument);
-  EXPECT_THROW(RateFormMaterial::from_youngs(-1, 0.3, 7.8), std::invalid_argument);
+  EXPECT_THROW(ElasticMaterial::from_young_poisson(2.1, 0.5, 7.8), std::invalid_argument);
+  EXPECT_THROW(ElasticMaterial::from_young_poisson(-1, 0.3, 7.8), std::invalid_argument);
   EXPECT_THROW(parse_viscosity_switch("on"), std::invalid_argument);
   EXPECT_THROW(parse_continuity_form("sum"), std::invalid_argument);
   Eigen::VectorXd f, y = Eigen::VectorXd::Zero(3);
   EXPECT_THROW(scheme.rate(y, f), std::invalid_argument);
-  const RateFormMaterial steel = RateFormMaterial::from_youngs(2.1, 0.3, 7.8);
-  EXPECT_NEAR(steel.bulk_modulus, 1.75, 1e-14);
-  EXPECT_NEAR(steel.shear_modulus, 2.1 / 2.6, 1e-14);
+  const ElasticMaterial steel = ElasticMaterial::from_young_poisson(2.1, 0.3, 7.8);
+  EXPECT_NEAR(steel.bulk_modulus(), 1.75, 1e-14);
+  EXPECT_NEAR(steel.mu(), 2.1 / 2.6, 1e-14);
 }
 
 TEST(RateForm, ComplexStepJacobianMatchesFiniteDifferences) {

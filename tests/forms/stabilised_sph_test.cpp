@@ -11,7 +11,7 @@
 namespace sphstab {
 namespace stabilised_sph_test {
 
-const ElasticMaterial kMaterial{.lambda = 1.2, .mu = 0.8, .rho = 7.8};
+const ElasticMaterial kMaterial = ElasticMaterial::from_lame(1.2, 0.8, 7.8);
 
 std::shared_ptr<const Discretisation<2>> block(int n, bool periodic = false, double perturbation = 0) {
   return test::lattice_discretisation<2>({.n = n, .periodic = periodic, .perturbation = perturbation, .seed = 7});
@@ -99,7 +99,7 @@ TEST(StabilisedSph, SymmetrisedFormIsInEquilibriumOnAPeriodicLatticeButNotNearFi
   auto fixed = block(9);
   auto sym = make_stabilised_sph(fixed, kMaterial, PreStrain::from_area_ratio(1.04));
   sym->acceleration(Eigen::VectorXd::Zero(sym->dofs()), a);
-  const double scale = sym->prestrain().stress(kMaterial)(0, 0) / kMaterial.rho;  // sigma0 / (rho dx), dx = 1
+  const double scale = sym->prestrain().stress(kMaterial)(0, 0) / kMaterial.density();  // sigma0 / (rho dx), dx = 1
   EXPECT_GT(max_abs(a), 0.1 * scale);
   // ... and in compression the switch is off: basic SPH, in equilibrium.
   auto comp = make_stabilised_sph(fixed, kMaterial, PreStrain::from_area_ratio(0.96));

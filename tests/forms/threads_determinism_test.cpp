@@ -22,7 +22,7 @@
 namespace sphstab {
 namespace threads_determinism_test {
 
-const RateFormMaterial kGms{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};
+const ElasticMaterial kGms = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
 
 /// Number of entries where a and b differ in any bit (NaN included).
 long differing(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
@@ -147,7 +147,7 @@ TEST(Threads, LinearElasticAccelerationIsTheSameBitsWithTwoThreads) {
   const ParticleSet<2> set = make_lattice<2>(LatticeType::Square, 40, {.spacing = 1.0, .periodic = true});
   for (LagrangianFrame frame : {LagrangianFrame::Total, LagrangianFrame::Updated}) {
     const LinearElasticSph<2> form(set, kernel, 1.3,
-                                   {.density = 7.8, .lame_lambda = 1.2, .shear_modulus = 0.8, .frame = frame});
+                                   {.material = ElasticMaterial::from_lame(1.2, 0.8, 7.8), .frame = frame});
     const Eigen::VectorXd u = test::random_vector(2 * form.free_count(), 1e-3, 3);
     Eigen::VectorXd a[2], b[2];
     for (int t : {1, 2}) {

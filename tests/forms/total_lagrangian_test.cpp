@@ -11,7 +11,7 @@
 namespace sphstab {
 namespace total_lagrangian_test {
 
-const ElasticMaterial kMaterial{.lambda = 1.2, .mu = 0.8, .rho = 7.8};
+const ElasticMaterial kMaterial = ElasticMaterial::from_lame(1.2, 0.8, 7.8);
 
 std::shared_ptr<const Discretisation<2>> block(int n, int fixed_layers = -1) {
   return test::lattice_discretisation<2>({.n = n, .fixed_layers = fixed_layers});
@@ -77,7 +77,7 @@ TEST(TotalLagrangianForm2D, LinearAndConservativeWithAnOffset) {
 TEST(TotalLagrangianForm2D, BadInput) {
   auto d = block(4);
   EXPECT_THROW(TotalLagrangianForm2D(nullptr, kMaterial), std::invalid_argument);
-  EXPECT_THROW(TotalLagrangianForm2D(d, ElasticMaterial{.lambda = 1, .mu = -1, .rho = 1}), std::invalid_argument);
+  EXPECT_THROW(TotalLagrangianForm2D(d, ElasticMaterial::from_lame(1, -1, 1)), std::invalid_argument);
   EXPECT_THROW(TotalLagrangianForm2D(d, kMaterial, PreStrain{PreStrainKind::Isotropic, NAN}), std::invalid_argument);
   TotalLagrangianForm2D tl(d, kMaterial);
   Eigen::VectorXd a;

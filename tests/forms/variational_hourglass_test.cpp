@@ -18,7 +18,7 @@ namespace sphstab {
 namespace variational_hourglass_test {
 
 constexpr double kRho = 3.1;
-const LameParameters kLame{.lambda = 1.7, .mu = 0.6};
+const ElasticMaterial kLame = ElasticMaterial::from_lame(1.7, 0.6, kRho);
 
 std::shared_ptr<const Discretisation<2>> block() {
   return test::lattice_discretisation<2>({.n = 6, .perturbation = 0.15, .seed = 5});

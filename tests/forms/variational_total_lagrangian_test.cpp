@@ -19,10 +19,10 @@
 namespace sphstab {
 namespace variational_total_lagrangian_test {
 
-const LameParameters kLame{.lambda = 1.2, .mu = 0.8};
 constexpr double kRho = 7.8;
+const ElasticMaterial kLame = ElasticMaterial::from_lame(1.2, 0.8, kRho);
 
-std::shared_ptr<const StVenantKirchhoff<2>> svk(const LameParameters& l = kLame) {
+std::shared_ptr<const StVenantKirchhoff<2>> svk(const ElasticMaterial& l = kLame) {
   return std::make_shared<StVenantKirchhoff<2>>(l);
 }
 
@@ -61,7 +61,7 @@ TEST(VariationalTotalLagrangian, NcsphForceIsTheNegativeEnergyGradient) {
 TEST(VariationalTotalLagrangian, RigidRotationOfTheBeamIsForceFreeWithNcsphOnly) {
   const TurekHronBeam beam = turek_hron_beam({.across = 4});
   const auto d = make_discretisation(beam.particles, Kernel<2>(KernelType::WendlandC2), 1.5 * beam.dx);
-  const LameParameters lame{.lambda = 2e6, .mu = 0.5e6};
+  const ElasticMaterial lame = ElasticMaterial::from_lame(2e6, 0.5e6, kRho);
   const double theta = 0.3;
   Eigen::Matrix2d R;
   R << std::cos(theta), -std::sin(theta), std::sin(theta), std::cos(theta);
@@ -81,7 +81,7 @@ TEST(VariationalTotalLagrangian, RigidRotationOfTheBeamIsForceFreeWithNcsphOnly)
   ncsph.acceleration(u, a_n);
   plain.acceleration(u, a_p);
   // scale: the acceleration of a unit-strain stress over one particle, mu / (rho dx) = 1e5 m/s^2
-  const double scale = lame.mu / (1000.0 * beam.dx);
+  const double scale = lame.mu() / (1000.0 * beam.dx);
   EXPECT_LT(a_n.cwiseAbs().maxCoeff(), 1e-10 * scale);  // F = R exactly: P = 0 up to rounding
   EXPECT_GT(a_p.cwiseAbs().maxCoeff(), 1e-3 * scale);   // spurious surface strain ~0.045 (studies/tl-csm3)
 }
@@ -91,7 +91,7 @@ TEST(VariationalTotalLagrangian, NcsphBeamHasNoGrowingModeAtRest) {
   // (studies/tl-csm3); the variational pair's A = M^{-1} Hess U is similar to a symmetric matrix: real eigenvalues.
   const TurekHronBeam beam = turek_hron_beam({.across = 4});
   const auto d = make_discretisation(beam.particles, Kernel<2>(KernelType::WendlandC2), 1.5 * beam.dx);
-  VariationalTotalLagrangian<2> var(d, svk({.lambda = 2e6, .mu = 0.5e6}), 1000.0,
+  VariationalTotalLagrangian<2> var(d, svk(ElasticMaterial::from_lame(2e6, 0.5e6, 1.0)), 1000.0,
                                     make_gradient_provider<2>(Correction::Ncsph));
   const Eigen::MatrixXd A = Eigen::MatrixXd(jacobian(var, Eigen::VectorXd::Zero(var.dofs())));
   // equal masses: A itself is symmetric (to complex-step rounding)

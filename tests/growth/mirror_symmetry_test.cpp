@@ -29,7 +29,8 @@ TEST(MirrorSymmetry, ClassesPartitionTheFieldsAndBlockDiagonaliseASymmetricJacob
     }
   EXPECT_LT((P - Eigen::MatrixXd::Identity(d->dofs(), d->dofs())).cwiseAbs().maxCoeff(), 1e-14);
   // Basic SPH under isotropic tension commutes with the reflections; the union of the block spectra is the spectrum.
-  ElasticForm2D force(d, {.lambda = 1.2, .mu = 0.8, .rho = 7.8}, MomentumForm::Plus, PreStrain::from_area_ratio(1.03));
+  ElasticForm2D force(d, ElasticMaterial::from_lame(1.2, 0.8, 7.8), MomentumForm::Plus,
+                      PreStrain::from_area_ratio(1.03));
   const SparseMatrix<> A = jacobian(force, Eigen::VectorXd::Zero(force.dofs()));
   EXPECT_LT(commutation_error(s, A), 1e-13);
   double gamma = 0;

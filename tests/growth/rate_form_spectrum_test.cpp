@@ -15,7 +15,7 @@
 namespace sphstab {
 namespace rate_form_spectrum_test {
 
-const RateFormMaterial kGms{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};
+const ElasticMaterial kGms = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
 
 /// The reduction against the dense spectrum of the whole J: every reduced eigenvalue is an eigenvalue of J, and the
 /// growth rates agree.

@@ -19,17 +19,17 @@
 namespace sphstab {
 namespace rate_form_time_step_test {
 
-const RateFormMaterial kGms{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};
+const ElasticMaterial kGms = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
 
 template <int Dim>
-RateFormScheme<Dim> periodic_scheme(int n, double h, const RateFormMaterial& m = kGms, const RateFormOptions& o = {},
+RateFormScheme<Dim> periodic_scheme(int n, double h, const ElasticMaterial& m = kGms, const RateFormOptions& o = {},
                                     double xi = 1) {
   const Kernel<Dim> k(KernelType::CubicSpline);
   return RateFormScheme<Dim>(
       make_discretisation(make_lattice<Dim>(Dim == 1 ? LatticeType::Line : LatticeType::Square, n,
                                             {.spacing = 1.0, .support_radius = k.support_radius(h), .periodic = true}),
                           k, h),
-      m, o, m.density / xi);  // volume strain xi: a uniform pre-stress p = K (1/xi - 1) (periodic: still at rest)
+      m, o, m.density() / xi);  // volume strain xi: a uniform pre-stress p = K (1/xi - 1) (periodic: still at rest)
 }
 
 /// The uniform state with tiny random velocities (1e-8 c_p: linear to rounding), every mode excited.
@@ -56,7 +56,7 @@ TEST(RateFormTimeStep, EffectiveCourantNumbers) {
   };
   for (const Case c : {Case{1, 1.3, 1.92122}, Case{1, 1.5, 1.94036}, Case{2, 1.3, 1.92423}, Case{2, 1.5, 1.86871}}) {
     for (double mu : {0.3, 0.0}) {
-      const RateFormMaterial m{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = mu};
+      const ElasticMaterial m = ElasticMaterial::from_bulk_shear(1.0, mu, 1.0);
       RateFormTimeStep ts;
       if (c.dim == 1) {
         const auto s = periodic_scheme<1>(16, c.h, m);

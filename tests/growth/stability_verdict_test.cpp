@@ -18,7 +18,7 @@
 namespace sphstab {
 namespace stability_verdict_test {
 
-const RateFormMaterial kGms{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};
+const ElasticMaterial kGms = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
 
 RateFormRunOptions pc(double dt) { return {.dt = dt}; }
 RateFormRunOptions pc1(double dt) { return {.dt = dt, .reuse_corrector_rate = true}; }
@@ -27,7 +27,7 @@ RateFormRunOptions leapfrog(double dt) { return {.dt = dt, .integrator = RateFor
 /// The Swegle block of n x n free particles (problems/swegle.hpp, steel) and the mirror symmetry about its centre.
 struct SwegleBlock {
   SwegleScene scene;
-  RateFormMaterial steel;
+  ElasticMaterial steel = ElasticMaterial::from_bulk_shear(1.0, 0.0, 1.0);
   MirrorSymmetry mirror;
 };
 
@@ -35,7 +35,7 @@ SwegleBlock swegle_block(int n) {
   SwegleOptions so;
   so.n = n;
   SwegleScene scene = make_swegle_scene(so);
-  const RateFormMaterial steel = RateFormMaterial::from_youngs(so.youngs_modulus, so.poisson_ratio, so.density);
+  const ElasticMaterial steel = ElasticMaterial::from_young_poisson(so.youngs_modulus, so.poisson_ratio, so.density);
   const MirrorSymmetry mirror = mirror_symmetry(
       scene.free_positions(), scene.discretisation->particles.x.row(scene.centre).transpose(), 1e-9 * so.spacing);
   return {std::move(scene), steel, mirror};
@@ -117,7 +117,7 @@ TEST(StabilityVerdict, NeutralSpectrumUnderThePredictorCorrectorIsIntegratorOnly
 TEST(StabilityVerdict, ReducedRouteEqualsTheDenseMapOfTheWholeJacobian) {
   const SwegleBlock b = swegle_block(5);
   const SwegleOptions& so = b.scene.options;
-  const RateFormMaterial& steel = b.steel;
+  const ElasticMaterial& steel = b.steel;
   const SwegleScene& scene = b.scene;
   const auto& d = scene.discretisation;
   const MirrorSymmetry& mirror = b.mirror;
@@ -191,7 +191,7 @@ TEST(StabilityVerdict, ReducedRouteEqualsTheDenseMapOfTheWholeJacobian) {
 TEST(StabilityVerdict, PowellXsphLeapfrogMapIsReducedExactly) {
   const SwegleBlock b = swegle_block(7);
   const SwegleOptions& so = b.scene.options;
-  const RateFormMaterial& steel = b.steel;
+  const ElasticMaterial& steel = b.steel;
   const SwegleScene& scene = b.scene;
   const auto& d = scene.discretisation;
   const MirrorSymmetry& mirror = b.mirror;

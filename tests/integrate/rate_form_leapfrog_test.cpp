@@ -12,7 +12,7 @@
 namespace sphstab {
 namespace rate_form_leapfrog_test {
 
-const RateFormMaterial kGms{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};
+const ElasticMaterial kGms = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
 
 template <int Dim>
 std::shared_ptr<const Discretisation<Dim>> periodic_lattice(int n, double perturbation = 0) {

@@ -17,7 +17,7 @@
 namespace sphstab {
 namespace rate_form_neighbour_rebuild_test {
 
-const RateFormMaterial kGms{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.22};
+const ElasticMaterial kGms = ElasticMaterial::from_bulk_shear(1.0, 0.22, 1.0);
 const Kernel<2> kCubic(KernelType::CubicSpline);
 
 /// max |a - b| / max |b|.

@@ -18,7 +18,7 @@
 namespace sphstab {
 namespace stable_time_step_test {
 
-const LameParameters kLame{.lambda = 1.2, .mu = 0.8};
+const ElasticMaterial kLame = ElasticMaterial::from_lame(1.2, 0.8, 1.0);
 
 std::shared_ptr<const Discretisation<1>> bar(int n, double h_over_dx, KernelType type, bool periodic = false) {
   const Kernel<1> kernel(type);
@@ -76,7 +76,7 @@ TEST(StableTimeStep, PeriodicLatticeIsTheVonNeumannLimitOfTheKernel) {
     for (const double hdx : {1.0, 1.5, 2.75}) {
       auto d = bar(n, hdx, type, true);
       const Hooke<1> hooke(kLame, UniaxialState::Stress);
-      const double e_young = kLame.mu * (3 * kLame.lambda + 2 * kLame.mu) / (kLame.lambda + kLame.mu);
+      const double e_young = kLame.mu() * (3 * kLame.lambda() + 2 * kLame.mu()) / (kLame.lambda() + kLame.mu());
       FiniteStrainTotalLagrangian<1> tl(d, std::make_shared<Hooke<1>>(kLame, UniaxialState::Stress), rho);
       const StableTimeStep r = stable_time_step(tl, Eigen::VectorXd::Zero(tl.dofs()));
       double xmax = 0;

@@ -15,7 +15,7 @@
 namespace sphstab {
 namespace analytic_jacobian_2d_test {
 
-const ElasticMaterial kMaterial{.lambda = 1.2115384615384615, .mu = 0.8076923076923077, .rho = 7.8};
+const ElasticMaterial kMaterial = ElasticMaterial::from_lame(1.2115384615384615, 0.8076923076923077, 7.8);
 
 std::shared_ptr<const Discretisation<2>> lattice(LatticeType type, int n, KernelType kernel, double h,
                                                  bool periodic = false, double perturbation = 0) {
@@ -148,7 +148,7 @@ TEST(AnalyticJacobian2D, RejectsWhatTheClosedFormDoesNotCover) {
   with_term.add_term(std::make_shared<ArtificialStressTerm>(d));
   EXPECT_THROW(analytic_jacobian_2d(with_term), std::invalid_argument);
   EXPECT_THROW(
-      analytic_jacobian_2d(*d, {.lambda = 1, .mu = -1, .rho = 1}, MomentumForm::Plus, PreStrainKind::Isotropic),
+      analytic_jacobian_2d(*d, ElasticMaterial::from_lame(1, -1, 1), MomentumForm::Plus, PreStrainKind::Isotropic),
       std::invalid_argument);
   Operators<2> no_hessian = assemble_operators<2>(d->particles, d->neighbours, d->kernel, d->h, {});
   EXPECT_THROW(analytic_jacobian_2d(*d, no_hessian, kMaterial, MomentumForm::Plus, PreStrainKind::Isotropic),

@@ -113,7 +113,7 @@ TEST(ComplexStepJacobian, ColouredEqualsDenseOnSphForms) {
   Kernel<2> k2(KernelType::WendlandC4);
   auto square = make_discretisation(
       make_lattice<2>(LatticeType::Square, 5, {.spacing = 1.0, .support_radius = 3.0, .perturbation = 0.1}), k2, 1.5);
-  const ElasticMaterial mat{.lambda = 2.0, .mu = 1.0, .rho = 1.0};
+  const ElasticMaterial mat = ElasticMaterial::from_lame(2.0, 1.0, 1.0);
   for (MomentumForm form : all_momentum_forms()) {
     WaveForm1D f1(line, form, 0.4);
     ElasticForm2D f2(square, mat, form, PreStrain::uniaxial_x(0.05));
@@ -146,7 +146,7 @@ TEST(ComplexStepJacobian, ColourCountIndependentOfN) {
     Kernel<2> k(KernelType::CubicSpline);
     auto d =
         make_discretisation(make_lattice<2>(LatticeType::Square, n, {.spacing = 1.0, .support_radius = 2.0}), k, 1.0);
-    ComplexStepJacobian jac(ElasticForm2D(d, {}, MomentumForm::Plus));
+    ComplexStepJacobian jac(ElasticForm2D(d, ElasticMaterial::from_lame(1.0, 1.0, 1.0), MomentumForm::Plus));
     EXPECT_TRUE(is_valid_column_colouring(jac.pattern(), jac.colouring()));
     EXPECT_EQ(jac.colours(), 50);
     counts.push_back(jac.colours());

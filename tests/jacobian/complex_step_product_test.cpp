@@ -15,7 +15,7 @@
 namespace sphstab {
 namespace complex_step_product_test {
 
-const RateFormMaterial kGms{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};
+const ElasticMaterial kGms = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
 
 TEST(ComplexStepProduct, IsTheAssembledJacobianTimesTheVector) {
   // Stretched (xi = 1.02) block with a deviator, viscosity, XSPH and the artificial stress: every term of F.

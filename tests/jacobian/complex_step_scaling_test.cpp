@@ -37,7 +37,7 @@ RateFormScheme<2> scheme_at(double s, LatticeType type) {
   const double h = 1.3 * s;
   const ParticleSet<2> set =
       make_lattice<2>(type, 8, {.spacing = s, .support_radius = k.support_radius(h), .periodic = true});
-  const RateFormMaterial m{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};
+  const ElasticMaterial m = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
   return RateFormScheme<2>(make_discretisation(set, k, h), m,
                            {.xsph = 0.5, .viscosity = ViscositySwitch::Always, .artificial_stress = 0.3}, 1.0 / 0.97);
 }

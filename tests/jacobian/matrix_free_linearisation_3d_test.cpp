@@ -21,7 +21,7 @@
 namespace sphstab {
 namespace matrix_free_linearisation_3d_test {
 
-const ElasticMaterial kMaterial{.lambda = 1.2115384615384615, .mu = 0.8076923076923077, .rho = 7.8};
+const ElasticMaterial kMaterial = ElasticMaterial::from_lame(1.2115384615384615, 0.8076923076923077, 7.8);
 constexpr double kH = 1.3;
 
 ParticleSet<3> cubic(int n, double perturbation = 0) {
@@ -52,12 +52,9 @@ TEST(MatrixFreeLinearisation3D, A0IsMinusTheTotalLagrangianAcceleration) {
     const ParticleSet<3> set = cubic(5, jitter);
     const auto disc = discretise(set);
     const MatrixFreeLinearisation<3> lin(*disc, kMaterial, MomentumForm::Conservative, PreStrainKind::Isotropic);
-    const LinearElasticSph<3> tl(set, Kernel<3>(KernelType::CubicSpline), kH,
-                                 {.density = kMaterial.rho,
-                                  .lame_lambda = kMaterial.lambda,
-                                  .shear_modulus = kMaterial.mu,
-                                  .gradient = StrainGradient::Minus,
-                                  .divergence = StressDivergence::Plus});
+    const LinearElasticSph<3> tl(
+        set, Kernel<3>(KernelType::CubicSpline), kH,
+        {.material = kMaterial, .gradient = StrainGradient::Minus, .divergence = StressDivergence::Plus});
     ASSERT_EQ(tl.free_count() * 3, lin.dofs());
     for (std::uint64_t seed : {1, 2, 3}) {
       const Eigen::VectorXd u = random_vector(lin.dofs(), seed);
@@ -74,7 +71,7 @@ TEST(MatrixFreeLinearisation3D, A1IsTheDerivativeOfTheKernelGradientSum) {
   const auto disc = discretise(set);
   const MatrixFreeLinearisation<3> lin(*disc, kMaterial, MomentumForm::Conservative, PreStrainKind::Isotropic);
   const Kernel<3> kernel(KernelType::CubicSpline);
-  const double s = 3 * kMaterial.lambda + 2 * kMaterial.mu;  // isotropic 3D pre-stress per unit strain
+  const double s = 3 * kMaterial.lambda() + 2 * kMaterial.mu();  // isotropic 3D pre-stress per unit strain
   const int nf = lin.free_count(), n = set.size();
   // F_i(x) over all particles j (fixed ones do not move), brute force over every pair.
   auto kernel_gradient_sum = [&](const Eigen::MatrixXd& x) {
@@ -101,7 +98,7 @@ TEST(MatrixFreeLinearisation3D, A1IsTheDerivativeOfTheKernelGradientSum) {
   const Eigen::VectorXd lv = (kernel_gradient_sum(xp) - kernel_gradient_sum(xm)) / (2 * t);
   Eigen::VectorXd y(lin.dofs());
   lin.apply_A1(v, y);
-  EXPECT_LT(relative_difference(y, -(4 * s / kMaterial.rho) * lv), 1e-7);
+  EXPECT_LT(relative_difference(y, -(4 * s / kMaterial.density()) * lv), 1e-7);
   // A1 of the plus form is half the conservative one for isotropic pre-stress (analytic_jacobian_2d.hpp, (iii)).
   const MatrixFreeLinearisation<3> plus(*disc, kMaterial, MomentumForm::Plus, PreStrainKind::Isotropic);
   Eigen::VectorXd yp(lin.dofs());

@@ -19,7 +19,7 @@
 namespace sphstab {
 namespace matrix_free_linearisation_test {
 
-const ElasticMaterial kMaterial{.lambda = 1.2115384615384615, .mu = 0.8076923076923077, .rho = 7.8};
+const ElasticMaterial kMaterial = ElasticMaterial::from_lame(1.2115384615384615, 0.8076923076923077, 7.8);
 
 struct SetCase {
   std::string name;
@@ -174,7 +174,7 @@ TEST(MatrixFreeLinearisation, RejectsBadInput) {
 
   expect_error(
       [&] {
-        MatrixFreeLinearisation(*d, {.lambda = 1, .mu = -1, .rho = 1}, MomentumForm::Plus, PreStrainKind::Isotropic);
+        MatrixFreeLinearisation(*d, ElasticMaterial::from_lame(1, -1, 1), MomentumForm::Plus, PreStrainKind::Isotropic);
       },
       "MatrixFreeLinearisation");
   Operators<2> no_hessian = assemble_operators<2>(d->particles, d->neighbours, d->kernel, d->h, {});

@@ -113,13 +113,13 @@ TEST(VonMises, BadYieldStressAndNonFiniteTrials) {
       make_discretisation(make_lattice<1>(LatticeType::Line, 8,
                                           {.spacing = 1.0, .support_radius = k.support_radius(1.3), .periodic = true}),
                           k, 1.3);
-  const RateFormScheme<1> scheme(d, {.density = 1, .bulk_modulus = 1, .shear_modulus = 0.3});
+  const RateFormScheme<1> scheme(d, ElasticMaterial::from_bulk_shear(1, 0.3, 1));
   EXPECT_THROW(run_rate_form(scheme, scheme.uniform_state(), o), std::invalid_argument);
 }
 
 // --- In a run -------------------------------------------------------------------------------------------------------
 
-const RateFormMaterial kGms{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};
+const ElasticMaterial kGms = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
 
 /// A periodic bar of 200 particles (dx = 1, cubic spline, h = 1.3) with the triangle-wave velocity v = rate X' for
 /// |X'| <= L/4 (X' measured from the middle), continued with slope -rate to the seam: the middle half is stretched
@@ -164,7 +164,7 @@ TEST(VonMisesRun, UniaxialStrainBarEndsOnPlusMinusTwoThirdsY) {
   double delta = -1;
   for (int j = 1; j <= 2; ++j) delta += -2 * j * k.d1(static_cast<double>(j), 1.3);
   EXPECT_NEAR(delta, 2.237e-2, 1e-5);
-  const double t_yield = (std::exp(2 * Y / 3 / (4 * kGms.shear_modulus / 3 * (1 + delta))) - 1) / rate;  // ~9.8
+  const double t_yield = (std::exp(2 * Y / 3 / (4 * kGms.mu() / 3 * (1 + delta))) - 1) / rate;  // ~9.8
   for (RateFormIntegrator integrator : {RateFormIntegrator::PredictorCorrector, RateFormIntegrator::Leapfrog}) {
     SCOPED_TRACE(static_cast<int>(integrator));
     const RateFormRunOptions elastic{.dt = 0.3, .t_end = 25.0, .integrator = integrator};
@@ -187,9 +187,9 @@ TEST(VonMisesRun, UniaxialStrainBarEndsOnPlusMinusTwoThirdsY) {
       ++checked;
       // Elastic: the analytic hypoelastic stress at 0.5 t_yield and at t = 25 (2.5 t_yield), to the discrete
       // gradient's drift with the stretch (delta moves by ~1e-3 relative over 1 % strain).
-      const double s_half = 4 * kGms.shear_modulus / 3 * (1 + delta) * std::log(1 + sign * rate * 0.5 * t_yield);
+      const double s_half = 4 * kGms.mu() / 3 * (1 + delta) * std::log(1 + sign * rate * 0.5 * t_yield);
       EXPECT_NEAR(bar.stress(e0, i) / s_half, 1.0, 1e-3) << "particle " << i;
-      const double s_end = 4 * kGms.shear_modulus / 3 * (1 + delta) * std::log(1 + sign * rate * 25.0);
+      const double s_end = 4 * kGms.mu() / 3 * (1 + delta) * std::log(1 + sign * rate * 25.0);
       EXPECT_NEAR(bar.stress(e.y, i) / s_end, 1.0, 2e-3) << "particle " << i;
       // Plastic: exactly on the surface, with the sign of the loading.
       EXPECT_NEAR(bar.stress(p.y, i) / (sign * 2 * Y / 3), 1.0, 1e-14) << "particle " << i;

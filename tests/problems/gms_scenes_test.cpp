@@ -45,7 +45,7 @@ TEST(GmsScenes, RingsMoveTowardsEachOtherAndAreOneFragmentEach) {
 
 TEST(GmsScenes, PlateStartsInItsFirstModeAndMeasuresTheTipDeflection) {
   const CantileverPlateOptions geometry{.length = 10, .thickness = 2, .across = 4};
-  const Scene<2> s = gms_plate_scene(geometry, 0.02, {.material = {.shear_modulus = 0.3}});
+  const Scene<2> s = gms_plate_scene(geometry, 0.02, {.material = ElasticMaterial::from_bulk_shear(1, 0.3, 1)});
   const ParticleSet<2>& p = s.scheme->discretisation().particles;
   int tip = 0;
   for (int i = 0; i < p.size(); ++i) {

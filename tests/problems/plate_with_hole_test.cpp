@@ -116,7 +116,7 @@ TEST(PlateWithHole, UniaxialPlateWithoutHoleIsExactlyHomogeneous) {
   const auto disc = make_discretisation(p.particles, kernel, h);
   const SparseMatrix<> T = mirror_map(p);
   const double E = 1, nu = 0.3;
-  const auto lame = LameParameters::from_young_poisson(E, nu);
+  const auto lame = ElasticMaterial::from_young_poisson(E, nu, 1.0);
   const FiniteStrainOptions<2> opt{.gradient = make_gradient_provider<2>(Correction::Ncsph)};
   // the consistent load's total is S W up to the lattice quadrature of the kernel's edge jump
   const double S = 1e-3;

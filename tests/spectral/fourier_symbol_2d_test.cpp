@@ -14,7 +14,7 @@
 namespace sphstab {
 namespace fourier_symbol_2d_test {
 
-const ElasticMaterial kMaterial{.lambda = 1.2115384615384615, .mu = 0.8076923076923077, .rho = 7.8};
+const ElasticMaterial kMaterial = ElasticMaterial::from_lame(1.2115384615384615, 0.8076923076923077, 7.8);
 
 std::shared_ptr<const Discretisation<2>> periodic(LatticeType type, int n, KernelType kernel, double h) {
   Kernel<2> k(kernel);

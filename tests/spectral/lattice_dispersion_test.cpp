@@ -241,7 +241,7 @@ TEST(LatticeDispersion, RejectsBadInput) {
   EXPECT_THROW(lattice_sums(LatticeType::Cubic, w, 1.0, k), std::invalid_argument);
   // A support of 2e6 spacings would loop over 1.6e13 lattice points (and overflowed the int reach): refused.
   EXPECT_THROW(lattice_sums(LatticeType::Square, w, 1e6, k), std::length_error);
-  EXPECT_THROW(ElasticSymbol2D(LatticeType::Square, w, 1e6, 1.0, {.lambda = 1, .mu = 1, .rho = 1},
+  EXPECT_THROW(ElasticSymbol2D(LatticeType::Square, w, 1e6, 1.0, ElasticMaterial::from_lame(1, 1, 1),
                                MomentumForm::Conservative, PreStrainKind::Isotropic),
                std::length_error);
   EXPECT_THROW(lattice_sums(LatticeType::Square, w, 1.0, Eigen::Vector2d(NAN, 0)), std::invalid_argument);

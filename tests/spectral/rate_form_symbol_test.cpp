@@ -15,13 +15,13 @@
 namespace sphstab {
 namespace rate_form_symbol_test {
 
-const RateFormMaterial kGms{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};
+const ElasticMaterial kGms = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
 
 template <int Dim>
 RateFormScheme<Dim> periodic_scheme(int n, double h, const RateFormOptions& o, double xi, LatticeType type,
                                     const Eigen::VectorXd& deviator = {}) {
   const auto disc = test::lattice_discretisation<Dim>({.n = n, .h = h, .type = type, .periodic = true});
-  return RateFormScheme<Dim>(disc, kGms, o, kGms.density / xi, deviator);
+  return RateFormScheme<Dim>(disc, kGms, o, kGms.density() / xi, deviator);
 }
 
 /// Every eigenvalue of the periodic lattice's whole J is an eigenvalue of the symbol at one of the box's wavevectors
@@ -133,8 +133,8 @@ TEST(RateFormSymbol, OneDimensionalPlainSphIsTheInitialStressForm) {
     for (double xi : {0.96, 1.04}) {
       const auto scheme = periodic_scheme<1>(20, h, {}, xi, LatticeType::Line);
       const auto symbol = rate_form_symbol(scheme, scheme.uniform_state());
-      const double rho = kGms.density / xi, p = kGms.bulk_modulus * (rho / kGms.density - 1), sigma0 = -p;
-      const double M = kGms.bulk_modulus + 4 * kGms.shear_modulus / 3;
+      const double rho = kGms.density() / xi, p = kGms.bulk_modulus() * (rho / kGms.density() - 1), sigma0 = -p;
+      const double M = kGms.bulk_modulus() + 4 * kGms.mu() / 3;
       for (double k : {0.1, 0.9, 1.7, 2.6, M_PI}) {
         const auto d = rate_form_dispersion(symbol, Eigen::Matrix<double, 1, 1>(k));
         const FourierSymbol1D f = fourier_symbol_1d(w, h, 1.0, k);
@@ -155,15 +155,15 @@ TEST(RateFormSymbol, GmsTermsGiveTheirDispersionRelation) {
     for (double h : {1.2, 1.5}) {
       Eigen::VectorXd dev(3);
       dev << 0.006, -0.004, 0.0;
-      const double xi = 1.03, rho = kGms.density / xi;
+      const double xi = 1.03, rho = kGms.density() / xi;
       // A box of 12, the smallest that holds XSPH's two supports at h = 1.5 (2 x 2.0 x 1.5 dx, plus the face-centred
       // lattice's half offset): the symbol does not depend on the box (IndependentOfTheBoxAtAnyWavevector).
       const auto scheme = periodic_scheme<2>(12, h, {.xsph = 0.5, .artificial_stress = 0.3}, xi, type, dev);
       const auto symbol = rate_form_symbol(scheme, scheme.uniform_state());
       UniformState st{.density = rho,
-                      .sound_speed = std::sqrt(kGms.bulk_modulus / kGms.density),
-                      .shear_modulus = kGms.shear_modulus,
-                      .pressure = kGms.bulk_modulus * (rho / kGms.density - 1),
+                      .sound_speed = std::sqrt(kGms.bulk_modulus() / kGms.density()),
+                      .shear_modulus = kGms.mu(),
+                      .pressure = kGms.bulk_modulus() * (rho / kGms.density() - 1),
                       .sxx = dev[0],
                       .syy = dev[1]};
       st = with_artificial_stress(st, 0.3);
@@ -187,13 +187,13 @@ TEST(RateFormSymbol, LongWavesTendToTheContinuumAtSecondOrder) {
   // prestress (zeta != 0), and the error falls as k^2.
   Eigen::VectorXd dev(3);
   dev << 0.01, -0.006, 0.0;
-  const double xi = 1.02, rho = kGms.density / xi;
+  const double xi = 1.02, rho = kGms.density() / xi;
   const auto scheme = periodic_scheme<2>(16, 1.3, {.gradient = RateFormGradient::Ncsph}, xi, LatticeType::Square, dev);
   const auto symbol = rate_form_symbol(scheme, scheme.uniform_state());
   const UniformState st{.density = rho,
-                        .sound_speed = std::sqrt(kGms.bulk_modulus / kGms.density),
-                        .shear_modulus = kGms.shear_modulus,
-                        .pressure = kGms.bulk_modulus * (rho / kGms.density - 1),
+                        .sound_speed = std::sqrt(kGms.bulk_modulus() / kGms.density()),
+                        .shear_modulus = kGms.mu(),
+                        .pressure = kGms.bulk_modulus() * (rho / kGms.density() - 1),
                         .sxx = dev[0],
                         .syy = dev[1]};
   const Eigen::Vector2d dir = Eigen::Vector2d(2, 1).normalized();

@@ -35,7 +35,7 @@ std::shared_ptr<const Discretisation<2>> beam_disc(int across, double& dx) {
 
 std::shared_ptr<const HyperelasticModel<2>> svk() {
   return std::make_shared<StVenantKirchhoff<2>>(
-      LameParameters{.lambda = 2 * C::shear_modulus * C::poisson / (1 - 2 * C::poisson), .mu = C::shear_modulus});
+      ElasticMaterial::from_lame(2 * C::shear_modulus * C::poisson / (1 - 2 * C::poisson), C::shear_modulus, 1.0));
 }
 
 TEST(ZigzagModes, BeamGridAndFractionsOfAlternatingAndSmoothFields) {

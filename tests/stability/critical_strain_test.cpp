@@ -16,7 +16,7 @@
 namespace sphstab {
 namespace critical_strain_test {
 
-const ElasticMaterial kMaterial{.lambda = 1.2115384615384615, .mu = 0.8076923076923077, .rho = 7.8};
+const ElasticMaterial kMaterial = ElasticMaterial::from_lame(1.2115384615384615, 0.8076923076923077, 7.8);
 
 Linearisation jacobian(LatticeType type, int n, KernelType kernel, double h, MomentumForm form, PreStrainKind kind,
                        bool periodic = false) {

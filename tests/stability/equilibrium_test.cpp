@@ -10,7 +10,7 @@
 namespace sphstab {
 namespace equilibrium_test {
 
-const ElasticMaterial kMaterial{.lambda = 1.2, .mu = 0.8, .rho = 7.8};
+const ElasticMaterial kMaterial = ElasticMaterial::from_lame(1.2, 0.8, 7.8);
 
 std::shared_ptr<const Discretisation<2>> block(int n, int fixed_layers = -1) {
   Kernel<2> k(KernelType::CubicSpline);

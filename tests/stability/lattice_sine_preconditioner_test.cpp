@@ -16,7 +16,7 @@
 namespace sphstab {
 namespace lattice_sine_preconditioner_test {
 
-const ElasticMaterial kMaterial{.lambda = 1.2115384615384615, .mu = 0.8076923076923077, .rho = 7.8};
+const ElasticMaterial kMaterial = ElasticMaterial::from_lame(1.2115384615384615, 0.8076923076923077, 7.8);
 
 std::shared_ptr<const Discretisation<2>> lattice(LatticeType type, int n, double h = 1.3) {
   const Kernel<2> k(KernelType::CubicSpline);

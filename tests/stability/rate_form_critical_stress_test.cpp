@@ -11,7 +11,7 @@
 namespace sphstab {
 namespace rate_form_critical_stress_test {
 
-const RateFormMaterial kMaterial{.density = 1.0, .bulk_modulus = 1.0, .shear_modulus = 0.3};  // M = 1.4
+const ElasticMaterial kMaterial = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);  // M = 1.4
 
 TEST(RateFormCriticalStress, OneDimensionalSphIsThePlusFormWithTheDensityCoupling) {
   // At rest, 1D plain SPH linearises to rho u'' = -((M + sigma0) K_plus - 2 sigma0 L) u (header note), so
@@ -35,7 +35,7 @@ TEST(RateFormCriticalStress, OneDimensionalSphIsThePlusFormWithTheDensityCouplin
           EXPECT_NEAR(r.stress_over_modulus, expected, 1e-6 * std::abs(expected))
               << kernel_name(type) << " h " << h << " " << load_direction_name(dir);
           EXPECT_GT(r.growth_above, 0);
-          EXPECT_NEAR(r.xi, 1 / (1 - r.stress / kMaterial.bulk_modulus), 1e-12);
+          EXPECT_NEAR(r.xi, 1 / (1 - r.stress / kMaterial.bulk_modulus()), 1e-12);
         }
       }
     }

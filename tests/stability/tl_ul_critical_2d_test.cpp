@@ -30,8 +30,8 @@ std::shared_ptr<const Discretisation<2>> block() {
       make_block_lattice_2d(kNx, kNy, {.spacing = 1.0, .support_radius = 2 * k.support_radius(1.3)}), k, 1.3);
 }
 
-const LameParameters kLame = LameParameters::from_young_poisson(1.0, 0.3);
-const ElasticMaterial kMaterial{.lambda = kLame.lambda, .mu = kLame.mu, .rho = 1.0};
+const ElasticMaterial kLame = ElasticMaterial::from_young_poisson(1.0, 0.3, 1.0);
+const ElasticMaterial& kMaterial = kLame;
 
 bool positive_definite(const SparseMatrix<>& a) {
   return is_positive_definite(ColSparseMatrix(SparseMatrix<>(0.5 * (a + SparseMatrix<>(a.transpose())))));

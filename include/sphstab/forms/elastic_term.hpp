@@ -18,7 +18,7 @@
 
 namespace sphstab {
 
-struct ElasticMaterial;
+class ElasticMaterial;
 
 /// Everything a term may read, all at the current positions (all N particles, free and fixed).
 template <class Scalar>

@@ -28,7 +28,7 @@
 /// \code{.cpp}
 /// auto set = sphstab::make_lattice<2>(sphstab::LatticeType::Square, 20, {.spacing = 1.0, .periodic = true});
 /// auto disc = sphstab::make_discretisation(set, sphstab::Kernel<2>(sphstab::KernelType::WendlandC2), 1.3);
-/// sphstab::ElasticMaterial mat{.lambda = 1.0, .mu = 0.5, .rho = 1.0};
+/// const auto mat = sphstab::ElasticMaterial::from_lame(1.0, 0.5, 1.0);  // lambda, mu, rho
 /// auto prestrain = sphstab::PreStrain::from_area_ratio(1.001);
 /// sphstab::ElasticForm2D force(disc, mat, sphstab::MomentumForm::Conservative, prestrain);
 /// \endcode
@@ -41,18 +41,10 @@
 #include "sphstab/forms/elastic_term.hpp"
 #include "sphstab/forms/gradient_provider.hpp"
 #include "sphstab/forms/momentum_form.hpp"
+#include "sphstab/models/elastic_material.hpp"
 #include "sphstab/system/force_function.hpp"
 
 namespace sphstab {
-
-/// Isotropic linear elastic material, plane strain. Wave speeds c_P^2 = (lambda + 2 mu)/rho, c_S^2 = mu/rho.
-struct ElasticMaterial {
-  double lambda = 1.0;  ///< Lame's first parameter (lambda + mu > 0)
-  double mu = 1.0;      ///< shear modulus (> 0)
-  double rho = 1.0;     ///< density (> 0)
-  /// Throws std::invalid_argument("who: ...") unless mu > 0, rho > 0, lambda + mu > 0, all finite.
-  void validate(const char* who) const;
-};
 
 enum class PreStrainKind { Isotropic, UniaxialX };
 /// "isotropic" / "iso" or "uniaxial" / "uniaxial-x"; throws std::invalid_argument naming the valid names.

@@ -38,7 +38,7 @@
 ///                                                                          eps^j_ji = F_j X_ji - x_ji = -(F_j X_ij -
 ///                                                                          x_ij))
 ///         a_i^HG = -(c_HG E / (rho0_i V_i)) sum_{j != i} V_i V_j W_ij / |X_ij|^2 delta_ij x^_ij,
-///       E = material().lame().young() (Young's modulus in every dimension and uniaxial state). The pair force is
+///       E = material().young() (Young's modulus in every dimension and uniaxial state). The pair force is
 ///       central and antisymmetric (delta_ij = delta_ji, x^_ji = -x^_ij), so with every particle free it conserves
 ///       linear and angular momentum exactly; it vanishes for any affine field x = A X + b whenever the strain
 ///       operator reproduces it (F_i = A at every active particle: a first-order corrected gradient such as NCSPH
@@ -58,7 +58,7 @@
 ///       the prescribed displacements; linearise at a deformed state with ComplexStepJacobian::compute(u).
 ///
 /// \code{.cpp}
-/// auto nh = std::make_shared<sphstab::NeoHookean<1>>(sphstab::LameParameters::from_young_poisson(200e9, 0.3));
+/// auto nh = std::make_shared<sphstab::NeoHookean<1>>(sphstab::ElasticMaterial::from_young_poisson(200e9, 0.3, 8000));
 /// sphstab::FiniteStrainTotalLagrangian<1> tl(disc, nh, 8000.0);   // Plus divergence, difference strain
 /// tl.set_fixed_displacement(d);                                   // Dirichlet data of the fixed particles
 /// Eigen::VectorXd a;

@@ -26,6 +26,7 @@
 
 #include "sphstab/forms/elastic_bar.hpp"
 #include "sphstab/kernel/kernel.hpp"
+#include "sphstab/models/elastic_material.hpp"
 #include "sphstab/neighbours/neighbour_list.hpp"
 #include "sphstab/operators/operators.hpp"
 #include "sphstab/particles/particle_set.hpp"
@@ -34,9 +35,7 @@
 namespace sphstab {
 
 struct LinearElasticOptions {
-  double density = 1.0;                                  ///< rho > 0
-  double lame_lambda = 1.0;                              ///< λ
-  double shear_modulus = 1.0;                            ///< µ > 0
+  ElasticMaterial material = ElasticMaterial::from_lame(1.0, 1.0, 1.0);  ///< λ, µ > 0, rho > 0
   StrainGradient gradient = StrainGradient::Minus;       ///< Plain or Minus
   StressDivergence divergence = StressDivergence::Plus;  ///< Plain, Plus or Minus
   LagrangianFrame frame = LagrangianFrame::Total;

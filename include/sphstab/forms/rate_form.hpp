@@ -58,7 +58,7 @@
 /// \code{.cpp}
 /// auto disc = sphstab::make_discretisation(sphstab::make_lattice<2>(sphstab::LatticeType::Square, 16,
 ///                                          {.spacing = 1.0, .periodic = true}), kernel, 1.3);
-/// sphstab::RateFormScheme<2> scheme(disc, sphstab::RateFormMaterial::from_youngs(2.1, 0.3, 7.8), {},
+/// sphstab::RateFormScheme<2> scheme(disc, sphstab::ElasticMaterial::from_young_poisson(2.1, 0.3, 7.8), {},
 ///                                   /*density=*/7.8 / 1.02);        // volume strain xi = 1.02
 /// Eigen::VectorXd y = scheme.uniform_state();                       // equilibrium: v = 0, rho, S = 0
 /// auto spectrum = sphstab::system_spectrum(scheme, y);              // full-state growth rate
@@ -75,25 +75,11 @@
 #include "sphstab/forms/absorbing_boundary.hpp"
 #include "sphstab/forms/discretisation.hpp"
 #include "sphstab/forms/stabilised_sph.hpp"
+#include "sphstab/models/elastic_material.hpp"
 #include "sphstab/operators/local_polish.hpp"
 #include "sphstab/system/semi_discrete_system.hpp"
 
 namespace sphstab {
-
-/// Linear equation of state + hypoelastic shear: p = K (rho/rho0 - 1), dS/dt = 2 mu dev D.
-struct RateFormMaterial {
-  double density = 1.0;        ///< rho0 > 0, the density at zero pressure
-  double bulk_modulus = 1.0;   ///< K > 0 (c0^2 = K / rho0)
-  double shear_modulus = 0.0;  ///< mu >= 0
-  /// From Young's modulus E > 0 and Poisson's ratio -1 < nu < 1/2 (3D moduli: K = E / (3 (1 - 2 nu)),
-  /// mu = E / (2 (1 + nu)); plane strain and uniaxial strain follow from the 3D deviator).
-  static RateFormMaterial from_youngs(double youngs_modulus, double poisson_ratio, double density);
-  double sound_speed() const;  ///< c0 = sqrt(K / rho0)
-  /// Longitudinal (P) wave speed of small-strain waves, sqrt((K + 4 mu / 3) / rho0).
-  double p_wave_speed() const;
-  /// Throws std::invalid_argument("who: ...") unless rho0 > 0, K > 0, mu >= 0, all finite.
-  void validate(const char* who) const;
-};
 
 enum class ContinuityForm { Summation, Divergence };
 enum class ViscositySwitch { Off, Compression, Always };
@@ -211,7 +197,7 @@ class RateFormScheme final : public SemiDiscreteSystem {
   ///                 stress of fixed particles when they do not evolve
   /// Throws std::invalid_argument for a null discretisation, a bad material, negative coefficients, density <= 0 or
   /// a deviator of the wrong size.
-  RateFormScheme(std::shared_ptr<const Discretisation<Dim>> disc, const RateFormMaterial& material,
+  RateFormScheme(std::shared_ptr<const Discretisation<Dim>> disc, const ElasticMaterial& material,
                  const RateFormOptions& options = {}, double density = std::numeric_limits<double>::quiet_NaN(),
                  const Eigen::VectorXd& deviator = {});
 
@@ -288,7 +274,7 @@ class RateFormScheme final : public SemiDiscreteSystem {
   double min_density(const Eigen::VectorXd& y) const;
 
   const Discretisation<Dim>& discretisation() const { return *m_disc; }
-  const RateFormMaterial& material() const { return m_material; }
+  const ElasticMaterial& material() const { return m_material; }
   const RateFormOptions& options() const { return m_options; }
   double initial_density() const { return m_density; }
   /// The uniform initial deviator (kStress entries): the stress of fixed particles that do not evolve.
@@ -344,7 +330,7 @@ class RateFormScheme final : public SemiDiscreteSystem {
   };
 
   std::shared_ptr<const Discretisation<Dim>> m_disc;
-  RateFormMaterial m_material;
+  ElasticMaterial m_material;
   RateFormOptions m_options;
   double m_density = 0;
   double m_w_dp = 1;  // W(dp) of the artificial stress

@@ -19,7 +19,7 @@
 /// \code{.cpp}
 /// sphstab::ParticleState<2> s{.x = x, .v = v, .density = rho, .deviator = S, .mass = m, .h = 1.3};
 /// auto r = sphstab::state_stability(s, {.kernel = sphstab::KernelType::CubicSpline,
-///                                        .material = sphstab::RateFormMaterial::from_youngs(2.1, 0.3, 7.8),
+///                                        .material = sphstab::ElasticMaterial::from_young_poisson(2.1, 0.3, 7.8),
 ///                                        .dt = 0.05, .floor = 0.01});
 /// if (r.verdict.verdict != sphstab::VerdictClass::Stable) { /* r.verdict.semi_discrete_mode.particle ... */ }
 /// \endcode
@@ -57,7 +57,7 @@ struct ParticleState {
 /// How to read the state: the scheme, the run the verdict is for, and the floor.
 struct StateStabilityOptions {
   KernelType kernel = KernelType::CubicSpline;
-  RateFormMaterial material;  ///< rho0, K, mu (validated)
+  ElasticMaterial material = ElasticMaterial::from_bulk_shear(1.0, 0.0, 1.0);  ///< rho0, K, mu (validated)
   RateFormOptions scheme;     ///< the terms (pair_loop is irrelevant: J is computed with the row loop)
   /// The integrator of the verdict (integrator, reuse_corrector_rate, positions, leapfrog_xsph); dt and t_end below.
   RateFormRunOptions run;
@@ -94,7 +94,7 @@ struct StateStability {
 /// a spacing; and as RateFormScheme's constructor (materials, options).
 template <int Dim>
 RateFormAtState<Dim> rate_form_at_state(const ParticleState<Dim>& state, KernelType kernel,
-                                        const RateFormMaterial& material, const RateFormOptions& options);
+                                        const ElasticMaterial& material, const RateFormOptions& options);
 
 /// The verdict of the state (see the file comment). Throws as rate_form_at_state, std::invalid_argument for a dt or
 /// floor that is not finite and > 0, and as stability_verdict (its memory check included).

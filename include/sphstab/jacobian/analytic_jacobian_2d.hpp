@@ -54,7 +54,7 @@
 /// \code{.cpp}
 /// auto set = sphstab::make_lattice<2>(sphstab::LatticeType::Square, 20, {.spacing = 1.0, .support_radius = 2.6});
 /// auto disc = sphstab::make_discretisation(set, sphstab::Kernel<2>(sphstab::KernelType::WendlandC2), 1.3);
-/// sphstab::Linearisation jac = sphstab::analytic_jacobian_2d(*disc, {.lambda = 1, .mu = 1, .rho = 1},
+/// sphstab::Linearisation jac = sphstab::analytic_jacobian_2d(*disc, sphstab::ElasticMaterial::from_lame(1, 1, 1),
 ///     sphstab::MomentumForm::Conservative, sphstab::PreStrainKind::Isotropic);
 /// sphstab::SparseMatrix<> a = jac.at(1e-3);   // A(e) at e = 1e-3, dofs x dofs, interleaved f * 2 + a
 /// \endcode

@@ -35,7 +35,7 @@
 /// \code{.cpp}
 /// auto set = sphstab::strain_lattice_2d(sphstab::LatticeType::Square, kernel, 1.3, 1000);
 /// auto disc = sphstab::make_discretisation(set, kernel, 1.3);
-/// sphstab::MatrixFreeLinearisation lin(*disc, {.lambda = 1, .mu = 1, .rho = 1},
+/// sphstab::MatrixFreeLinearisation lin(*disc, sphstab::ElasticMaterial::from_lame(1, 1, 1),
 ///                                      sphstab::MomentumForm::Conservative, sphstab::PreStrainKind::Isotropic);
 /// Eigen::VectorXd x = Eigen::VectorXd::Random(lin.dofs()), y(lin.dofs());
 /// lin.apply(1e-3, x, y);   // y = A(e = 1e-3) x

@@ -8,7 +8,7 @@
 /// It is the material of the small-strain forms (total_lagrangian.hpp, linear_elastic.hpp), which the finite-strain
 /// TL form reproduces with it.
 /// \code{.cpp}
-/// const auto lame = sphstab::LameParameters::from_young_poisson(200e9, 0.3);
+/// const auto lame = sphstab::ElasticMaterial::from_young_poisson(200e9, 0.3, 8000);
 /// const sphstab::Hooke<1> bar(lame, sphstab::UniaxialState::Stress);  // T11 = E eps ([Ismail2009] algorithm 4.1)
 /// double T11 = bar.stress(sphstab::Deformation<double, 1>::Constant(1.0 + 5e-7))(0, 0);  // 100 kPa (expression)
 /// \endcode
@@ -21,20 +21,20 @@ namespace sphstab {
 template <int Dim>
 class Hooke final : public HyperelasticModelT<Dim, Hooke<Dim>> {
  public:
-  /// Throws std::invalid_argument for invalid constants (LameParameters::validate).
-  explicit Hooke(const LameParameters& lame, UniaxialState uniaxial = UniaxialState::Strain)
-      : m_lame(lame), m_uniaxial(uniaxial) {
-    m_lame.validate("Hooke");
+  /// Throws std::invalid_argument for invalid constants (ElasticMaterial::validate).
+  explicit Hooke(const ElasticMaterial& material, UniaxialState uniaxial = UniaxialState::Strain)
+      : m_material(material), m_uniaxial(uniaxial) {
+    m_material.validate("Hooke");
   }
   std::string name() const override {
     return Dim == 1 ? "hooke/1d-" + uniaxial_state_name(m_uniaxial) : std::string("hooke/plane-strain");
   }
-  const LameParameters& lame() const override { return m_lame; }
+  const ElasticMaterial& material() const override { return m_material; }
   UniaxialState uniaxial() const override { return m_uniaxial; }
   /// 1D stress: J = F s^2 with the small-strain lateral stretch s = 1 - nu (F - 1); otherwise det F.
   double volume_ratio(const Deformation<double, Dim>& F) const override {
     if (Dim == 1 && m_uniaxial == UniaxialState::Stress) {
-      const double s = 1 - m_lame.poisson() * (F(0, 0) - 1);
+      const double s = 1 - m_material.poisson() * (F(0, 0) - 1);
       return F(0, 0) * s * s;
     }
     return F.determinant();
@@ -70,9 +70,9 @@ class Hooke final : public HyperelasticModelT<Dim, Hooke<Dim>> {
     return 0.5 * (g + g.transpose());
   }
   /// 1D: the uniaxial modulus M as lambda + 2 mu with (lambda, mu) = (M, 0).
-  double lam() const { return Dim == 1 ? m_lame.uniaxial_modulus(m_uniaxial) : m_lame.lambda; }
-  double mu() const { return Dim == 1 ? 0.0 : m_lame.mu; }
-  LameParameters m_lame;
+  double lam() const { return Dim == 1 ? m_material.uniaxial_modulus(m_uniaxial) : m_material.lambda(); }
+  double mu() const { return Dim == 1 ? 0.0 : m_material.mu(); }
+  ElasticMaterial m_material;
   UniaxialState m_uniaxial;
 };
 

@@ -1,6 +1,6 @@
 #pragma once
 /// \file hyperelastic_model.hpp
-/// The interface of a finite-strain (hyperelastic) material, Dim = 1 (a 1D state, lame_parameters.hpp) or Dim = 2
+/// The interface of a finite-strain (hyperelastic) material, Dim = 1 (a 1D state, elastic_material.hpp) or Dim = 2
 /// (plane strain): the strain energy density Psi(F) per unit reference volume, the first Piola-Kirchhoff stress
 /// P = dPsi/dF [Ismail2009, §3.3: P = dPsi/dF] and its tangent dP/dF, for the deformation gradient F = I + Grad u.
 ///
@@ -17,7 +17,7 @@
 #include <complex>
 #include <string>
 
-#include "sphstab/models/lame_parameters.hpp"
+#include "sphstab/models/elastic_material.hpp"
 
 namespace sphstab {
 
@@ -37,7 +37,7 @@ class HyperelasticModel {
 
   /// e.g. "neo-hookean/1d-strain", "st-venant-kirchhoff/plane-strain".
   virtual std::string name() const = 0;
-  virtual const LameParameters& lame() const = 0;
+  virtual const ElasticMaterial& material() const = 0;
   /// The 1D state (meaningful for Dim = 1 only; Dim = 2 is plane strain).
   virtual UniaxialState uniaxial() const = 0;
 

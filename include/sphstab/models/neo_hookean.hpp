@@ -18,7 +18,7 @@
 ///       at F = 3.6307 and 6.3997 (loss of hyperbolicity; cf. [Ismail2009, §5.3]); for nu = 0.3 it stays positive.
 /// \note J <= 0 (an inverted particle) has no energy: every evaluation throws std::invalid_argument.
 /// \code{.cpp}
-/// const auto lame = sphstab::LameParameters::from_young_poisson(200e9, 0.49);
+/// const auto lame = sphstab::ElasticMaterial::from_young_poisson(200e9, 0.49, 8000);
 /// const sphstab::NeoHookean<1> bar(lame);                      // 1D strain (algorithm 5.1)
 /// const sphstab::Deformation<double, 1> F = sphstab::Deformation<double, 1>::Constant(2.0);
 /// double P11 = bar.stress(F)(0, 0);                            // = T11 (J = F): 18.4821 mu
@@ -36,15 +36,15 @@ namespace sphstab {
 template <int Dim>
 class NeoHookean final : public HyperelasticModelT<Dim, NeoHookean<Dim>> {
  public:
-  /// Throws std::invalid_argument for invalid constants (LameParameters::validate).
-  explicit NeoHookean(const LameParameters& lame, UniaxialState uniaxial = UniaxialState::Strain)
-      : m_lame(lame), m_uniaxial(uniaxial) {
-    m_lame.validate("NeoHookean");
+  /// Throws std::invalid_argument for invalid constants (ElasticMaterial::validate).
+  explicit NeoHookean(const ElasticMaterial& material, UniaxialState uniaxial = UniaxialState::Strain)
+      : m_material(material), m_uniaxial(uniaxial) {
+    m_material.validate("NeoHookean");
   }
   std::string name() const override {
     return Dim == 1 ? "neo-hookean/1d-" + uniaxial_state_name(m_uniaxial) : std::string("neo-hookean/plane-strain");
   }
-  const LameParameters& lame() const override { return m_lame; }
+  const ElasticMaterial& material() const override { return m_material; }
   UniaxialState uniaxial() const override { return m_uniaxial; }
   double volume_ratio(const Deformation<double, Dim>& F) const override {
     if (one_d_stress()) {
@@ -58,7 +58,7 @@ class NeoHookean final : public HyperelasticModelT<Dim, NeoHookean<Dim>> {
   template <class Scalar>
   Scalar lateral_stretch(const Scalar& F) const {
     using std::log;
-    const double lam = m_lame.lambda, mu = m_lame.mu;
+    const double lam = m_material.lambda(), mu = m_material.mu();
     Scalar s(1.0);
     int converged = -1;
     for (int it = 0; it < 100; ++it) {
@@ -76,7 +76,7 @@ class NeoHookean final : public HyperelasticModelT<Dim, NeoHookean<Dim>> {
   template <class Scalar>
   Scalar energy_impl(const Deformation<Scalar, Dim>& F) const {
     using std::log;
-    const double lam = m_lame.lambda, mu = m_lame.mu;
+    const double lam = m_material.lambda(), mu = m_material.mu();
     if (one_d_stress()) {
       const Scalar f = F(0, 0);
       check(f);
@@ -94,7 +94,7 @@ class NeoHookean final : public HyperelasticModelT<Dim, NeoHookean<Dim>> {
   template <class Scalar>
   Deformation<Scalar, Dim> stress_impl(const Deformation<Scalar, Dim>& F) const {
     using std::log;
-    const double lam = m_lame.lambda, mu = m_lame.mu;
+    const double lam = m_material.lambda(), mu = m_material.mu();
     if (one_d_stress()) {
       const Scalar f = F(0, 0);
       check(f);
@@ -112,7 +112,7 @@ class NeoHookean final : public HyperelasticModelT<Dim, NeoHookean<Dim>> {
   template <class Scalar>
   MaterialTangent<Scalar, Dim> tangent_impl(const Deformation<Scalar, Dim>& F) const {
     using std::log;
-    const double lam = m_lame.lambda, mu = m_lame.mu;
+    const double lam = m_material.lambda(), mu = m_material.mu();
     MaterialTangent<Scalar, Dim> t;
     if (one_d_stress()) {
       const Scalar f = F(0, 0);
@@ -142,7 +142,7 @@ class NeoHookean final : public HyperelasticModelT<Dim, NeoHookean<Dim>> {
     const double j = detail::re(J);
     if (!(j > 0)) detail::require_positive_jacobian(j, "NeoHookean");
   }
-  LameParameters m_lame;
+  ElasticMaterial m_material;
   UniaxialState m_uniaxial;
 };
 

@@ -8,7 +8,7 @@
 /// Dim = 2: plane strain (E_33 = 0). Dim = 1: S = M E_11 with M = lambda + 2 mu (1D strain) or Young's E (1D stress:
 /// S is linear in E, so S_22 = S_33 = 0 gives E_22 = E_33 = -nu E_11 and S_11 = E E_11 exactly, at any stretch).
 /// \code{.cpp}
-/// const sphstab::StVenantKirchhoff<2> svk(sphstab::LameParameters{.lambda = 1.2, .mu = 0.8});  // plane strain
+/// const sphstab::StVenantKirchhoff<2> svk(sphstab::ElasticMaterial::from_lame(1.2, 0.8, 1.0));  // plane strain
 /// sphstab::Deformation<double, 2> F;
 /// F << 1.2, 0.1, 0.0, 0.9;
 /// const sphstab::Deformation<double, 2> P = svk.stress(F);    // F S
@@ -23,21 +23,21 @@ namespace sphstab {
 template <int Dim>
 class StVenantKirchhoff final : public HyperelasticModelT<Dim, StVenantKirchhoff<Dim>> {
  public:
-  /// Throws std::invalid_argument for invalid constants (LameParameters::validate).
-  explicit StVenantKirchhoff(const LameParameters& lame, UniaxialState uniaxial = UniaxialState::Strain)
-      : m_lame(lame), m_uniaxial(uniaxial) {
-    m_lame.validate("StVenantKirchhoff");
+  /// Throws std::invalid_argument for invalid constants (ElasticMaterial::validate).
+  explicit StVenantKirchhoff(const ElasticMaterial& material, UniaxialState uniaxial = UniaxialState::Strain)
+      : m_material(material), m_uniaxial(uniaxial) {
+    m_material.validate("StVenantKirchhoff");
   }
   std::string name() const override {
     return Dim == 1 ? "st-venant-kirchhoff/1d-" + uniaxial_state_name(m_uniaxial)
                     : std::string("st-venant-kirchhoff/plane-strain");
   }
-  const LameParameters& lame() const override { return m_lame; }
+  const ElasticMaterial& material() const override { return m_material; }
   UniaxialState uniaxial() const override { return m_uniaxial; }
   /// 1D stress: J = F s^2 with s^2 = 1 + 2 E_22 = 1 - nu (F^2 - 1); otherwise det F.
   double volume_ratio(const Deformation<double, Dim>& F) const override {
     if (Dim == 1 && m_uniaxial == UniaxialState::Stress)
-      return F(0, 0) * (1 - m_lame.poisson() * (F(0, 0) * F(0, 0) - 1));
+      return F(0, 0) * (1 - m_material.poisson() * (F(0, 0) * F(0, 0) - 1));
     return F.determinant();
   }
 
@@ -76,9 +76,9 @@ class StVenantKirchhoff final : public HyperelasticModelT<Dim, StVenantKirchhoff
     return (lam() * E.trace()) * Deformation<Scalar, Dim>::Identity() + (2 * mu()) * E;
   }
   /// 1D: the uniaxial modulus M as lambda + 2 mu with (lambda, mu) = (M, 0).
-  double lam() const { return Dim == 1 ? m_lame.uniaxial_modulus(m_uniaxial) : m_lame.lambda; }
-  double mu() const { return Dim == 1 ? 0.0 : m_lame.mu; }
-  LameParameters m_lame;
+  double lam() const { return Dim == 1 ? m_material.uniaxial_modulus(m_uniaxial) : m_material.lambda(); }
+  double mu() const { return Dim == 1 ? 0.0 : m_material.mu(); }
+  ElasticMaterial m_material;
   UniaxialState m_uniaxial;
 };
 

@@ -19,7 +19,7 @@ RateFormOptions gms_scheme_options(double eps, double alpha = 1, double beta = 2
 
 /// What the three scenes share: material, scheme and smoothing length h = h_over_spacing dp (cubic spline).
 struct GmsSceneOptions {
-  RateFormMaterial material{.density = 1, .bulk_modulus = 1, .shear_modulus = 0.22};  ///< GMS §7.2; Table 1 row 1
+  ElasticMaterial material = ElasticMaterial::from_bulk_shear(1, 0.22, 1);  ///< GMS §7.2; Table 1 row 1
   RateFormOptions scheme = gms_scheme_options(0.3);
   double h_over_spacing = 1.5;
 };

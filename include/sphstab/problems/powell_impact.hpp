@@ -68,7 +68,7 @@ struct PowellImpactOptions {
   double t_end = std::numeric_limits<double>::quiet_NaN();  ///< run length (us)
   int clamp_layers = 5;                                     ///< beam: fixed vertical layers at each end [§4.3]
   double h_over_dx = 1.3;
-  RateFormMaterial material = RateFormMaterial::from_youngs(2.1, 0.3, 7.8);
+  ElasticMaterial material = ElasticMaterial::from_young_poisson(2.1, 0.3, 7.8);
   RateFormOptions scheme;
 };
 

@@ -31,7 +31,7 @@ struct RateFormBlockOptions {
   double h_over_dx = 1.3;
   double spacing = 0.01;  ///< dx
   double xi = 1.0;        ///< volume strain V / V0 > 0 (> 1 tension)
-  RateFormMaterial material = RateFormMaterial::from_youngs(2.1, 0.3, 7.8);  ///< steel, g-cm-us (Powell's)
+  ElasticMaterial material = ElasticMaterial::from_young_poisson(2.1, 0.3, 7.8);  ///< steel, g-cm-us (Powell's)
   RateFormOptions scheme;
   double kick = 1e-10;  ///< V0
 };

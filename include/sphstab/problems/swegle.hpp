@@ -27,10 +27,6 @@
 
 namespace sphstab {
 
-/// Plane-strain Lame constants from Young's modulus E > 0 and Poisson's ratio -1 < nu < 1/2, density rho > 0.
-/// Throws std::invalid_argument otherwise.
-ElasticMaterial plane_strain_material(double youngs_modulus, double poisson_ratio, double density);
-
 struct SwegleOptions {
   int n = 21;              ///< free particles per side (>= 3; odd for an exact centre particle)
   double spacing = 0.01;   ///< dx (cm)
@@ -50,7 +46,7 @@ struct SwegleOptions {
 struct SwegleScene {
   SwegleOptions options;
   std::shared_ptr<const Discretisation<2>> discretisation;
-  ElasticMaterial material;
+  ElasticMaterial material = ElasticMaterial::from_lame(1.0, 1.0, 1.0);
   PreStrain prestrain;
   int centre = -1;        ///< particle index of the perturbed particle (a free particle)
   Eigen::VectorXd v0;     ///< initial velocity of the free DOFs

@@ -75,7 +75,7 @@ struct ElasticLatticeProblem {
   KernelType kernel = KernelType::CubicSpline;
   double h = 1.3;  ///< h / dx
   /// Plane strain with nu = 0.3 (E = 2.1, Powell's Swegle test); rho cancels in e_crit.
-  ElasticMaterial material{.lambda = 1.2115384615384615, .mu = 0.80769230769230769, .rho = 1.0};
+  ElasticMaterial material = ElasticMaterial::from_lame(1.2115384615384615, 0.80769230769230769, 1.0);
   MomentumForm form = MomentumForm::Conservative;
   PreStrainKind prestrain = PreStrainKind::Isotropic;
 

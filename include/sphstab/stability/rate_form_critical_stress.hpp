@@ -59,7 +59,7 @@ struct RateFormCriticalStress {
 /// min >= max); a failed spectrum is a NumericalIssue result with its reason.
 template <int Dim>
 RateFormCriticalStress rate_form_critical_stress(std::shared_ptr<const Discretisation<Dim>> disc,
-                                                 const RateFormMaterial& material, const RateFormOptions& options,
+                                                 const ElasticMaterial& material, const RateFormOptions& options,
                                                  const RateFormCriticalOptions& critical = {});
 
 }  // namespace sphstab

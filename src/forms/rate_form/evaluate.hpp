@@ -113,7 +113,7 @@ void RateFormScheme<Dim>::absorb(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>&
   const Kernel<Dim>& kernel = d.kernel;
   const double h = d.h;
   const bool ncsph = m_options.gradient == RateFormGradient::Ncsph || m_absorbing.normalised;
-  const double c_p = m_material.p_wave_speed(), c_s = std::sqrt(m_material.shear_modulus / m_material.density);
+  const double c_p = m_material.p_wave_speed(), c_s = std::sqrt(m_material.mu() / m_material.density());
   const auto position = [&](int j) -> Vec {
     return m_x_off[j] >= 0 ? Vec(y.template segment<Dim>(m_x_off[j]))
                            : Vec(p.x.row(j).transpose().template cast<Scalar>());

@@ -4,7 +4,7 @@
 #include "sphstab/spectral/fourier_symbol_2d.hpp"
 using namespace sphstab;
 int main() {
-  const ElasticMaterial m{.lambda = 1.2115384615384615, .mu = 0.80769230769230769, .rho = 1.0};
+  const ElasticMaterial m = ElasticMaterial::from_lame(1.2115384615384615, 0.80769230769230769, 1.0);
   ElasticSymbol2D sym(LatticeType::Square, Kernel<2>(KernelType::CubicSpline), 1.3, 1.0, m, MomentumForm::Conservative,
                       PreStrainKind::Isotropic);
   const double k[][2] = {{0.3, 0.7}, {1.5707963267948966, 0.0}, {3.0, 0.4}, {3.141592653589793, 1.5707963267948966}, {2.9, 2.2}};
