@@ -3,11 +3,15 @@
 // conservative form, isotropic tension, plane strain (benchmarks/strain_lattice.hpp). One case per process, so that
 // the peak RSS is the case's; prints one CSV row (header with --header).
 //   build/bin/lattice_lobpcg_benchmark 1000 [--block 4] [--tol 1e-8] [--margin 0.02] [--measure] [--threads 1]
-// Wall-time split: lattice (particles + neighbour list), linearisation (MatrixFreeLinearisation: G, H values per pair,
-// needed values kept), probe (stencil from 4 operator products), preconditioner setup (symbols, FFTW plan), solve.
-// The probe check (12 products: the free-free operator against the restricted stencil at an interior, an edge and a
-// corner particle) and the per-product profile (A0, A1, T on one vector, median of 5) are timed apart and not part of
-// the total. benchmarks/lattice_lobpcg_report.py runs the cases and writes results/critical-strain-large/.
+// --storage auto|per-pair|by-offset: where MatrixFreeLinearisation keeps G and H (default auto = by-offset on these
+// perfect lattices: values per lattice offset, lattice loops; per-pair: values per neighbour pair, the route of
+// perturbed or finite blocks); the reports run both in the same run for their ratio.
+// Wall-time split: lattice (particles + neighbour list), linearisation (MatrixFreeLinearisation: the G, H values and,
+// by offset, the lattice check of every free row), probe (stencil from 4 operator products), preconditioner setup
+// (symbols, FFTW plan), solve. The probe check (12 products: the free-free operator against the restricted stencil at
+// an interior, an edge and a corner particle) and the per-product profile (A0, A1, T on one vector, median of 5) are
+// timed apart and not part of the total. benchmarks/lattice_lobpcg_report.py runs the cases and writes
+// results/critical-strain-large/.
 // --dim 3: the n x n x n cubic lattice (same kernel, h, material, form; 3D isotropic pre-strain); --direct-reference
 // adds the direct route in the same process (the linearisation assembled by products with unit vectors, then
 // critical_load's eigen route: CHOLMOD and shifted Spectra; small n only) as the reference of rel_diff_reference.
@@ -86,14 +90,14 @@ std::shared_ptr<const sphstab::Discretisation<Dim>> lattice(int n) {
 }  // namespace
 
 template <int Dim>
-int run(int n, sphstab::MatrixFreeCriticalLoadOptions o, bool direct_reference);
+int run(int n, sphstab::MatrixFreeCriticalLoadOptions o, bool direct_reference, sphstab::MatrixFreeStorage storage);
 
 int main(int argc, char** argv) {
   using namespace sphstab;
   if (argc < 2) {
     std::fprintf(stderr,
                  "usage: %s n [--dim 2|3] [--block b] [--tol t] [--margin m] [--measure] [--threads k] "
-                 "[--direct-reference] [--header]\n",
+                 "[--direct-reference] [--storage auto|per-pair|by-offset] [--header]\n",
                  argv[0]);
     return 2;
   }
@@ -102,11 +106,12 @@ int main(int argc, char** argv) {
       "a1_products,preconditioner_applications,residual,sigma_p_over_lambda,lattice_s,linearisation_s,probe_s,"
       "prec_setup_s,solve_s,solve_products_s,solve_preconditioner_s,solve_dense_s,total_s,cpu_s,probe_check_s,probe_"
       "deviation,a0_product_s,a1_product_s,preconditioner_s,"
-      "linearisation_MB,peak_rss_MB,reason,dim,direct_reference_e_crit,direct_reference_s";
+      "linearisation_MB,peak_rss_MB,reason,dim,direct_reference_e_crit,direct_reference_s,storage";
   MatrixFreeCriticalLoadOptions o;
   o.method = MatrixFreeEigenMethod::BlockLobpcg;
   int n = 0, dim = 2;
   bool direct_reference = false;
+  MatrixFreeStorage storage = MatrixFreeStorage::Auto;
   for (int a = 1; a < argc; ++a) {
     const std::string s = argv[a];
     if (s == "--header") {
@@ -130,6 +135,13 @@ int main(int argc, char** argv) {
       dim = std::atoi(argv[++a]);
     } else if (s == "--direct-reference") {
       direct_reference = true;
+    } else if (s == "--storage" && a + 1 < argc) {
+      try {
+        storage = parse_matrix_free_storage(argv[++a]);
+      } catch (const std::invalid_argument& e) {
+        std::fprintf(stderr, "%s\n", e.what());
+        return 2;
+      }
     } else {
       n = std::atoi(argv[a]);
     }
@@ -143,11 +155,11 @@ int main(int argc, char** argv) {
     return 2;
   }
   o.max_iterations = 2000;
-  return dim == 2 ? run<2>(n, o, direct_reference) : run<3>(n, o, direct_reference);
+  return dim == 2 ? run<2>(n, o, direct_reference, storage) : run<3>(n, o, direct_reference, storage);
 }
 
 template <int Dim>
-int run(int n, sphstab::MatrixFreeCriticalLoadOptions o, bool direct_reference) {
+int run(int n, sphstab::MatrixFreeCriticalLoadOptions o, bool direct_reference, sphstab::MatrixFreeStorage storage) {
   using namespace sphstab;
 
   const auto t_total = Clock::now();
@@ -155,7 +167,8 @@ int run(int n, sphstab::MatrixFreeCriticalLoadOptions o, bool direct_reference) 
   std::shared_ptr<const Discretisation<Dim>> d = lattice<Dim>(n);
   const double lattice_s = since(t);
   t = Clock::now();
-  const MatrixFreeLinearisation<Dim> lin(*d, bench::kMaterial, MomentumForm::Conservative, PreStrainKind::Isotropic);
+  const MatrixFreeLinearisation<Dim> lin(*d, bench::kMaterial, MomentumForm::Conservative, PreStrainKind::Isotropic,
+                                         storage);
   const double linearisation_s = since(t);
   d.reset();  // the linearisation keeps what it needs
   t = Clock::now();
@@ -204,12 +217,13 @@ int run(int n, sphstab::MatrixFreeCriticalLoadOptions o, bool direct_reference) 
   const double rel = std::abs(r.load - reference) / reference;
   std::printf(
       "%d,%d,%d,%d,%g,%g,%d,%s,%.15g,%.3g,%ld,%ld,%ld,%ld,%.3g,%.6f,"
-      "%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3g,%.5f,%.5f,%.5f,%.1f,%.1f,\"%s\",%d,%.15g,%.3f\n",
+      "%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3g,%.5f,%.5f,%.5f,%.1f,%.1f,\"%s\",%d,%.15g,%.3f,%s\n",
       n, lin.dofs(), max_threads(), o.block_size, o.residual_tol, o.margin, o.fftw_measure ? 1 : 0,
       status_name(r.info()).c_str(), r.load, rel, r.iterations, r.a0_products, r.a1_products,
       r.preconditioner_applications, r.residual, r.sigma_p * r.load, lattice_s, linearisation_s, probe_s, prec_setup_s,
       solve_s, r.product_seconds, r.preconditioner_seconds,
       r.solve_seconds - r.product_seconds - r.preconditioner_seconds, total_s, cpu_s, probe_check_s, dev, a0_s, a1_s,
-      t_s, lin.memory_bytes() / 1e6, peak_solve_mb, r.reason.c_str(), Dim, direct, direct_s);
+      t_s, lin.memory_bytes() / 1e6, peak_solve_mb, r.reason.c_str(), Dim, direct, direct_s,
+      matrix_free_storage_name(lin.storage()).c_str());
   return r.info() == Status::Successful ? 0 : 1;
 }

@@ -9,6 +9,7 @@
 #include "../operators/pair_derivatives.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/memory_budget.hpp"
+#include "sphstab/core/named_values.hpp"
 #include "sphstab/core/threads.hpp"
 #include "sphstab/jacobian/analytic_jacobian_2d.hpp"
 
@@ -28,6 +29,11 @@ const Discretisation<2>& covered_discretisation(const ElasticForm2D& force) {
   require_closed_form_coverage(force, "MatrixFreeLinearisation");
   return force.discretisation();
 }
+
+/// Values between the starts of two component grids of ByOffset: the grid's sites rounded up to 4 KB, plus 576 bytes,
+/// so that the 2 x 6 streams of step 3 (sigma at i +- d) fall into different L1 cache sets. Without it a padded
+/// 32^3 grid (n = 24 in 3D) put every component 256 KB apart, on one set: A0 ran 4x slower than its flops.
+long component_stride(long sites) { return (sites + 511) / 512 * 512 + 72; }
 
 /// Index of the symmetric pair (a, b), a <= b, in row-by-row order (2D: xx, xy, yy; 3D: xx, xy, xz, yy, yz, zz).
 template <int Dim>
@@ -59,6 +65,188 @@ void check_operators(const Discretisation<Dim>& d, const Operators<Dim>& ops, co
 
 }  // namespace
 
+constexpr NamedValue<MatrixFreeStorage> kStorageNames[] = {{MatrixFreeStorage::Auto, "auto"},
+                                                           {MatrixFreeStorage::PerPair, "per-pair"},
+                                                           {MatrixFreeStorage::ByOffset, "by-offset"}};
+
+MatrixFreeStorage parse_matrix_free_storage(const std::string& name) {
+  return parse_named(name, kStorageNames, "matrix-free storage");
+}
+std::string matrix_free_storage_name(MatrixFreeStorage storage) { return name_of(storage, kStorageNames); }
+
+/// The free box and offset set of ByOffset (header comment), or the reason it does not apply.
+template <int Dim>
+struct MatrixFreeLinearisation<Dim>::Lattice {
+  std::string refusal;                     ///< empty: ByOffset applies
+  std::array<int, Dim> box{};              ///< free particles per axis
+  double dx = 0, volume = 0;               ///< spacing, common volume
+  int reach = 0;                           ///< max |d_a|
+  std::vector<std::array<int, Dim>> half;  ///< D+: of each pair +-d the one whose last non-zero component is > 0
+};
+
+template <int Dim>
+typename MatrixFreeLinearisation<Dim>::Lattice MatrixFreeLinearisation<Dim>::find_lattice(
+    const Discretisation<Dim>& d) {
+  Lattice L;
+  const auto refuse = [&L](std::string why) {
+    L.refusal = std::move(why);
+    return L;
+  };
+  const char* axis = "xyz";
+  const ParticleSet<Dim>& p = d.particles;
+  for (int a = 0; a < Dim; ++a)
+    if (p.periodic[a]) return refuse(std::string("axis ") + axis[a] + " is periodic");
+  const int nf = d.free_count();
+  if (nf < 2) return refuse("fewer than 2 free particles");
+  const auto X = [&](long f, int a) { return p.x(d.free[f], a); };
+  const double dx1 = X(1, 0) - X(0, 0);
+  if (!(dx1 > 0) || !std::isfinite(dx1)) return refuse("free particles 0 and 1 are not x-neighbours");
+  const double tol = 1e-9 * dx1;
+  const auto same_line = [&](long f, long g, int from) {  // equal coordinates on the axes >= from
+    for (int a = from; a < Dim; ++a)
+      if (std::abs(X(f, a) - X(g, a)) > tol) return false;
+    return true;
+  };
+  // The box from the DOF order: n_0 along the first row, n_1 rows in the first plane, n_2 = the rest.
+  int n0 = 1;
+  while (n0 < nf && same_line(n0, 0, 1)) ++n0;
+  L.box.fill(1);
+  L.box[0] = n0;
+  if constexpr (Dim == 2) {
+    L.box[1] = nf / n0;
+  } else {
+    int n1 = 1;
+    while (static_cast<long>(n1) * n0 < nf && same_line(static_cast<long>(n1) * n0, 0, 2)) ++n1;
+    L.box[1] = n1;
+    L.box[2] = nf / (n0 * n1);
+  }
+  long count = 1;
+  for (int a = 0; a < Dim; ++a) count *= L.box[a];
+  std::string box_text = std::to_string(L.box[0]);
+  for (int a = 1; a < Dim; ++a) box_text += " x " + std::to_string(L.box[a]);
+  if (count != nf) return refuse(std::to_string(nf) + " free particles do not fill an " + box_text + " box");
+  L.dx = n0 > 1 ? (X(n0 - 1, 0) - X(0, 0)) / (n0 - 1) : dx1;
+  for (long f = 0; f < nf; ++f) {
+    std::array<int, Dim> site;
+    long rest = f;
+    for (int a = 0; a < Dim; ++a) {
+      site[a] = static_cast<int>(rest % L.box[a]);
+      rest /= L.box[a];
+    }
+    for (int a = 0; a < Dim; ++a)
+      if (std::abs(X(f, a) - (X(0, a) + L.dx * site[a])) > tol)
+        return refuse("free particle " + std::to_string(f) + " is off its site of an " + box_text + " box of spacing " +
+                      format_number(L.dx, 6) + " in DOF order (x fastest)");
+  }
+
+  // The offset set of the central free particle.
+  const NeighbourList& nl = d.neighbours;
+  long centre_f = 0;
+  for (int a = Dim - 1; a >= 0; --a) centre_f = centre_f * L.box[a] + L.box[a] / 2;
+  const int centre = d.free[centre_f];
+  L.volume = p.volume[centre];
+  // Offset of neighbour j of i in lattice units; false when j is off a site or of another volume.
+  const auto offset = [&](int i, int j, std::array<int, Dim>& o) {
+    for (int a = 0; a < Dim; ++a) {
+      const double t = (p.x(j, a) - p.x(i, a)) / L.dx;
+      o[a] = static_cast<int>(std::lround(t));
+      if (std::abs(p.x(j, a) - p.x(i, a) - o[a] * L.dx) > tol) return false;
+    }
+    return std::abs(p.volume[j] - L.volume) <= 1e-12 * std::abs(L.volume);
+  };
+  std::vector<std::array<int, Dim>> set;
+  for (long k = nl.offsets[centre]; k < nl.offsets[centre + 1]; ++k) {
+    std::array<int, Dim> o;
+    if (!offset(centre, nl.indices[k], o))
+      return refuse("neighbour " + std::to_string(nl.indices[k]) + " of free particle " + std::to_string(centre) +
+                    " is off the lattice or of another volume");
+    bool self = true;
+    for (int a = 0; a < Dim; ++a) self = self && o[a] == 0;
+    if (self && nl.indices[k] != centre)
+      return refuse("particles " + std::to_string(centre) + " and " + std::to_string(nl.indices[k]) + " share a site");
+    if (self) continue;
+    set.push_back(o);
+    for (int a = 0; a < Dim; ++a) L.reach = std::max(L.reach, std::abs(o[a]));
+  }
+  const int w = 2 * L.reach + 1;
+  const auto table_index = [&](const std::array<int, Dim>& o) {
+    long t = 0;
+    for (int a = Dim - 1; a >= 0; --a) t = t * w + o[a] + L.reach;
+    return t;
+  };
+  long cells = 1;
+  for (int a = 0; a < Dim; ++a) cells *= w;
+  std::vector<int> id(cells, -1);
+  for (size_t s = 0; s < set.size(); ++s) id[table_index(set[s])] = static_cast<int>(s);
+  for (const auto& o : set) {
+    std::array<int, Dim> m;
+    for (int a = 0; a < Dim; ++a) m[a] = -o[a];
+    if (id[table_index(m)] < 0)
+      return refuse("the neighbour offsets of free particle " + std::to_string(centre) + " are not symmetric");
+    int last = Dim - 1;
+    while (o[last] == 0) --last;
+    if (o[last] > 0) L.half.push_back(o);
+  }
+  std::sort(L.half.begin(), L.half.end(),
+            [&](const auto& a, const auto& b) { return table_index(a) < table_index(b); });
+
+  // Every free row has exactly this set (so is complete: no neighbour missing, none extra).
+  std::vector<char> bad(nf, 0);
+  const long want = static_cast<long>(set.size()) + 1;
+#pragma omp parallel for schedule(static) num_threads(threads_for(nf))
+  for (long f = 0; f < nf; ++f) {
+    const int i = d.free[f];
+    if (nl.offsets[i + 1] - nl.offsets[i] != want) {
+      bad[f] = 1;
+      continue;
+    }
+    std::vector<char> seen(set.size() + 1, 0);
+    for (long k = nl.offsets[i]; k < nl.offsets[i + 1] && !bad[f]; ++k) {
+      std::array<int, Dim> o;
+      bool in = offset(i, nl.indices[k], o);
+      int slot = static_cast<int>(set.size());  // the self pair
+      for (int a = 0; a < Dim && in; ++a) in = std::abs(o[a]) <= L.reach;
+      if (in && o != std::array<int, Dim>{})
+        slot = id[table_index(o)];
+      else if (in)
+        in = nl.indices[k] == i;
+      if (!in || slot < 0 || seen[slot])
+        bad[f] = 1;
+      else
+        seen[slot] = 1;
+    }
+  }
+  for (long f = 0; f < nf; ++f)
+    if (bad[f])
+      return refuse("free particle " + std::to_string(d.free[f]) + " has another neighbour set than free particle " +
+                    std::to_string(centre) + " (incomplete near a free surface, or off the lattice)");
+  return L;
+}
+
+template <int Dim>
+double MatrixFreeLinearisation<Dim>::bytes_of(const Discretisation<Dim>& d, const Lattice* L) {
+  const double n = d.size(), nf = d.free_count(), pairs = d.neighbours.nonzeros();
+  constexpr double S = kSymmetric;
+  if (L) {
+    // free index and positions, the padded grids of x and sigma, the offset tables
+    long sites = 1;
+    for (int a = 0; a < Dim; ++a) sites *= L->box[a] + 4 * L->reach;
+    const double grid = static_cast<double>(component_stride(sites));
+    const double half = static_cast<double>(L->half.size());
+    return 4 * nf + 8 * Dim * nf + 8 * (Dim + S) * grid + half * (8 + 8 * Dim + 8 * Dim * Dim);
+  }
+  const double free_pairs = free_row_pairs(d);
+  // CSR (8 per offset, 4 per index), G pairs and row sums, free map and stress rows, H of the free rows with eta,
+  // the stress buffer, the free positions.
+  return 8 * (n + 1) + 4 * pairs + 8 * Dim * pairs + 8 * Dim * n + 4 * (2 * n + nf) + 8 * (nf + 1) +
+         8 * S * free_pairs + 8 * S * nf + 8 * S * n + 8 * Dim * nf;
+}
+
+template <int Dim>
+std::string MatrixFreeLinearisation<Dim>::lattice_refusal(const Discretisation<Dim>& d) {
+  return find_lattice(d).refusal;
+}
+
 template <>
 Eigen::Matrix2d prestress<2>(PreStrainKind kind, const ElasticMaterial& material) {
   return PreStrain{kind, 1.0}.stress(material);
@@ -76,14 +264,10 @@ Eigen::Matrix3d prestress<3>(PreStrainKind kind, const ElasticMaterial& m) {
 }
 
 template <int Dim>
-double MatrixFreeLinearisation<Dim>::estimated_bytes(const Discretisation<Dim>& d) {
-  const double n = d.size(), nf = d.free_count(), pairs = d.neighbours.nonzeros();
-  const double free_pairs = free_row_pairs(d);
-  constexpr double S = kSymmetric;
-  // CSR (8 per offset, 4 per index), G pairs and row sums, free map and stress rows, H of the free rows with eta,
-  // the stress buffer, the free positions.
-  return 8 * (n + 1) + 4 * pairs + 8 * Dim * pairs + 8 * Dim * n + 4 * (2 * n + nf) + 8 * (nf + 1) +
-         8 * S * free_pairs + 8 * S * nf + 8 * S * n + 8 * Dim * nf;
+double MatrixFreeLinearisation<Dim>::estimated_bytes(const Discretisation<Dim>& d, MatrixFreeStorage storage) {
+  if (storage == MatrixFreeStorage::PerPair) return bytes_of(d, nullptr);
+  const Lattice L = find_lattice(d);
+  return bytes_of(d, L.refusal.empty() ? &L : nullptr);
 }
 
 template <int Dim>
@@ -92,29 +276,39 @@ MatrixFreeLinearisation<Dim>::MatrixFreeLinearisation(const Discretisation<Dim>&
                                                       PreStrainKind kind) {
   material.validate("MatrixFreeLinearisation");
   check_operators(d, ops, "MatrixFreeLinearisation");
-  build(d, &ops, material, form, kind);
+  build(d, &ops, material, form, kind, MatrixFreeStorage::PerPair);
 }
 
 template <int Dim>
 MatrixFreeLinearisation<Dim>::MatrixFreeLinearisation(const Discretisation<Dim>& d, const ElasticMaterial& material,
-                                                      MomentumForm form, PreStrainKind kind) {
+                                                      MomentumForm form, PreStrainKind kind,
+                                                      MatrixFreeStorage storage) {
   material.validate("MatrixFreeLinearisation");
   if (d.neighbours.radius + 1e-12 * d.h < d.kernel.support_radius(d.h) * (1 - 1e-12))
     throw std::invalid_argument("MatrixFreeLinearisation: neighbour radius " + format_number(d.neighbours.radius) +
                                 " is smaller than the kernel support " + format_number(d.kernel.support_radius(d.h)));
-  build(d, nullptr, material, form, kind);
+  build(d, nullptr, material, form, kind, storage);
 }
 
 template <int Dim>
 template <int D>
-  requires(D == 2 && D == Dim)
-MatrixFreeLinearisation<Dim>::MatrixFreeLinearisation(const ElasticForm2D& force)
+requires(D == 2 && D == Dim) MatrixFreeLinearisation<Dim>::MatrixFreeLinearisation(const ElasticForm2D& force)
     : MatrixFreeLinearisation(covered_discretisation(force), force.material(), force.form(), force.prestrain().kind) {}
 
 template <int Dim>
 void MatrixFreeLinearisation<Dim>::build(const Discretisation<Dim>& d, const Operators<Dim>* ops,
-                                         const ElasticMaterial& material, MomentumForm form, PreStrainKind kind) {
-  require_memory(estimated_bytes(d), "MatrixFreeLinearisation: " + std::to_string(d.dofs()) + " DOFs");
+                                         const ElasticMaterial& material, MomentumForm form, PreStrainKind kind,
+                                         MatrixFreeStorage storage) {
+  Lattice lattice;
+  if (storage != MatrixFreeStorage::PerPair) {
+    lattice = find_lattice(d);
+    if (storage == MatrixFreeStorage::ByOffset && !lattice.refusal.empty())
+      throw std::invalid_argument("MatrixFreeLinearisation: by-offset storage needs a perfect lattice: " +
+                                  lattice.refusal);
+  }
+  const bool by_offset = storage != MatrixFreeStorage::PerPair && lattice.refusal.empty();
+  require_memory(bytes_of(d, by_offset ? &lattice : nullptr),
+                 "MatrixFreeLinearisation: " + std::to_string(d.dofs()) + " DOFs");
   const int n = d.size(), nf = d.free_count();
   const NeighbourList& nl = d.neighbours;
   const bool cons = form == MomentumForm::Conservative;
@@ -127,6 +321,15 @@ void MatrixFreeLinearisation<Dim>::build(const Discretisation<Dim>& d, const Ope
   m_s0 = prestress<Dim>(kind, material);
   m_free = d.free;
   m_free_positions = d.free_positions();
+  if (by_offset) {
+    m_storage = MatrixFreeStorage::ByOffset;
+    build_by_offset(d, lattice);
+    m_complete = true;  // g = 0 exactly on every free row (header comment)
+    m_periodic = false;
+    m_symmetric = cons || form == MomentumForm::Minus || kind == PreStrainKind::Isotropic;  // equal volumes
+    return;
+  }
+  m_storage = MatrixFreeStorage::PerPair;
   m_free_slot = d.free_slot;
   m_offsets = nl.offsets;
   m_indices = nl.indices;
@@ -219,8 +422,8 @@ template <int Dim>
 double MatrixFreeLinearisation<Dim>::memory_bytes() const {
   auto bytes = [](const auto& v) { return static_cast<double>(v.capacity() * sizeof(v[0])); };
   return bytes(m_free) + bytes(m_free_slot) + bytes(m_offsets) + bytes(m_indices) + bytes(m_g) + bytes(m_gsum) +
-         bytes(m_stress_rows) + bytes(m_h_offsets) + bytes(m_h) + bytes(m_eta) + bytes(m_sigma) +
-         8.0 * static_cast<double>(m_free_positions.size());
+         bytes(m_stress_rows) + bytes(m_h_offsets) + bytes(m_h) + bytes(m_eta) + bytes(m_sigma) + bytes(m_shift) +
+         bytes(m_og) + bytes(m_ob) + bytes(m_u) + bytes(m_sgrid) + 8.0 * static_cast<double>(m_free_positions.size());
 }
 
 template <int Dim>
@@ -254,6 +457,10 @@ template <int Dim>
 void MatrixFreeLinearisation<Dim>::apply_combination(double c0, double c1, const Eigen::Ref<const Eigen::VectorXd>& x,
                                                      Eigen::Ref<Eigen::VectorXd> y) const {
   check_vectors(x, y, "apply");
+  if (m_storage == MatrixFreeStorage::ByOffset) {
+    apply_by_offset(c0, c1, x.data(), y.data());
+    return;
+  }
   constexpr int S = kSymmetric;
   const bool with_a0 = c0 != 0.0, with_a1 = c1 != 0.0 && m_a1_factor != 0.0;
   const double* xp = x.data();
@@ -364,6 +571,198 @@ void MatrixFreeLinearisation<Dim>::apply_combination(double c0, double c1, const
       for (int a = 0; a < Dim; ++a) out[a] -= c1 * m_a1_factor * r[a];
     }
     for (int a = 0; a < Dim; ++a) yp[Dim * f + a] = out[a];
+  }
+}
+
+template <int Dim>
+void MatrixFreeLinearisation<Dim>::build_by_offset(const Discretisation<Dim>& d, const Lattice& L) {
+  const int r = L.reach;
+  m_box = L.box;
+  m_reach = r;
+  long sites = 1;
+  for (int a = 0; a < Dim; ++a) {
+    m_stride[a] = sites;
+    sites *= L.box[a] + 4 * r;
+  }
+  m_grid = component_stride(sites);
+  const long half = static_cast<long>(L.half.size());
+  m_shift.resize(half);
+  m_og.resize(Dim * half);
+  m_ob.resize(Dim * Dim * half);
+  const bool cons = m_form == MomentumForm::Conservative;
+  Stress eta = Stress::Zero();
+  std::vector<Stress> hd(half);
+  for (long o = 0; o < half; ++o) {
+    // The pair (i, j = i + d): separation x_i - x_j = -d dx (pair_separation's sign), as the PerPair values.
+    Eigen::Matrix<double, 1, Dim> sep;
+    long shift = 0;
+    for (int a = 0; a < Dim; ++a) {
+      sep[a] = -L.half[o][a] * L.dx;
+      shift += L.half[o][a] * m_stride[a];
+    }
+    m_shift[o] = shift;
+    const double r2 = sep.squaredNorm();
+    std::array<std::array<double, Dim>, Dim> hk{};
+    detail::pair_derivatives<Dim, double>(d.kernel, d.h, sep, r2, std::sqrt(r2), L.volume, m_og.data() + Dim * o, &hk);
+    for (int a = 0; a < Dim; ++a)
+      for (int b = a; b < Dim; ++b) hd[o](a, b) = hd[o](b, a) = hk[a][b];
+    eta += 2 * hd[o];  // H(-d) = H(d): both offsets of the pair
+  }
+  // A1 = B(0) on the diagonal, B(d) on the offsets (header comment): -m_a1_factor s0 L, conservative also L s0.
+  const double f = m_a1_factor;
+  m_b0 = cons ? Stress(-f * (m_s0 * eta + eta * m_s0)) : Stress(-f * m_s0 * eta);
+  for (long o = 0; o < half; ++o) {
+    const Stress b = cons ? Stress(f * (m_s0 * hd[o] + hd[o] * m_s0)) : Stress(f * m_s0 * hd[o]);
+    for (int a = 0; a < Dim; ++a)
+      for (int c = 0; c < Dim; ++c) m_ob[Dim * Dim * o + Dim * a + c] = b(a, c);
+  }
+  m_u.assign(Dim * m_grid, 0.0);  // zero off the free box, for good: apply writes only the free sites
+  m_sgrid.assign(kSymmetric * m_grid, 0.0);
+}
+
+namespace {
+
+/// Line segments of the lattice loops: short enough that the per-line accumulators stay in the L1 cache.
+constexpr int kChunk = 128;
+
+/// The grid index of the first site of line `line` of a box whose lines (along x) start at grid coordinate `lo` on
+/// every axis and number `lines_of[a]` per axis a >= 1.
+template <int Dim>
+long line_start(long line, const std::array<int, Dim>& lines_of, int lo, const std::array<long, Dim>& stride) {
+  long g = lo;
+  for (int a = 1; a < Dim; ++a) {
+    g += (lo + line % lines_of[a]) * stride[a];
+    line /= lines_of[a];
+  }
+  return g;
+}
+
+}  // namespace
+
+template <int Dim>
+void MatrixFreeLinearisation<Dim>::apply_by_offset(double c0, double c1, const double* xp, double* yp) const {
+  constexpr int S = kSymmetric;
+  const bool with_a0 = c0 != 0.0, with_a1 = c1 != 0.0 && m_a1_factor != 0.0;
+  const int r = m_reach;
+  const long grid = m_grid, half = static_cast<long>(m_shift.size());
+  const long* shift = m_shift.data();
+  const double* og = m_og.data();
+  const double* ob = m_ob.data();
+  double* u = m_u.data();
+  double* sg = m_sgrid.data();
+  const double lam = m_lambda, mu = m_mu, a0_scale = -c0 * m_inv_rho;
+  std::array<int, Dim> free_lines = m_box, stress_lines = m_box;
+  long lines_free = 1, lines_stress = 1;
+  for (int a = 1; a < Dim; ++a) {
+    stress_lines[a] += 2 * r;
+    lines_free *= free_lines[a];
+    lines_stress *= stress_lines[a];
+  }
+  const int n0 = m_box[0];
+
+  // x into the padded grids (the free box starts at grid coordinate 2 r; the rest stays zero).
+#pragma omp parallel for schedule(static) num_threads(threads_for(lines_free* n0))
+  for (long line = 0; line < lines_free; ++line) {
+    const long g = line_start<Dim>(line, free_lines, 2 * r, m_stride);
+    const double* xl = xp + Dim * n0 * line;
+    for (int c = 0; c < Dim; ++c)
+      for (int i = 0; i < n0; ++i) u[c * grid + g + i] = xl[Dim * i + c];
+  }
+
+  if (with_a0) {
+    // Steps 1-2 on the free box padded by r: (grad x)_j^{cd} = sum_{D+} G^d(o) (x^c_{j+o} - x^c_{j-o}), then sigma_j.
+    // Whole lines per thread, each summed in offset order: the same bits for any thread count.
+    const int len = n0 + 2 * r;
+#pragma omp parallel for schedule(static) num_threads(threads_for(lines_stress* len))
+    for (long line = 0; line < lines_stress; ++line) {
+      const long g0 = line_start<Dim>(line, stress_lines, r, m_stride);
+      for (int x0 = 0; x0 < len; x0 += kChunk) {
+        const int m = std::min(kChunk, len - x0);
+        const long g = g0 + x0;
+        double gr[Dim * Dim][kChunk] = {};  // gr[Dim c + d]: component c, derivative d
+        for (long o = 0; o < half; ++o) {
+          const double* go = og + Dim * o;
+          const double* up = u + g + shift[o];
+          const double* um = u + g - shift[o];
+#pragma omp simd
+          for (int i = 0; i < m; ++i)
+            for (int c = 0; c < Dim; ++c) {
+              const double dv = up[c * grid + i] - um[c * grid + i];
+              for (int e = 0; e < Dim; ++e) gr[Dim * c + e][i] += go[e] * dv;
+            }
+        }
+#pragma omp simd
+        for (int i = 0; i < m; ++i) {
+          double tr = gr[0][i];
+          for (int c = 1; c < Dim; ++c) tr += gr[Dim * c + c][i];
+          for (int c = 0; c < Dim; ++c) sg[c * grid + g + i] = lam * tr + 2 * mu * gr[Dim * c + c][i];
+          for (int c = 0; c < Dim; ++c)
+            for (int e = c + 1; e < Dim; ++e)
+              sg[voigt<Dim>(c, e) * grid + g + i] = mu * (gr[Dim * c + e][i] + gr[Dim * e + c][i]);
+        }
+      }
+    }
+  }
+
+  // Step 3 and A1 on the free box: y = -(c0/rho) sum_{D+} G^b(o) (sigma^{ab}_{i+o} - sigma^{ab}_{i-o})
+  //                                    + c1 (B(0) x_i + sum_{D+} B(o) (x_{i+o} + x_{i-o})).
+  const Stress b0 = m_b0;
+#pragma omp parallel for schedule(static) num_threads(threads_for(lines_free* n0))
+  for (long line = 0; line < lines_free; ++line) {
+    const long g0 = line_start<Dim>(line, free_lines, 2 * r, m_stride);
+    double* yl = yp + Dim * n0 * line;
+    for (int x0 = 0; x0 < n0; x0 += kChunk) {
+      const int m = std::min(kChunk, n0 - x0);
+      const long g = g0 + x0;
+      double div[Dim][kChunk] = {}, a1[Dim][kChunk] = {};
+      if (with_a0)
+        for (long o = 0; o < half; ++o) {
+          const double* go = og + Dim * o;
+          const double* sp = sg + g + shift[o];
+          const double* sm = sg + g - shift[o];
+#pragma omp simd
+          for (int i = 0; i < m; ++i) {
+            double ds[S];
+            for (int k = 0; k < S; ++k) ds[k] = sp[k * grid + i] - sm[k * grid + i];
+            for (int a = 0; a < Dim; ++a) {
+              double t = go[0] * ds[voigt<Dim>(a, 0)];
+              for (int b = 1; b < Dim; ++b) t += go[b] * ds[voigt<Dim>(a, b)];
+              div[a][i] += t;
+            }
+          }
+        }
+      if (with_a1) {
+#pragma omp simd
+        for (int i = 0; i < m; ++i)
+          for (int a = 0; a < Dim; ++a) {
+            double t = b0(a, 0) * u[g + i];
+            for (int c = 1; c < Dim; ++c) t += b0(a, c) * u[c * grid + g + i];
+            a1[a][i] = t;
+          }
+        for (long o = 0; o < half; ++o) {
+          const double* bo = ob + Dim * Dim * o;
+          const double* up = u + g + shift[o];
+          const double* um = u + g - shift[o];
+#pragma omp simd
+          for (int i = 0; i < m; ++i) {
+            double v[Dim];
+            for (int c = 0; c < Dim; ++c) v[c] = up[c * grid + i] + um[c * grid + i];
+            for (int a = 0; a < Dim; ++a) {
+              double t = bo[Dim * a] * v[0];
+              for (int c = 1; c < Dim; ++c) t += bo[Dim * a + c] * v[c];
+              a1[a][i] += t;
+            }
+          }
+        }
+      }
+      for (int i = 0; i < m; ++i)
+        for (int a = 0; a < Dim; ++a) {
+          double out = 0;
+          if (with_a0) out = a0_scale * div[a][i];
+          if (with_a1) out += c1 * a1[a][i];
+          yl[Dim * (x0 + i) + a] = out;
+        }
+    }
   }
 }
 

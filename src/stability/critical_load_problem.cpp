@@ -47,20 +47,18 @@ double assembled_2d_bytes(int n, double support, bool dense) {
   return 25 * particles + 66 * particles * q + 96 * nf * (q + q2) + (dense ? 160.0 * nf * nf : 0.0);
 }
 
-/// The matrix-free linearisation (about 1.2 kB per particle, matrix_free_linearisation.hpp) and BlockLobpcg's blocks
-/// (10 b + 8 vectors of 2 doubles per free particle, b = 4): 2.6 GB measured at n = 1000
-/// (results/critical-strain-large).
-double matrix_free_2d_bytes(int n, double support) {
-  const double side = n + 2.0 * std::floor(support + 2), particles = side * side, nf = double(n) * n;
-  return 1400 * particles + 16 * 48 * nf;
-}
-
-/// 3D: stored G and H values (about 28 + 48 bytes per pair within the support, q pairs per particle) and BlockLobpcg's
-/// 10 b + 8 vectors of 3 doubles per free particle (b = 4): 7.9 GB measured at n = 100 (results/critical-strain-3d).
-double matrix_free_3d_bytes(int n, double support) {
-  const double side = n + 2.0 * std::floor(support + 2), particles = side * side * side, nf = double(n) * n * n;
-  const double q = std::min(particles, 1 + 4.0 / 3.0 * M_PI * support * support * support);
-  return particles * (100 + 28 * q) + nf * (48 * q + 24 * 48);
+/// The matrix-free route on a square (cubic) lattice: the particle set and neighbour list the linearisation is built
+/// from (about 40 + 4 q bytes per particle, q neighbours within the support), the linearisation by offset (its free
+/// positions and index, and Dim + Dim (Dim + 1) / 2 values per site of the free box padded by 2 floor(support):
+/// MatrixFreeLinearisation::estimated_bytes) and BlockLobpcg's blocks (10 b + 8 vectors of Dim doubles per free
+/// particle, b = 4). Measured peaks: results/critical-strain-large (2D) and results/critical-strain-3d.
+template <int Dim>
+double matrix_free_bytes(int n, double support) {
+  const double side = n + 2.0 * std::floor(support + 2), grid_side = n + 4.0 * std::floor(support);
+  const double particles = std::pow(side, Dim), nf = std::pow(double(n), Dim), grid = std::pow(grid_side, Dim);
+  const double ball = Dim == 2 ? M_PI * support * support : 4.0 / 3.0 * M_PI * support * support * support;
+  const double q = std::min(particles, 1 + ball);
+  return particles * (40 + 4 * q) + nf * (4 + 8 * Dim) + 8.0 * (Dim + Dim * (Dim + 1) / 2) * grid + nf * 8 * Dim * 48;
 }
 
 template <int Dim>
@@ -229,7 +227,7 @@ double critical_load_memory_bytes(const ElasticLatticeProblem<Dim>& p, CriticalL
     case CriticalLoadRoute::Symbol:
       return 0;
     case CriticalLoadRoute::MatrixFree:
-      return Dim == 2 ? matrix_free_2d_bytes(p.n, support) : matrix_free_3d_bytes(p.n, support);
+      return matrix_free_bytes<Dim>(p.n, support);
     case CriticalLoadRoute::Assembled:
     case CriticalLoadRoute::Distributed: {
       // dense copies: the dense backend asked for, or an A small enough for the dense spectrum (non-symmetric A)
@@ -240,7 +238,7 @@ double critical_load_memory_bytes(const ElasticLatticeProblem<Dim>& p, CriticalL
         return assembled_2d_bytes(p.n, support, dense);
       } else {
         // assemble_by_products' bound (dofs^2 / 8) over the matrix-free linearisation it is built from
-        return matrix_free_3d_bytes(p.n, support) + dofs * dofs / 8 + (dense ? 40.0 * dofs * dofs : 0.0);
+        return matrix_free_bytes<3>(p.n, support) + dofs * dofs / 8 + (dense ? 40.0 * dofs * dofs : 0.0);
       }
     }
   }

@@ -23,7 +23,9 @@ def claim_routes_agree(r):
     """The matrix-free block LOBPCG's e_crit agrees with the direct PETSc shift-invert values (n = 64-256) and with
     SciPy's eigsh shift-invert on the exported matrices (n = 32-256, same run) to 2e-12 relative (issue 13 asks 1e-8),
     every eigsh value certified by Sylvester's inertia (no eigenvalue above lambda (1 + 1e-9), 2 above lambda
-    (1 - 1e-9): the top mode and its x <-> y image); 1 and 2 threads give the same e_crit to all 15 digits."""
+    (1 - 1e-9): the top mode and its x <-> y image); 1 and 2 threads give the same e_crit to 5e-15 (the operator
+    products are the same bits for any thread count, tests/jacobian/matrix_free_storage_test.cpp; FFTW_MEASURE picks
+    the DST plans by timing in each process, which can move the last digit, as at n = 256 here)."""
     worst = 0.0
     for x in _default(r):
         if not math.isnan(x["rel_diff_reference"]):
@@ -33,8 +35,8 @@ def claim_routes_agree(r):
     check(len([x for x in _default(r) if not math.isnan(x["rel_diff_reference"])]) >= 6, "fewer than 6 checked runs")
     for one_t in _default(r, 1):
         two = one(r.csv("results.csv"), variant="default", n=one_t["n"], threads=2)
-        check(one_t["e_crit"] == two["e_crit"], f"{two.where()}: e_crit {two['e_crit']!r} on 2 threads, "
-                                                 f"{one_t['e_crit']!r} on 1")
+        check(abs(one_t["e_crit"] / two["e_crit"] - 1) <= 5e-15, f"{two.where()}: e_crit {two['e_crit']!r} on 2 "
+                                                                   f"threads, {one_t['e_crit']!r} on 1")
     sc = r.csv("scipy_eigsh.csv")
     for x in sc:
         check(x["status"] == "successful", f"{x.where()}: eigsh {x['status']}")
@@ -44,7 +46,7 @@ def claim_routes_agree(r):
         check(x["eigs_above_upper"] == 0 and x["eigs_above_lower"] == 2,
               f"{x.where()}: inertia {x['eigs_above_upper']} / {x['eigs_above_lower']}")
     check(len(sc) >= 4, f"scipy_eigsh.csv has {len(sc)} rows")
-    return f"direct {worst:.2g}, eigsh {max(x['rel_diff'] for x in sc):.2g} relative; 1 thread = 2 threads"
+    return f"direct {worst:.2g}, eigsh {max(x['rel_diff'] for x in sc):.2g} relative; 1 thread ~ 2 threads"
 
 
 def claim_steps_independent_of_n(r):
@@ -68,9 +70,10 @@ def claim_steps_independent_of_n(r):
 
 def claim_cost_linear_in_dofs(r):
     """Cost exponents (least squares of log wall time on log DOFs, n = 128-1000): solve, total and linearisation all in
-    N^0.85-1.05 on 1 and on 2 threads (issue 13: total <= N^1.2), as summary.md types them (2 decimals); peak RSS is the
-    same on 1 and 2 threads and ~1.3 kB per DOF at n = 1000; 2 threads are 1.8-2.2x faster than 1 at n >= 256 (same
-    run; above 2 is the shared machine's noise).
+    N^0.85-1.05 on 1 and on 2 threads (issue 13: total <= N^1.2), as summary.md types them (2 decimals); peak RSS is
+    the same on 1 and 2 threads (within 3 %) and 0.40 kB per DOF at n = 1000 (by-offset storage; per pair 0.86, the
+    Storage section); 2 threads are only 1.1-1.4x faster than 1 at n >= 256 in this run (load average 5.7-6 before
+    the cases: the second core was busy with other jobs).
     SciPy's eigsh, in contrast, grows like N^1.6-1.8 (n >= 64) and takes 3x-35x the LOBPCG's time, the ratio growing
     with n."""
     out = []
@@ -88,12 +91,15 @@ def claim_cost_linear_in_dofs(r):
         out.append(f"{th} thread(s): total N^{fit['total_s']:.2f}")
     for a, b in zip(_default(r, 1), _default(r, 2)):
         check(a["n"] == b["n"], f"{b.where()}: 1- and 2-thread rows out of step")
-        approx(b["peak_rss_MB"], a["peak_rss_MB"], f"{b.where()} peak RSS on 2 threads against 1 (MB)", abs_=0.5)
+        approx(b["peak_rss_MB"], a["peak_rss_MB"], f"{b.where()} peak RSS on 2 threads against 1 (MB)",
+               rel=0.03, abs_=1.5)
         if a["n"] >= 256:
             s = a["total_s"] / b["total_s"]
-            check(1.7 <= s <= 2.3, f"n = {a['n']}: 2 threads {s:.3g}x faster than 1")
+            check(1.1 <= s <= 1.4, f"n = {a['n']}: 2 threads {s:.3g}x faster than 1")
     top = _default(r, 1)[-1]
-    approx(top["peak_rss_MB"] * 1e3 / top["dofs"], 1.3, f"{top.where()} kB per DOF", abs_=0.05)
+    approx(top["peak_rss_MB"] * 1e3 / top["dofs"], 0.40, f"{top.where()} kB per DOF", abs_=0.02)
+    pp = one(r.csv("results.csv"), variant="--storage per-pair", n=top["n"], threads=1)
+    approx(pp["peak_rss_MB"] * 1e3 / pp["dofs"], 0.86, f"{pp.where()} kB per DOF", abs_=0.02)
     sc = sorted(r.csv("scipy_eigsh.csv"), key=lambda x: x["n"])
     big = [x for x in sc if x["n"] >= 64]
     e = _slope([x["dofs"] for x in big], [x["eigsh_s"] for x in big])
@@ -105,15 +111,43 @@ def claim_cost_linear_in_dofs(r):
     return "; ".join(out) + f"; eigsh N^{e:.2f}, {ratios[0]:.2g}-{ratios[-1]:.3g}x the LOBPCG"
 
 
+def claim_storage_by_offset_against_per_pair(r):
+    """G and H by lattice offset against per pair, in the same run (n = 256 on 1 thread, 1000 on 1 and 2 threads): the
+    same e_crit to 2e-15 relative, the linearisation 17x smaller (61 against 1035 MB at n = 1000), peak RSS 2.0-2.2x
+    lower, and the products inside the solve 2.0-2.6x faster; the total wall time moves less (1.0-1.5x) because the
+    products are the smallest of the solve's three parts (DST preconditioner, dense block algebra), as summary.md
+    states."""
+    rows = r.csv("results.csv")
+    pp = [x for x in rows if x["variant"] == "--storage per-pair"]
+    check(len(pp) == 3, f"{len(pp)} per-pair rows")
+    for p in pp:
+        o = one(rows, variant="default", n=p["n"], threads=p["threads"])
+        check(p["storage"] == "per-pair" and o["storage"] == "by-offset", f"{p.where()}: storages {p['storage']}, "
+                                                                          f"{o['storage']}")
+        check(abs(p["e_crit"] / o["e_crit"] - 1) <= 2e-15, f"{p.where()}: e_crit {p['e_crit']!r} vs {o['e_crit']!r}")
+        lin = p["linearisation_MB"] / o["linearisation_MB"]
+        check(16 <= lin <= 18, f"{p.where()}: linearisation memory ratio {lin:.3g}")
+        peak = p["peak_rss_MB"] / o["peak_rss_MB"]
+        check(1.9 <= peak <= 2.3, f"{p.where()}: peak RSS ratio {peak:.3g}")
+        prod = p["solve_products_s"] / o["solve_products_s"]
+        check(1.8 <= prod <= 3, f"{p.where()}: products in the solve {prod:.3g}x")
+        approx(r.stated(rf"\*\*n = {p['n']}, {p['threads']} thread\(s\)\*\*: per pair / by offset = .*?, ([\d.]+) "
+                        rf"\(products in the solve\)"), prod, f"summary.md products ratio {p.where()}", abs_=0.0051)
+        tot = p["total_s"] / o["total_s"]
+        check(1.0 <= tot <= 1.5, f"{p.where()}: total {tot:.3g}x")
+    return "by offset: same e_crit, 17x less linearisation memory, ~2x less peak, products 2.0-2.6x faster"
+
+
 def claim_variants(r):
     """Variants at n = 1000 (2 threads): block 2, a random start, tol 1e-7 and estimated FFTW plans give the default's
-    e_crit exactly; block 2 without noise stops at a different eigenvalue 8.1e-4 relative above the default's e_crit
+    e_crit to 2e-15 relative (the last digit or two); block 2 without noise stops at a different eigenvalue 8.1e-4 relative above the default's e_crit
     (a smaller lambda: the symmetric start misses the top mode); block 2 needs 2.5-3x the default's 37 steps."""
     rows = r.csv("results.csv")
     ref = one(rows, variant="default", n=1000, threads=2)
     for v in ("--block 2", "--random", "--tol 1e-7", "--no-measure"):
         x = one(rows, variant=v, n=1000)
-        check(x["status"] == "successful" and x["e_crit"] == ref["e_crit"], f"{x.where()}: {v} e_crit {x['e_crit']!r}")
+        check(x["status"] == "successful" and abs(x["e_crit"] / ref["e_crit"] - 1) <= 2e-15,
+              f"{x.where()}: {v} e_crit {x['e_crit']!r}")
     nz = one(rows, variant="--block 2 --noise 0", n=1000)
     d = nz["e_crit"] / ref["e_crit"] - 1
     approx(d, 8.1e-4, f"{nz.where()} relative difference from the default", abs_=0.05e-4)

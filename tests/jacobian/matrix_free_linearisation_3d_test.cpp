@@ -17,6 +17,7 @@
 #include "sphstab/stability/lattice_sine_preconditioner.hpp"
 #include "sphstab/stability/lattice_stencil.hpp"
 #include "sphstab/stability/matrix_free_critical_load.hpp"
+#include "vector_comparison.hpp"
 
 namespace sphstab {
 namespace matrix_free_linearisation_3d_test {
@@ -34,17 +35,8 @@ std::shared_ptr<const Discretisation<3>> discretise(const ParticleSet<3>& set) {
   return make_discretisation(set, Kernel<3>(KernelType::CubicSpline), kH);
 }
 
-Eigen::VectorXd random_vector(long n, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> uniform(-1, 1);
-  Eigen::VectorXd v(n);
-  for (long i = 0; i < n; ++i) v[i] = uniform(rng);
-  return v;
-}
-
-double relative_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-  return (a - b).cwiseAbs().maxCoeff() / b.cwiseAbs().maxCoeff();
-}
+using test::random_vector;
+using test::relative_difference;
 
 TEST(MatrixFreeLinearisation3D, A0IsMinusTheTotalLagrangianAcceleration) {
   // Jittered positions: no lattice identity helps; unequal volumes would break nothing here either.
