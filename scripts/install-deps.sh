@@ -2,6 +2,8 @@
 # Installs the Debian 12 packages sphstab needs (run as root); does nothing for packages already present.
 #   --fe   also the finite-element reference of the impact studies (python3-dolfinx 0.5 and its 85 packages; about
 #          30 s on this 2-core machine): only the studies that name `needs = ["fe"]` in studies/index.toml use it
+#   --sanitizer  also the sanitizer stage's compiler (scripts/sanitize.sh): clang, its ASan/UBSan runtime
+#          (libclang-rt-14-dev) and its OpenMP (libomp-dev)
 set -euo pipefail
 packages=(cmake g++ make ninja-build libeigen3-dev libspectra-dev libsuitesparse-dev liblapack-dev liblapacke-dev
           libfftw3-dev libgtest-dev libbenchmark-dev libcli11-dev python3-matplotlib python3-numpy python3-scipy
@@ -9,7 +11,8 @@ packages=(cmake g++ make ninja-build libeigen3-dev libspectra-dev libsuitesparse
 for a in "$@"; do
   case "$a" in
     --fe) packages+=(python3-dolfinx) ;;
-    *) echo "install-deps: unknown option '$a' (valid: --fe)" >&2; exit 2 ;;
+    --sanitizer) packages+=(clang libclang-rt-14-dev libomp-dev) ;;
+    *) echo "install-deps: unknown option '$a' (valid: --fe, --sanitizer)" >&2; exit 2 ;;
   esac
 done
 missing=()

@@ -30,6 +30,11 @@
 // leap-frog with the velocity smoothing (2.71)). TL-SPH: J = [0 I; -A 0] with A = -da/du at the state's
 // displacement (complex step; the velocities do not enter), the leap-frog's map in closed form (dense). Written to
 // verdicts.csv.
+//
+// The drivers' shared frame (StudyOptions): the options every study takes (add_options), their check and the output
+// directory (prepare), the run of the study's cases and verdict cases (run_study) and the summary keys (set_run_keys);
+// each driver keeps its cases, its --quick settings and its own summary keys.
+#include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -39,6 +44,7 @@
 
 #include "common/study.hpp"
 #include "sphstab/analysis/fragments.hpp"
+#include "sphstab/core/threads.hpp"
 #include "sphstab/forms/rate_form_state.hpp"
 #include "sphstab/growth/stability_verdict.hpp"
 #include "sphstab/integrate/leapfrog.hpp"
@@ -420,6 +426,60 @@ inline void write_verdicts(const std::string& out, const std::vector<Case>& case
     }
 }
 
+/// The options every impact study takes. The driver sets their defaults, and their --quick values through prepare.
+struct StudyOptions {
+  std::string out;               ///< --out: the output directory
+  std::vector<double> spacings;  ///< --spacings: the runs' particle spacings dx (cm)
+  double snapshot_spacing = 0;   ///< dx (cm) of the runs with snapshots (not an option)
+  double verdict_spacing = 0.1;  ///< --verdict-spacing: dx (cm) of the runs whose states get a stability verdict
+  double t_end = 0;              ///< --t-end: run length (us)
+  int threads = 2;               ///< --threads: concurrent runs
+  bool quick = false;            ///< --quick: the study's quick case
+};
+
+/// What differs between the studies' options: the help of --spacings and --verdict-spacing (the beam's spacings must
+/// divide its clamp), the upper bound of --verdict-spacing (the lower is 0.02 cm in every study) and the help of
+/// --quick (the study's quick case).
+struct OptionTexts {
+  std::string spacings = "particle spacings dx (cm)";
+  std::string verdict_spacing = "dx (cm) of the runs whose states get a stability verdict";
+  double verdict_spacing_max = 0.1;
+  std::string quick;
+};
+
+/// Adds --out, --spacings, --t-end, --threads, --verdict-spacing and --quick, read into `o`.
+inline void add_options(CLI::App& app, StudyOptions& o, const OptionTexts& texts) {
+  app.add_option("--out", o.out, "output directory");
+  app.add_option("--spacings", o.spacings, texts.spacings)->check(CLI::PositiveNumber);
+  app.add_option("--t-end", o.t_end, "run length (us)")->check(CLI::PositiveNumber);
+  app.add_option("--threads", o.threads, "concurrent runs")->check(CLI::Range(1, 64));
+  app.add_option("--verdict-spacing", o.verdict_spacing, texts.verdict_spacing)
+      ->check(CLI::Range(0.02, texts.verdict_spacing_max));
+  app.add_flag("--quick", o.quick, texts.quick);
+}
+
+/// After parsing: refuses a --t-end that is not finite and > 0, then with --quick calls `apply_quick` (the driver's
+/// quick settings; after the check, so a bad --t-end is an error with --quick too), creates o.out and points the VTK
+/// series at o.out/vtk.
+template <class Quick>
+void prepare(StudyOptions& o, Settings& settings, Quick apply_quick) {
+  if (!std::isfinite(o.t_end) || !(o.t_end > 0))  // NaN would mean the scene's default t_end
+    throw std::invalid_argument("--t-end must be finite and > 0");
+  if (o.quick) apply_quick();
+  std::filesystem::create_directories(o.out);
+  settings.vtk_dir = o.out + "/vtk";
+  set_threads(1);  // cases run side by side; each on one thread (CPU seconds are per run)
+}
+
+/// Runs the study's cases, then its verdict cases, each set on o.threads threads; writes signals.csv, runs.csv,
+/// snapshots.csv and order.csv (the cases) and verdicts.csv to o.out. Returns the number of completed cases.
+inline int run_study(const StudyOptions& o, const std::vector<Case>& cases, const std::vector<Case>& verdict_cases,
+                     const Settings& settings) {
+  const int completed = write_runs(o.out, cases, run_cases(cases, settings, o.threads), settings);
+  write_verdicts(o.out, verdict_cases, run_cases(verdict_cases, settings, o.threads));
+  return completed;
+}
+
 /// "0.05, 0.025, ..." for the summary.
 inline std::string list(const std::vector<double>& values) {
   std::string t;
@@ -427,19 +487,19 @@ inline std::string list(const std::vector<double>& values) {
   return t;
 }
 
-/// The summary keys every impact study writes: the runs, the resolutions, the speed and the integrator settings.
-inline void set_run_keys(Summary& s, std::size_t runs, int completed, const std::vector<double>& spacings,
-                         double snapshot_spacing, double speed, const Settings& settings, double t_end, bool quick,
-                         Clock::time_point wall0) {
+/// The summary keys every impact study writes: the runs, the resolutions, the speed and the integrator settings
+/// (wall_seconds: since wall0, to now).
+inline void set_run_keys(Summary& s, std::size_t runs, int completed, const StudyOptions& o, double speed,
+                         const Settings& settings, Clock::time_point wall0) {
   s.set("runs", static_cast<long>(runs));
   s.set("completed", completed);
-  s.set("spacings", list(spacings));
-  s.set("snapshot_spacing", snapshot_spacing);
+  s.set("spacings", list(o.spacings));
+  s.set("snapshot_spacing", o.snapshot_spacing);
   s.set("speed", speed);
   s.set("tssfac", settings.tssfac);
   s.set("xsph", settings.xsph);
-  s.set("t_end", t_end);
-  s.set("quick", quick ? "yes" : "no");
+  s.set("t_end", o.t_end);
+  s.set("quick", o.quick ? "yes" : "no");
   s.set("wall_seconds", seconds_since(wall0));
 }
 

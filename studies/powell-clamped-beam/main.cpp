@@ -24,41 +24,32 @@
 #include <vector>
 
 #include "common/impact.hpp"
-#include "sphstab/core/threads.hpp"
 
 using namespace sphstab;
 
 int main(int argc, char** argv) try {
-  std::string out = "results/powell-clamped-beam";
-  std::vector<double> spacings{0.05, 0.025, 0.02, 0.0125, 0.01};  // whole layers in the 0.1 cm clamp
-  double snapshot_spacing = 0.02;                                 // the MCM deck's
-  double verdict_spacing = 0.1;  // dense eigenvalues: 160 particles, one clamped layer at each end
+  study::impact::StudyOptions opt{.out = "results/powell-clamped-beam",
+                                  .spacings = {0.05, 0.025, 0.02, 0.0125, 0.01},  // whole layers in the 0.1 cm clamp
+                                  .snapshot_spacing = 0.02,                       // the MCM deck's
+                                  // dense eigenvalues: 160 particles, one clamped layer at each end
+                                  .verdict_spacing = 0.1,
+                                  .t_end = 20};  // us
   const std::vector<std::string> formulations{"sph", "ncsph", "ssph", "tl", "tl-svk"};
   const double speed = 0.3;               // [§4.3]
   const double half_speed = 0.5 * speed;  // the load sensitivity: v0 / c_S about 0.47 instead of 0.93
   const double clamp = 0.1;               // cm: five layers at dx = 0.02 [Fig. 4.13]
-  double t_end = 20;                      // us
   std::vector<double> snapshot_times{10, 20};
-  int threads = 2;
-  bool quick = false;
   study::impact::Settings settings{.measures = {"deflection", "pressure_A", "speed_A"}};
   CLI::App app{"Powell ch. 4 §4.3: transient load on a clamped beam with SPH, NCSPH, S-SPH and TL-SPH"};
-  app.add_option("--out", out, "output directory");
-  app.add_option("--spacings", spacings, "particle spacings dx (cm), each dividing the 0.1 cm clamp")
-      ->check(CLI::PositiveNumber);
-  app.add_option("--t-end", t_end, "run length (us)")->check(CLI::PositiveNumber);
-  app.add_option("--threads", threads, "concurrent runs")->check(CLI::Range(1, 64));
-  app.add_option("--verdict-spacing", verdict_spacing,
-                 "dx (cm) of the runs whose states get a stability verdict, dividing the 0.1 cm clamp")
-      ->check(CLI::Range(0.02, 0.1));
-  app.add_flag("--quick", quick, "one coarse resolution (dx 0.05), to t = 5 us, verdicts at t = 2.5 us only");
+  study::impact::add_options(
+      app, opt,
+      {.spacings = "particle spacings dx (cm), each dividing the 0.1 cm clamp",
+       .verdict_spacing = "dx (cm) of the runs whose states get a stability verdict, dividing the 0.1 cm clamp",
+       .verdict_spacing_max = 0.1,
+       .quick = "one coarse resolution (dx 0.05), to t = 5 us, verdicts at t = 2.5 us only"});
   CLI11_PARSE(app, argc, argv);
-  if (!std::isfinite(t_end) || !(t_end > 0))  // NaN would mean the scene's default t_end
-    throw std::invalid_argument("--t-end must be finite and > 0");
-  if (quick) spacings = {0.05}, snapshot_spacing = 0.05, t_end = 5, snapshot_times = {5};
-  std::filesystem::create_directories(out);
-  settings.vtk_dir = out + "/vtk";
-  set_threads(1);  // cases run side by side; each on one thread (CPU seconds are per run)
+  study::impact::prepare(
+      opt, settings, [&] { opt.spacings = {0.05}, opt.snapshot_spacing = 0.05, opt.t_end = 5, snapshot_times = {5}; });
 
   const auto make = [&](double dx, const std::string& f, double v0 = std::nan(""), const std::string& name = "load") {
     return study::impact::Case{.form = f,
@@ -66,43 +57,42 @@ int main(int argc, char** argv) try {
                                .scene = {.problem = ImpactProblem::Beam,
                                          .spacing = dx,
                                          .speed = std::isnan(v0) ? speed : v0,
-                                         .t_end = t_end,
+                                         .t_end = opt.t_end,
                                          .clamp_layers = impact_clamp_layers(clamp, dx)}};
   };
   std::vector<study::impact::Case> cases, verdict_cases;
-  for (double dx : spacings)
+  for (double dx : opt.spacings)
     for (const std::string& f : formulations) {
       cases.push_back(make(dx, f));
-      if (std::abs(dx - snapshot_spacing) < 1e-12) cases.back().snapshot_times = snapshot_times;
+      if (std::abs(dx - opt.snapshot_spacing) < 1e-12) cases.back().snapshot_times = snapshot_times;
     }
   for (const std::string& f : formulations) {  // the initial state and mid-run
-    verdict_cases.push_back(make(verdict_spacing, f));
-    verdict_cases.back().verdict_times = {0, 10 <= t_end ? 10 : 0.5 * t_end};
-    if (quick) verdict_cases.back().verdict_times = {0.5 * t_end};  // one dense verdict per formulation, mid-run
+    verdict_cases.push_back(make(opt.verdict_spacing, f));
+    verdict_cases.back().verdict_times = {0, 10 <= opt.t_end ? 10 : 0.5 * opt.t_end};
+    // --quick: one dense verdict per formulation, mid-run
+    if (opt.quick) verdict_cases.back().verdict_times = {0.5 * opt.t_end};
   }
   // The sensitivities: S-SPH with the means of G at Powell's load (every resolution), and every formulation (with
   // ssph-g) at half the load at the snapshot resolution; snapshots at the last snapshot time only.
   std::vector<study::impact::Case> sensitivity_cases;
-  for (double dx : spacings) {
+  for (double dx : opt.spacings) {
     sensitivity_cases.push_back(make(dx, "ssph-g"));
-    if (std::abs(dx - snapshot_spacing) < 1e-12) sensitivity_cases.back().snapshot_times = {snapshot_times.back()};
+    if (std::abs(dx - opt.snapshot_spacing) < 1e-12) sensitivity_cases.back().snapshot_times = {snapshot_times.back()};
   }
   for (const std::string& f : {"sph", "ncsph", "ssph", "ssph-g", "tl", "tl-svk"}) {
-    sensitivity_cases.push_back(make(snapshot_spacing, f, half_speed, "half-load"));
+    sensitivity_cases.push_back(make(opt.snapshot_spacing, f, half_speed, "half-load"));
     sensitivity_cases.back().snapshot_times = {snapshot_times.back()};
   }
   const auto wall0 = study::Clock::now();
-  const auto outcomes = study::impact::run_cases(cases, settings, threads);
-  const int completed = study::impact::write_runs(out, cases, outcomes, settings);
-  study::impact::write_verdicts(out, verdict_cases, study::impact::run_cases(verdict_cases, settings, threads));
+  const int completed = study::impact::run_study(opt, cases, verdict_cases, settings);
   const auto sensitivity_wall0 = study::Clock::now();
   const int sensitivity_completed = study::impact::write_runs(
-      out, sensitivity_cases, study::impact::run_cases(sensitivity_cases, settings, threads), settings, "sensitivity_");
+      opt.out, sensitivity_cases, study::impact::run_cases(sensitivity_cases, settings, opt.threads), settings,
+      "sensitivity_");
   const double sensitivity_wall = study::seconds_since(sensitivity_wall0);
   const PowellImpactOptions beam = problem_defaults({.problem = ImpactProblem::Beam});
   study::Summary s;
-  study::impact::set_run_keys(s, cases.size(), completed, spacings, snapshot_spacing, speed, settings, t_end, quick,
-                              wall0);
+  study::impact::set_run_keys(s, cases.size(), completed, opt, speed, settings, wall0);
   s.set("snapshot_times", study::impact::list(snapshot_times));
   s.set("length", beam.length);
   s.set("height", beam.height);
@@ -112,7 +102,7 @@ int main(int argc, char** argv) try {
   s.set("sensitivity_runs", static_cast<long>(sensitivity_cases.size()));
   s.set("sensitivity_completed", sensitivity_completed);
   s.set("sensitivity_wall_seconds", sensitivity_wall);
-  s.write(out);
+  s.write(opt.out);
   return 0;
 } catch (const std::exception& e) {
   std::fprintf(stderr, "powell-clamped-beam: error: %s\n", e.what());

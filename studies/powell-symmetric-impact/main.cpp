@@ -15,36 +15,23 @@
 #include <vector>
 
 #include "common/impact.hpp"
-#include "sphstab/core/threads.hpp"
 
 using namespace sphstab;
 
 int main(int argc, char** argv) try {
-  std::string out = "results/powell-symmetric-impact";
-  std::vector<double> spacings{0.05, 0.025, 0.02, 0.0125, 0.01, 0.00625};
-  double snapshot_spacing = 0.02;  // the MCM deck's
-  double verdict_spacing = 0.1;    // dense eigenvalues: 100 particles (J 800 x 800)
+  study::impact::StudyOptions opt{.out = "results/powell-symmetric-impact",
+                                  .spacings = {0.05, 0.025, 0.02, 0.0125, 0.01, 0.00625},
+                                  .snapshot_spacing = 0.02,  // the MCM deck's
+                                  .verdict_spacing = 0.1,    // dense eigenvalues: 100 particles (J 800 x 800)
+                                  .t_end = 6};               // us
   const std::vector<std::string> formulations{"sph", "ncsph", "ssph", "tl"};
   const double speed = 0.06;  // |v0| [§4.1, Fig. 4.5]
-  double t_end = 6;           // us
-  int threads = 2;
-  bool quick = false;
   study::impact::Settings settings{.measures = {"pressure_A", "speed_A"}};
   CLI::App app{"Powell ch. 4 §4.1: symmetric impact with SPH, NCSPH, S-SPH and TL-SPH"};
-  app.add_option("--out", out, "output directory");
-  app.add_option("--spacings", spacings, "particle spacings dx (cm)")->check(CLI::PositiveNumber);
-  app.add_option("--t-end", t_end, "run length (us)")->check(CLI::PositiveNumber);
-  app.add_option("--threads", threads, "concurrent runs")->check(CLI::Range(1, 64));
-  app.add_option("--verdict-spacing", verdict_spacing, "dx (cm) of the runs whose states get a stability verdict")
-      ->check(CLI::Range(0.02, 0.5));
-  app.add_flag("--quick", quick, "one coarse resolution (dx 0.05), to t = 2 us");
+  study::impact::add_options(app, opt,
+                             {.verdict_spacing_max = 0.5, .quick = "one coarse resolution (dx 0.05), to t = 2 us"});
   CLI11_PARSE(app, argc, argv);
-  if (!std::isfinite(t_end) || !(t_end > 0))  // NaN would mean the scene's default t_end
-    throw std::invalid_argument("--t-end must be finite and > 0");
-  if (quick) spacings = {0.05}, snapshot_spacing = 0.05, t_end = 2;
-  std::filesystem::create_directories(out);
-  settings.vtk_dir = out + "/vtk";
-  set_threads(1);  // cases run side by side; each on one thread (CPU seconds are per run)
+  study::impact::prepare(opt, settings, [&] { opt.spacings = {0.05}, opt.snapshot_spacing = 0.05, opt.t_end = 2; });
 
   // Powell's figure times: Fig. 4.6, 3.05 us in compression; Fig. 4.8, 1.6 us in expansion.
   const auto make = [&](double dx, double sign, const std::string& f) {
@@ -52,27 +39,25 @@ int main(int argc, char** argv) try {
     return study::impact::Case{
         .form = f,
         .name = sign > 0 ? "compression" : "expansion",
-        .scene = {.problem = ImpactProblem::Symmetric, .spacing = dx, .speed = sign * speed, .t_end = t_end},
-        .snapshot_times = std::abs(dx - snapshot_spacing) < 1e-12 ? std::vector<double>{fig} : std::vector<double>{},
-        .verdict_times = {0, fig <= t_end ? fig : 0.5 * t_end}};
+        .scene = {.problem = ImpactProblem::Symmetric, .spacing = dx, .speed = sign * speed, .t_end = opt.t_end},
+        .snapshot_times =
+            std::abs(dx - opt.snapshot_spacing) < 1e-12 ? std::vector<double>{fig} : std::vector<double>{},
+        .verdict_times = {0, fig <= opt.t_end ? fig : 0.5 * opt.t_end}};
   };
   std::vector<study::impact::Case> cases, verdict_cases;
-  for (double dx : spacings)
+  for (double dx : opt.spacings)
     for (double sign : {1.0, -1.0})
       for (const std::string& f : formulations) cases.push_back(make(dx, sign, f)), cases.back().verdict_times.clear();
   for (double sign : {1.0, -1.0})
     for (const std::string& f : formulations) {
-      verdict_cases.push_back(make(verdict_spacing, sign, f));
+      verdict_cases.push_back(make(opt.verdict_spacing, sign, f));
       verdict_cases.back().snapshot_times.clear();
     }
   const auto wall0 = study::Clock::now();
-  const auto outcomes = study::impact::run_cases(cases, settings, threads);
-  const int completed = study::impact::write_runs(out, cases, outcomes, settings);
-  study::impact::write_verdicts(out, verdict_cases, study::impact::run_cases(verdict_cases, settings, threads));
+  const int completed = study::impact::run_study(opt, cases, verdict_cases, settings);
   study::Summary s;
-  study::impact::set_run_keys(s, cases.size(), completed, spacings, snapshot_spacing, speed, settings, t_end, quick,
-                              wall0);
-  s.write(out);
+  study::impact::set_run_keys(s, cases.size(), completed, opt, speed, settings, wall0);
+  s.write(opt.out);
   return 0;
 } catch (const std::exception& e) {
   std::fprintf(stderr, "powell-symmetric-impact: error: %s\n", e.what());

@@ -10,15 +10,11 @@
 #include <memory>
 #include <string>
 
-#include "plate_cases.hpp"
-#include "sphstab/forms/correction_gradient.hpp"
-#include "sphstab/forms/finite_strain_total_lagrangian.hpp"
+#include "plate_model.hpp"
 #include "sphstab/integrate/leapfrog.hpp"
 #include "sphstab/integrate/run.hpp"
 #include "sphstab/io/csv.hpp"
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
-#include "sphstab/models/neo_hookean.hpp"
-#include "sphstab/problems/plate_with_hole.hpp"
 
 namespace plate_hole {
 
@@ -35,23 +31,14 @@ struct DynamicOutcome {
 
 inline DynamicOutcome dynamic_step(const Run& run, double c_hg, double transits, const std::string& out) {
   DynamicOutcome o;
-  const Kernel<2> kernel(KernelType::CubicSpline);
-  const double dx = kA / run.a_over_dx, h = kHOverDx * dx, W = run.w_over_a * kA;
-  const PlateWithHole plate = make_plate_with_hole(
-      {.radius = kA, .width = W, .spacing = dx, .ghost_depth = 2 * kernel.support_radius(h) + 0.5 * dx});
-  const auto disc = make_discretisation(plate.particles, kernel, h);
-  const auto lame = ElasticMaterial::from_young_poisson(run.youngs, run.nu, 1.0);
-  const auto material = std::make_shared<NeoHookean<2>>(lame);
-  FiniteStrainTotalLagrangian<2> tl(disc, material, 1.0,
-                                    {.gradient = make_gradient_provider<2>(Correction::Ncsph),
-                                     .divergence = StressDivergence::Plus,
-                                     .hourglass = c_hg});
-  const int nr = 2 * plate.real_count;
-  const SparseMatrix<> T = mirror_map(plate);
-  const Eigen::VectorXd load = consistent_traction(plate, *disc, run.traction).cwiseQuotient(tl.dof_mass().head(nr));
+  const PlateModel m = plate_model(run, c_hg);
+  const FiniteStrainTotalLagrangian<2>& tl = *m.tl;
+  const int nr = m.nr;
+  const Eigen::VectorXd load =
+      consistent_traction(m.plate, *m.disc, run.traction).cwiseQuotient(tl.dof_mass().head(nr));
   // dt: 0.4 x the leap-frog limit 2 / sqrt(mu_max), mu_max of A at rest by power iteration (dominant |eigenvalue|)
   const Eigen::SparseMatrix<double> A =
-      SparseMatrix<>(ComplexStepJacobian(tl).compute(Eigen::VectorXd::Zero(tl.dofs())).topRows(nr)) * T;
+      SparseMatrix<>(ComplexStepJacobian(tl).compute(Eigen::VectorXd::Zero(tl.dofs())).topRows(nr)) * m.T;
   Eigen::VectorXd x = Eigen::VectorXd::Ones(nr);
   double mu_max = 0;
   for (int it = 0; it < 300; ++it) {
@@ -60,12 +47,12 @@ inline DynamicOutcome dynamic_step(const Run& run, double c_hg, double transits,
     x = y / y.norm();
   }
   o.dt = 0.4 * 2 / std::sqrt(mu_max);
-  const double cs = std::sqrt(lame.mu() / 1.0);
-  o.t_end = transits * W / cs;
+  const double cs = std::sqrt(m.material->material().mu() / 1.0);
+  o.t_end = transits * m.W / cs;
   SecondOrderSystem sys;
   Eigen::VectorXd a_all;
   sys.acceleration = [&](const Eigen::VectorXd& u, Eigen::VectorXd& a) {
-    tl.acceleration(T * u, a_all);
+    tl.acceleration(m.T * u, a_all);
     a = a_all.head(nr) + load;
   };
   sys.dofs_per_particle = 2;
@@ -78,14 +65,14 @@ inline DynamicOutcome dynamic_step(const Run& run, double c_hg, double transits,
     {
       double hole = 0, all = 0;
       try {
-        const Eigen::MatrixXd F = tl.deformation_gradients(T * view.u);
-        for (int i = 0; i < plate.real_count; ++i) {
+        const Eigen::MatrixXd F = tl.deformation_gradients(m.T * view.u);
+        for (int i = 0; i < m.plate.real_count; ++i) {
           Deformation<double, 2> Fi;
           Fi << F(i, 0), F(i, 1), F(i, 2), F(i, 3);
-          const Eigen::Matrix2d c = material->cauchy_stress(Fi);
+          const Eigen::Matrix2d c = m.material->cauchy_stress(Fi);
           const double p1 = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(0.5 * (c + c.transpose())).eigenvalues()[1];
           all = std::max(all, p1);
-          if (plate.particles.x.row(i).norm() < kA + 2 * dx) hole = std::max(hole, p1);
+          if (m.plate.particles.x.row(i).norm() < kA + 2 * m.dx) hole = std::max(hole, p1);
         }
       } catch (const std::exception& e) {
         o.end = std::string("stopped: ") + e.what();
@@ -97,10 +84,10 @@ inline DynamicOutcome dynamic_step(const Run& run, double c_hg, double transits,
         peaks.stop(o.end);
         return;
       }
-      csv.row({view.time * cs / W, hole, all});
+      csv.row({view.time * cs / m.W, hole, all});
       if (hole > o.peak_hole) {
         o.peak_hole = hole;
-        o.peak_time = view.time * cs / W;
+        o.peak_time = view.time * cs / m.W;
       }
       o.peak_all = std::max(o.peak_all, all);
     }

@@ -20,14 +20,9 @@
 #include <vector>
 
 #include "common/study.hpp"
-#include "plate_cases.hpp"
-#include "sphstab/forms/correction_gradient.hpp"
-#include "sphstab/forms/finite_strain_total_lagrangian.hpp"
+#include "plate_model.hpp"
 #include "sphstab/io/csv.hpp"
 #include "sphstab/jacobian/complex_step_jacobian.hpp"
-#include "sphstab/models/hooke.hpp"
-#include "sphstab/models/neo_hookean.hpp"
-#include "sphstab/problems/plate_with_hole.hpp"
 
 namespace plate_hole {
 
@@ -49,23 +44,14 @@ struct Outcome {
 inline Outcome solve(const Run& run, double c_hg, const std::string& out) {
   const auto t0 = study::Clock::now();
   Outcome o;
-  const Kernel<2> kernel(KernelType::CubicSpline);
-  const double dx = kA / run.a_over_dx, h = kHOverDx * dx, W = run.w_over_a * kA;
-  const PlateWithHole plate = make_plate_with_hole(
-      {.radius = kA, .width = W, .spacing = dx, .ghost_depth = 2 * kernel.support_radius(h) + 0.5 * dx});
-  const auto disc = make_discretisation(plate.particles, kernel, h);
-  const auto lame = ElasticMaterial::from_young_poisson(run.youngs, run.nu, 1.0);
-  std::shared_ptr<const HyperelasticModel<2>> material;
-  if (run.model == "hooke")
-    material = std::make_shared<Hooke<2>>(lame);
-  else
-    material = std::make_shared<NeoHookean<2>>(lame);
-  FiniteStrainTotalLagrangian<2> tl(disc, material, 1.0,
-                                    {.gradient = make_gradient_provider<2>(Correction::Ncsph),
-                                     .divergence = StressDivergence::Plus,
-                                     .hourglass = c_hg});
-  const int nr = 2 * plate.real_count;
-  const SparseMatrix<> T = mirror_map(plate);
+  const PlateModel model = plate_model(run, c_hg);
+  const PlateWithHole& plate = model.plate;
+  const FiniteStrainTotalLagrangian<2>& tl = *model.tl;
+  const SparseMatrix<>& T = model.T;
+  const int nr = model.nr;
+  const double dx = model.dx, W = model.W;
+  const auto& disc = model.disc;
+  const auto& material = model.material;
   const Eigen::VectorXd f =
       run.lumped ? lumped_traction(plate, run.traction) : consistent_traction(plate, *disc, run.traction);
   o.total_force = f.sum() / (run.traction * W);
