@@ -12,6 +12,7 @@
 #include <ctime>
 #include <exception>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <random>
@@ -119,6 +120,23 @@ inline void md_row(std::string& table, const std::vector<std::string>& cells) {
   table += table.empty() ? "|" : "\n|";
   for (const std::string& c : cells) table += " " + c + " |";
 }
+
+/// The smallest and largest of some values, for a range a summary's prose names ("5.6–6.8"): render it from the data,
+/// not by hand. NaN values are skipped; an empty range renders as "-".
+struct Range {
+  double lo = std::numeric_limits<double>::infinity(), hi = -std::numeric_limits<double>::infinity();
+  void add(double v) {
+    if (std::isnan(v)) return;
+    lo = std::min(lo, v), hi = std::max(hi, v);
+  }
+  bool empty() const { return lo > hi; }
+  /// "lo–hi" with `decimals` digits after the point (one value when they print the same).
+  std::string text(int decimals) const {
+    if (empty()) return "-";
+    const std::string a = fixed(lo, decimals), b = fixed(hi, decimals);
+    return a == b ? a : a + "–" + b;
+  }
+};
 
 /// Key numbers of a study for its summary template: summary.json, one flat object of strings.
 class Summary {

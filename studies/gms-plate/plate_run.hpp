@@ -122,6 +122,7 @@ inline PlateRun run_plate(const PlateCase& c, const std::string& out) {
   // Decay over every half cycle's extreme, the first included: the start transient shifts the first crossing, not
   // the first peak.
   r.osc.decay_per_period = measure_oscillation(r.t, r.tip, false).decay_per_period;
+  if (r.osc.crossings.size() < kMinCrossings) r.osc.period = kNaN;  // not two cycles: no period to report
   write_series(out, r);
   std::fprintf(stderr,
                "  %-28s N %5d dt %.4f steps %7ld  T %8.2f  (%zu crossings) decay %+.3f stretch %.2f at x %.2f t %.0f  "

@@ -54,12 +54,18 @@ def convergence(out):
     ax = axes[0]
     dp = [num(r["dp"]) for r in conv]
     ax.plot(dp, [num(r["period"]) for r in conv], "o-", label="run, V_f = 0.01, ε = 0.3")
+    bad = [r for r in conv if not num(r["max_bond_stretch"]) <= 1.5]  # plate_tables.hpp kRearrangedStretch
+    if bad:
+        ax.plot([num(r["dp"]) for r in bad], [num(r["period"]) for r in bad], "x", color="tab:red", ms=9,
+                label="rearranged (bond > 1.5 dp): not in the fit")
     ld = [(num(r["dp"]), lin[r["across"]]) for r in conv if r["across"] in lin]
     if ld:
         ax.plot([a for a, _ in ld], [b for _, b in ld], "^", label="linear: spectrum of the initial state")
-    if ext and not math.isnan(num(ext[0]["extrapolated_period"])):
-        ax.axhline(num(ext[0]["extrapolated_period"]), color="k", lw=0.8,
-                   label=f"extrapolated (order {num(ext[0]['observed_order']):.2f})")
+    for fit in ext:  # the headline fit (unrearranged runs) solid, the finest-three sensitivity dashed
+        if not math.isnan(num(fit["extrapolated_period"])):
+            head = fit["fit"] == "unrearranged"
+            ax.axhline(num(fit["extrapolated_period"]), color="k", lw=0.8, ls="-" if head else "--",
+                       label=f"extrapolated from {fit['from_across']} (order {num(fit['observed_order']):.2f})")
     ax.axhline(num(conv[0]["paper_period"]), color="tab:red", ls="--", lw=0.8, label="GMS T_sph 1671.5")
     ax.axhline(num(conv[0]["timoshenko_period"]), color="0.4", ls=":", lw=0.8, label="Timoshenko")
     ax.axhline(num(conv[0]["thin_period"]), color="0.4", ls="-.", lw=0.8, label="thin plate (7.1)")
