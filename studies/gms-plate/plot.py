@@ -92,7 +92,9 @@ def convergence(out):
     for r, c in zip(conv, cpu):
         ax.annotate(f"{r['across']} across", (c, abs(num(r["period"]) / refs[0][1] - 1)), fontsize=7,
                     textcoords="offset points", xytext=(4, 4))
-    ax.set_xlabel("CPU seconds of the run (1.45 thin-plate periods)")
+    t_end = max(num(x["t"]) for x in read(os.path.join(out, "series", conv[0]["tag"] + ".csv")))
+    ax.set_xlabel(f"CPU seconds of the run ({t_end / num(conv[0]['thin_period']):.2g} thin-plate periods; "
+                  "rearranged runs: crosses in the left panel)")
     ax.set_ylabel("|period error|")
     ax.set_title("cost against period error (Pareto)", fontsize=9)
     ax.legend(fontsize=7)
