@@ -9,7 +9,7 @@ from conftest import csv_rows
 
 
 def test_rings_run_equals_the_cli_scene(cli):
-    rc, out, err = cli("scene", "rings", "--dp", 0.5, "--t-end", 3, "--record-every", 1, "--pair-loop", "rows")
+    rc, out, err = cli("scene", "rings", "--dp", 0.5, "--t-end", 3, "--record-every", 1, "--pair-loop", "pairs")
     assert rc == 0, err
     rows = [r for r in csv_rows(out) if r["status"] == ""]  # the last row is the run's status
     scene = sphstab.gms_rings_scene(spacing=0.5)

@@ -17,7 +17,8 @@ RateFormOptions gms_scheme_options(double eps, double alpha, double beta) {
           .viscosity = alpha > 0 || beta > 0 ? ViscositySwitch::Compression : ViscositySwitch::Off,
           .viscosity_alpha = alpha,
           .viscosity_beta = beta,
-          .artificial_stress = eps};
+          .artificial_stress = eps,
+          .pair_loop = PairLoop::Pairs};
 }
 
 namespace {

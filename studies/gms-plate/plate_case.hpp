@@ -62,15 +62,12 @@ inline PlateCase gms_plate(double H, double mu) {
   return c;
 }
 
-/// The case's scene: GMS's scheme with the case's eps, alpha and beta, started in the first mode's velocity; the pair
-/// loop (each pair once: the rates equal the row loop's to rounding, tests/forms/rate_form_pair_loop_test.cpp, at half
-/// its cost), as `sphstab scene plate` runs it.
+/// The case's scene: GMS's scheme (with its pair loop) with the case's eps, alpha and beta, started in the first mode's
+/// velocity, as `sphstab scene plate` runs it.
 inline Scene<2> plate_scene(const PlateCase& c) {
-  RateFormOptions scheme = gms_scheme_options(c.eps, c.alpha, c.beta);
-  scheme.pair_loop = PairLoop::Pairs;
   return gms_plate_scene(
       {.length = c.length, .thickness = c.thickness, .across = c.across, .clamp_layers = c.clamp_layers}, c.tip_speed,
-      {.material = material_of(c), .scheme = scheme, .h_over_spacing = c.h_factor});
+      {.material = material_of(c), .scheme = gms_scheme_options(c.eps, c.alpha, c.beta), .h_over_spacing = c.h_factor});
 }
 /// dt = cfl h / c_P of the case on particles of spacing dp.
 inline double time_step(const PlateCase& c, double dp) {

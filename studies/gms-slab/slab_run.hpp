@@ -82,7 +82,7 @@ inline SlabRun run_slab(const SlabCase& c, const std::string& out, std::vector<F
   const Kernel<2> kernel(KernelType::CubicSpline);
   const ElasticMaterial mat = ElasticMaterial::from_bulk_shear(1, kMu, 1);
   const Scene<2> scene = gms_slab_scene({.spacing = c.dp, .end_zone = kEndZone, .acceleration = kAcceleration}, kYield,
-                                        {.material = mat, .scheme = gms_scheme_options(c.eps)});
+                                        {.material = mat, .scheme = row_loop(gms_scheme_options(c.eps))});
   const RateFormScheme<2>& scheme = *scene.scheme;
   Eigen::VectorXd y = scene.y0;
   double right0 = 0;

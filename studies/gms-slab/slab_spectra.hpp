@@ -19,7 +19,7 @@ inline void frozen_spectra(double dp_spectrum, double skin, const std::vector<do
                            study::Summary& sum) {
   const ElasticMaterial mat = ElasticMaterial::from_bulk_shear(1, kMu, 1);
   const Scene<2> scene = gms_slab_scene({.spacing = dp_spectrum, .end_zone = kEndZone, .acceleration = kAcceleration},
-                                        kYield, {.material = mat, .scheme = gms_scheme_options(0)});
+                                        kYield, {.material = mat, .scheme = row_loop(gms_scheme_options(0))});
   const double h = scene.scheme->discretisation().h;
   study::frozen_spectra_along_run(
       *scene.scheme, scene.y0,

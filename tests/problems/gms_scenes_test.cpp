@@ -41,6 +41,7 @@ TEST(GmsScenes, RingsMoveTowardsEachOtherAndAreOneFragmentEach) {
   EXPECT_EQ(o.viscosity, ViscositySwitch::Compression);
   EXPECT_EQ(o.continuity, ContinuityForm::Divergence);
   EXPECT_EQ(gms_scheme_options(0.3, 0, 0).viscosity, ViscositySwitch::Off);
+  EXPECT_EQ(o.pair_loop, PairLoop::Pairs);  // the fast loop where it applies (issue 35)
 }
 
 TEST(GmsScenes, PlateStartsInItsFirstModeAndMeasuresTheTipDeflection) {

@@ -15,6 +15,8 @@ namespace sphstab {
 /// The scheme of [GMS2001, §3-6]: continuity -rho tr L, XSPH eps_x = 1/2, artificial stress eps (n = 4) and
 /// Monaghan's viscosity with the compression switch. GMS give no viscosity coefficients: alpha = 1, beta = 2 are
 /// Monaghan's (gms-plate's summary shows the MCM deck's 0.06 / 1.5 disorders the plate); alpha = beta = 0: off.
+/// The pair loop (PairLoop::Pairs: each pair once, the row loop's rates to rounding at about half its cost,
+/// tests/forms/rate_form_pair_loop_test.cpp): the plain gradient with symmetric momentum is where it applies.
 RateFormOptions gms_scheme_options(double eps, double alpha = 1, double beta = 2);
 
 /// What the three scenes share: material, scheme and smoothing length h = h_over_spacing dp (cubic spline).
