@@ -165,9 +165,7 @@ int main(int argc, char** argv) {
     write_runs(out + "/si.csv", runs, g.si);
     summarise_si(sum, find_run(runs, g.si.front()));
     // 3. Linear (spectral) bending periods of the initial state at the resolutions whose spectrum fits.
-    write_linear_periods(out, g.conv, table_across_h2, runs, sum);
-    sum.set("eps0_vs_linear",
-            100 * (find_run(runs, g.eps[1]).osc.period / linear_period(g.eps[1]).period - 1), 2);  // eps 0, V_f 0.01
+    write_linear_periods(out, g.conv, table_across_h2, runs, find_run(runs, g.eps[1]), sum);  // eps 0, V_f 0.01
     // 4. Frozen-state spectra of the root-break case (eps = 0 run) at about T/16 and T/8 of GMS's period (t = 70,
     // 140), before the break (t = 289 at 10 across), the later one also with the viscosity on.
     {

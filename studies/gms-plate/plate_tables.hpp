@@ -131,9 +131,11 @@ inline void summarise_si(study::Summary& sum, const PlateRun& r) {
 }
 
 /// linear.csv: the spectral bending period of the initial state at the resolutions of `conv` whose spectrum fits (at
-/// most 14 across), beside the run's period; the summary takes the row at `across`.
+/// most 14 across), beside the run's period; the summary takes the row at `across`, and compares the eps = 0 run at
+/// that resolution (`eps0`) with it too: at rest and stress free the artificial stress is off, so the spectrum does
+/// not depend on eps and is computed once.
 inline void write_linear_periods(const std::string& out, const std::vector<PlateCase>& conv, int across,
-                                 const std::vector<PlateRun>& runs, study::Summary& sum) {
+                                 const std::vector<PlateRun>& runs, const PlateRun& eps0, study::Summary& sum) {
   CsvWriter w(out + "/linear.csv", {"H", "across", "dp", "mu", "linear_period", "overlap", "softer_modes",
                                     "growth_rate", "run_period_vf0.01", "thin_period", "timoshenko_period"});
   for (const PlateCase& c : conv) {
@@ -147,6 +149,7 @@ inline void write_linear_periods(const std::string& out, const std::vector<Plate
       sum.set("linear_overlap", lp.overlap, 4);
       sum.set("linear_softer", lp.softer);
       sum.set("linear_vs_run", run_period / lp.period - 1, 2);
+      sum.set("eps0_vs_linear", 100 * (eps0.osc.period / lp.period - 1), 2);
     }
   }
 }
