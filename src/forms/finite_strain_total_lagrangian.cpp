@@ -71,10 +71,7 @@ bool FiniteStrainTotalLagrangian<Dim>::conservative() const {
 
 template <int Dim>
 std::unique_ptr<ForceFunction> FiniteStrainTotalLagrangian<Dim>::with_load(double load) const {
-  if (load != 0)
-    throw std::invalid_argument(std::string(kFiniteStrainWho) +
-                                "::with_load: the finite-strain form has no affine load (got " + format_number(load) +
-                                "); prescribe displacements with set_fixed_displacement");
+  this->check_no_load(load);
   return std::make_unique<FiniteStrainTotalLagrangian<Dim>>(*this);
 }
 
@@ -115,15 +112,12 @@ void FiniteStrainTotalLagrangian<Dim>::evaluate(const Eigen::Matrix<Scalar, Eige
   if (m_hg.active()) m_hg.add(d, ws.u, F, a);
 }
 
+template <int Dim>
+void FiniteStrainTotalLagrangian<Dim>::acceleration(const Eigen::VectorXd& u, Eigen::VectorXd& a) const { evaluate(u, a); }
+template <int Dim>
+void FiniteStrainTotalLagrangian<Dim>::acceleration(const Eigen::VectorXcd& u, Eigen::VectorXcd& a) const { evaluate(u, a); }
+
 template class FiniteStrainTotalLagrangian<1>;
 template class FiniteStrainTotalLagrangian<2>;
-// The member templates the header's inline overrides call (acceleration): instantiated here, so the
-// symbols exist whether or not the compiler inlines them into the class's own instantiation.
-template void FiniteStrainTotalLagrangian<1>::evaluate<double>(const Eigen::VectorXd&, Eigen::VectorXd&) const;
-template void FiniteStrainTotalLagrangian<1>::evaluate<std::complex<double>>(const Eigen::VectorXcd&,
-                                                                             Eigen::VectorXcd&) const;
-template void FiniteStrainTotalLagrangian<2>::evaluate<double>(const Eigen::VectorXd&, Eigen::VectorXd&) const;
-template void FiniteStrainTotalLagrangian<2>::evaluate<std::complex<double>>(const Eigen::VectorXcd&,
-                                                                             Eigen::VectorXcd&) const;
 
 }  // namespace sphstab

@@ -37,6 +37,13 @@ Eigen::VectorXd HyperelasticBody<Dim>::lumped_mass() const {
 }
 
 template <int Dim>
+void HyperelasticBody<Dim>::check_no_load(double load) const {
+  if (load != 0)
+    throw std::invalid_argument(m_who + "::with_load: the finite-strain forms have no affine load (got " +
+                                format_number(load) + "); prescribe displacements with set_fixed_displacement");
+}
+
+template <int Dim>
 void HyperelasticBody<Dim>::set_fixed_displacement(const Eigen::VectorXd& d) {
   detail::check_fixed_displacement(d, m_fixed_u.size(), m_who.c_str());
   m_fixed_u = d;
@@ -45,10 +52,7 @@ void HyperelasticBody<Dim>::set_fixed_displacement(const Eigen::VectorXd& d) {
 template <int Dim>
 template <class Scalar>
 typename HyperelasticBody<Dim>::template Workspace<Scalar>& HyperelasticBody<Dim>::workspace() const {
-  if constexpr (std::is_same_v<Scalar, double>)
-    return m_work_real;
-  else
-    return m_work_complex;
+  return m_work.template get<Scalar>();
 }
 
 template <int Dim>

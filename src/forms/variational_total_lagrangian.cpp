@@ -57,9 +57,7 @@ std::string VariationalTotalLagrangian<Dim>::name() const {
 
 template <int Dim>
 std::unique_ptr<ForceFunction> VariationalTotalLagrangian<Dim>::with_load(double load) const {
-  if (load != 0)
-    throw std::invalid_argument(std::string(kVariationalWho) + "::with_load: no affine load (got " +
-                                format_number(load) + "); prescribe displacements with set_fixed_displacement");
+  this->check_no_load(load);
   return std::make_unique<VariationalTotalLagrangian<Dim>>(*this);
 }
 
@@ -100,15 +98,12 @@ void VariationalTotalLagrangian<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen
   if (m_hg.active()) m_hg.add(d, ws.u, F, a);  // [Ganzenmueller2015] with this form's F (forms/hourglass_control.hpp)
 }
 
+template <int Dim>
+void VariationalTotalLagrangian<Dim>::acceleration(const Eigen::VectorXd& u, Eigen::VectorXd& a) const { evaluate(u, a); }
+template <int Dim>
+void VariationalTotalLagrangian<Dim>::acceleration(const Eigen::VectorXcd& u, Eigen::VectorXcd& a) const { evaluate(u, a); }
+
 template class VariationalTotalLagrangian<1>;
 template class VariationalTotalLagrangian<2>;
-// The member templates the header's inline overrides call (acceleration): instantiated here, so the
-// symbols exist whether or not the compiler inlines them into the class's own instantiation.
-template void VariationalTotalLagrangian<1>::evaluate<double>(const Eigen::VectorXd&, Eigen::VectorXd&) const;
-template void VariationalTotalLagrangian<1>::evaluate<std::complex<double>>(const Eigen::VectorXcd&,
-                                                                            Eigen::VectorXcd&) const;
-template void VariationalTotalLagrangian<2>::evaluate<double>(const Eigen::VectorXd&, Eigen::VectorXd&) const;
-template void VariationalTotalLagrangian<2>::evaluate<std::complex<double>>(const Eigen::VectorXcd&,
-                                                                            Eigen::VectorXcd&) const;
 
 }  // namespace sphstab

@@ -50,6 +50,15 @@ class LinearisedOperator {
   mutable Eigen::VectorXd m_x, m_y;
 };
 
+/// The largest-magnitude eigenvalue by a Spectra solver (Lanczos or Arnoldi), into est (converged, dominant).
+template <class Solver>
+void dominant_eigenvalue(Solver&& solver, const StabilityOptions& opt, StabilityEstimate& est) {
+  solver.init();
+  solver.compute(Spectra::SortRule::LargestMagn, opt.max_iterations, opt.tolerance);
+  est.converged = solver.info() == Spectra::CompInfo::Successful;
+  if (est.converged) est.dominant = solver.eigenvalues()[0];
+}
+
 }  // namespace detail
 
 StabilityEstimate estimate_stability_limit(const AccelerationFunction& accel, long n, const StabilityOptions& opt) {
@@ -86,20 +95,12 @@ StabilityEstimate estimate_stability_limit(const AccelerationFunction& accel, lo
     est.min_real = mu.real().minCoeff();
     est.method = "dense";
   } else if (opt.symmetric) {
-    const int ncv = static_cast<int>(std::min<long>(n, 20));
-    Spectra::SymEigsSolver<detail::LinearisedOperator> solver(op, 1, ncv);
-    solver.init();
-    solver.compute(Spectra::SortRule::LargestMagn, opt.max_iterations, opt.tolerance);
-    est.converged = solver.info() == Spectra::CompInfo::Successful;
-    if (est.converged) est.dominant = solver.eigenvalues()[0];
+    detail::dominant_eigenvalue(Spectra::SymEigsSolver<detail::LinearisedOperator>(op, 1, std::min<long>(n, 20)), opt,
+                                est);
     est.method = "spectra-sym";
   } else {
-    const int ncv = static_cast<int>(std::min<long>(n, 30));
-    Spectra::GenEigsSolver<detail::LinearisedOperator> solver(op, 3, ncv);
-    solver.init();
-    solver.compute(Spectra::SortRule::LargestMagn, opt.max_iterations, opt.tolerance);
-    est.converged = solver.info() == Spectra::CompInfo::Successful;
-    if (est.converged) est.dominant = solver.eigenvalues()[0];
+    detail::dominant_eigenvalue(Spectra::GenEigsSolver<detail::LinearisedOperator>(op, 3, std::min<long>(n, 30)), opt,
+                                est);
     est.method = "spectra-gen";
   }
   est.lambda_max = std::abs(est.dominant);

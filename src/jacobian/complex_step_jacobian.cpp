@@ -102,20 +102,26 @@ SparseMatrix<> ComplexStepJacobian::compute(const Eigen::VectorXd& u, const Forc
   return A;
 }
 
+namespace {
+
+/// The complex-step Jacobian of f (a force function or a system) at x; throws "jacobian: <failure>" where it is not
+/// finite.
+template <class Function>
+SparseMatrix<> checked_jacobian(const Function& f, const Eigen::VectorXd& x, const std::string& failure) {
+  ComplexStepJacobian jac(f);
+  SparseMatrix<> J = jac.compute(x);
+  if (jac.info() != Status::Successful) throw std::runtime_error("jacobian: " + failure);
+  return J;
+}
+
+}  // namespace
+
 SparseMatrix<> jacobian(const ForceFunction& force, const Eigen::VectorXd& u) {
-  ComplexStepJacobian jac(force);
-  SparseMatrix<> A = jac.compute(u);
-  if (jac.info() != Status::Successful)
-    throw std::runtime_error("jacobian: the force function " + force.name() + " is not finite at u");
-  return A;
+  return checked_jacobian(force, u, "the force function " + force.name() + " is not finite at u");
 }
 
 SparseMatrix<> jacobian(const SemiDiscreteSystem& system, const Eigen::VectorXd& y) {
-  ComplexStepJacobian jac(system);
-  SparseMatrix<> J = jac.compute(y);
-  if (jac.info() != Status::Successful)
-    throw std::runtime_error("jacobian: the system " + system.name() + " is not finite at y");
-  return J;
+  return checked_jacobian(system, y, "the system " + system.name() + " is not finite at y");
 }
 
 Linearisation affine_jacobian(const ForceFunction& force, const Eigen::VectorXd& u, double symmetry_tol) {

@@ -97,24 +97,9 @@ double CholmodFactor::rcond_estimate() const {
 
 void CholmodFactor::solve(CholmodSystem sys, const double* x, double* y) const {
   if (!m_impl->factorised) throw std::logic_error("CholmodFactor::solve: no successful factorisation");
-  int code = CHOLMOD_A;
-  switch (sys) {
-    case CholmodSystem::A:
-      code = CHOLMOD_A;
-      break;
-    case CholmodSystem::L:
-      code = CHOLMOD_L;
-      break;
-    case CholmodSystem::Lt:
-      code = CHOLMOD_Lt;
-      break;
-    case CholmodSystem::P:
-      code = CHOLMOD_P;
-      break;
-    case CholmodSystem::Pt:
-      code = CHOLMOD_Pt;
-      break;
-  }
+  // CholmodSystem's order: A, L, Lt, P, Pt.
+  constexpr int kCodes[] = {CHOLMOD_A, CHOLMOD_L, CHOLMOD_Lt, CHOLMOD_P, CHOLMOD_Pt};
+  const int code = kCodes[static_cast<int>(sys)];
   cholmod_dense b;
   b.nrow = static_cast<size_t>(m_n);
   b.ncol = 1;

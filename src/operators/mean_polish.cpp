@@ -1,5 +1,7 @@
 #include "sphstab/operators/mean_polish.hpp"
 
+#include <type_traits>
+
 #include "correction_detail.hpp"
 #include "sphstab/numerics/instantiation.hpp"
 #include "sphstab/operators/shepard.hpp"
@@ -32,8 +34,11 @@ std::vector<int> checked_subset(const DenseMatrix<Scalar>& a, const std::vector<
   return subset;
 }
 
-template <class Scalar>
-void row_polish_in_place(DenseMatrix<Scalar>& a, const std::vector<int>& s) {
+// Algorithm 3.1's row step: each row of the subset loses its mean over the subset's columns. A matrix expression, so
+// that the column step is the row step of the transpose (the same sums in the same order).
+template <class Matrix>
+void row_polish_in_place(Matrix&& a, const std::vector<int>& s) {
+  using Scalar = typename std::decay_t<Matrix>::Scalar;
   const double inv_n = 1.0 / static_cast<double>(s.size());
   for (int i : s) {
     Scalar mean(0);
@@ -45,13 +50,7 @@ void row_polish_in_place(DenseMatrix<Scalar>& a, const std::vector<int>& s) {
 
 template <class Scalar>
 void column_polish_in_place(DenseMatrix<Scalar>& a, const std::vector<int>& s) {
-  const double inv_n = 1.0 / static_cast<double>(s.size());
-  for (int j : s) {
-    Scalar mean(0);
-    for (int i : s) mean += a(i, j);
-    mean *= inv_n;
-    for (int i : s) a(i, j) -= mean;
-  }
+  row_polish_in_place(a.transpose(), s);
 }
 
 }  // namespace

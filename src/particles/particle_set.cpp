@@ -9,6 +9,19 @@
 namespace sphstab {
 
 template <int Dim>
+ParticleSet<Dim> ParticleSet<Dim>::free_grid(int n, double dp) {
+  double volume = 1;
+  for (int a = 0; a < Dim; ++a) volume *= dp;
+  ParticleSet s;
+  s.x.resize(n, Dim);
+  s.volume = Eigen::VectorXd::Constant(n, volume);
+  s.role.assign(n, Role::Free);
+  s.depth.assign(n, 0);
+  s.spacing = dp;
+  return s;
+}
+
+template <int Dim>
 int ParticleSet<Dim>::count(Role r) const {
   return static_cast<int>(std::count(role.begin(), role.end(), r));
 }

@@ -91,12 +91,8 @@ CollidingRings make_colliding_rings(const CollidingRingsOptions& o) {
   rings.per_ring = per_ring;
   const double offset = o.outer_radius + 0.5 * o.gap;
   rings.centre = {Eigen::Vector2d(-offset, 0), Eigen::Vector2d(offset, 0)};
+  rings.particles = ParticleSet<2>::free_grid(static_cast<int>(total), dp);
   ParticleSet<2>& set = rings.particles;
-  set.x.resize(total, 2);
-  set.volume = Eigen::VectorXd::Constant(total, dp * dp);
-  set.role.assign(total, Role::Free);
-  set.depth.resize(total);
-  set.spacing = dp;
   rings.velocity.resize(2, total);
   rings.ring.resize(total);
   for (int r = 0; r < 2; ++r) {

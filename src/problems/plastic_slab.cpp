@@ -69,12 +69,8 @@ PlasticSlab make_plastic_slab(const PlasticSlabOptions& o) {
   slab.options = o;
   slab.columns = static_cast<int>(nx);
   slab.rows = static_cast<int>(ny);
+  slab.particles = ParticleSet<2>::free_grid(static_cast<int>(n), dp);
   ParticleSet<2>& set = slab.particles;
-  set.x.resize(n, 2);
-  set.volume = Eigen::VectorXd::Constant(n, dp * dp);
-  set.role.assign(n, Role::Free);
-  set.depth.resize(n);
-  set.spacing = dp;
   int p = 0;
   for (long c = 0; c < nx; ++c)
     for (long r = 0; r < ny; ++r, ++p) {

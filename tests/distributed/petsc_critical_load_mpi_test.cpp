@@ -7,6 +7,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "mpi_test_main.hpp"
 #include "sphstab/distributed/petsc_critical_load.hpp"
 #include "sphstab/jacobian/analytic_jacobian_2d.hpp"
 #include "sphstab/jacobian/matrix_free_linearisation.hpp"
@@ -210,16 +211,4 @@ TEST(PetscCriticalLoad, MoreRanksThanRowsIsAOneLineError) {
 }  // namespace
 }  // namespace sphstab
 
-int main(int argc, char** argv) {
-  sphstab::PetscSession session(&argc, &argv);
-  sphstab::g_session = &session;
-  testing::InitGoogleTest(&argc, argv);
-  if (session.rank() != 0) {  // one report, from rank 0; every rank still runs and fails on its own
-    auto& listeners = testing::UnitTest::GetInstance()->listeners();
-    delete listeners.Release(listeners.default_result_printer());
-  }
-  const int failed = RUN_ALL_TESTS();
-  // Every rank's verdict counts: a failure on rank 1 fails the run on rank 0 too.
-  const bool any_failed = sphstab::max_over_ranks(failed ? 1.0 : 0.0) > 0;
-  return any_failed ? 1 : 0;
-}
+int main(int argc, char** argv) { return sphstab::test::run_tests_on_all_ranks(argc, argv, sphstab::g_session); }

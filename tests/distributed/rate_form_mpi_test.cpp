@@ -9,6 +9,7 @@
 #include <string>
 
 #include "../forms/forms_fixture.hpp"
+#include "mpi_test_main.hpp"
 #include "sphstab/distributed/distributed_rate_form.hpp"
 #include "sphstab/distributed/petsc_critical_load.hpp"
 #include "sphstab/integrate/rate_form_run.hpp"
@@ -18,15 +19,7 @@ namespace {
 
 PetscSession* g_session = nullptr;
 
-const ElasticMaterial kGms = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
-
-long differing(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-  if (a.size() != b.size()) return -1;
-  long count = 0;
-  for (long k = 0; k < a.size(); ++k)
-    if (std::bit_cast<std::uint64_t>(a[k]) != std::bit_cast<std::uint64_t>(b[k])) ++count;
-  return count;
-}
+using test::kGms;
 
 /// 100 steps in this process (the reference: every rank runs it whole) and distributed over the ranks.
 void expect_distributed_run_is_the_same_bits(const RateFormOptions& options, const std::string& name) {
@@ -48,7 +41,7 @@ void expect_distributed_run_is_the_same_bits(const RateFormOptions& options, con
   const RateFormRunResult distributed = run_rate_form(split, y0, run);
   ASSERT_TRUE(distributed.completed()) << name << ": " << distributed.message;
   EXPECT_GT((reference.y - y0).cwiseAbs().maxCoeff(), 1e-4) << name;  // the state moved
-  EXPECT_EQ(differing(reference.y, distributed.y), 0) << name << " on rank " << block.rank;
+  EXPECT_EQ(test::differing_bits(reference.y, distributed.y), 0) << name << " on rank " << block.rank;
   EXPECT_TRUE(identical_on_all_ranks(distributed.y)) << name;
 }
 
@@ -99,15 +92,4 @@ TEST(DistributedRateForm, BadInputIsOneLine) {
 }  // namespace
 }  // namespace sphstab
 
-int main(int argc, char** argv) {
-  sphstab::PetscSession session(&argc, &argv);
-  sphstab::g_session = &session;
-  testing::InitGoogleTest(&argc, argv);
-  if (session.rank() != 0) {  // one report, from rank 0; every rank still runs and fails on its own
-    auto& listeners = testing::UnitTest::GetInstance()->listeners();
-    delete listeners.Release(listeners.default_result_printer());
-  }
-  const int failed = RUN_ALL_TESTS();
-  const bool any_failed = sphstab::max_over_ranks(failed ? 1.0 : 0.0) > 0;
-  return any_failed ? 1 : 0;
-}
+int main(int argc, char** argv) { return sphstab::test::run_tests_on_all_ranks(argc, argv, sphstab::g_session); }

@@ -22,10 +22,10 @@ namespace sphstab {
 namespace finite_strain_hourglass_test {
 
 using test::random_vector;
-constexpr double kRho = 7.8;
-const ElasticMaterial kLame = ElasticMaterial::from_lame(1.2, 0.8, kRho);
+using test::kLame;
+using test::kRho;
 
-double max_abs(const Eigen::MatrixXd& m) { return m.cwiseAbs().maxCoeff(); }
+using test::max_abs;
 
 /// u = (A - I) X + b on every particle; the fixed particles' part goes to `fixed`.
 template <int Dim>

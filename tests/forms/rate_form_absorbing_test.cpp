@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "forms_fixture.hpp"
 #include "sphstab/integrate/rate_form_run.hpp"
 #include "sphstab/numerics/random_vector.hpp"
 
@@ -26,14 +27,7 @@ using Vec2 = Eigen::Vector2d;
 /// A free nx x ny block at dx = 0.02 (particle (i, j) at ((i + 1/2) dx, (j + 1/2) dx), index j nx + i), h = 1.3 dx.
 std::shared_ptr<const Discretisation<2>> block(int nx, int ny) {
   const double dx = 0.02;
-  ParticleSet<2> p;
-  p.x.resize(nx * ny, 2);
-  p.volume = Eigen::VectorXd::Constant(nx * ny, dx * dx);
-  p.role.assign(nx * ny, Role::Free);
-  p.spacing = dx;
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) p.x.row(j * nx + i) << (i + 0.5) * dx, (j + 0.5) * dx;
-  return make_discretisation(p, kCubic2, 1.3 * dx);
+  return make_discretisation(test::free_block(nx, ny, dx), kCubic2, 1.3 * dx);
 }
 
 /// Powell's 1D bar (2.68): n free particles at x_i = (i + 1/2) dx, h = 1.3 dx, uniaxial E (K = E, mu = 0).

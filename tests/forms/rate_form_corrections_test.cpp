@@ -19,7 +19,7 @@
 namespace sphstab {
 namespace rate_form_corrections_test {
 
-const ElasticMaterial kGms = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
+using test::kGms;
 
 /// The state's fields, unpacked independently of the scheme's evaluation (fixed particles: reference positions,
 /// v = 0).

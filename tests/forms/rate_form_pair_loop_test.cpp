@@ -16,7 +16,7 @@
 namespace sphstab {
 namespace rate_form_pair_loop_test {
 
-const ElasticMaterial kGms = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
+using test::kGms;
 
 /// A busy state: positions, velocities, densities and stresses perturbed, so that every pair term acts (approaching
 /// and receding pairs, tensile and compressive principal stresses).

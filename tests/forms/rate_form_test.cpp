@@ -25,7 +25,7 @@ RateFormOptions all_terms() {
 }
 
 /// rho0 = c0 = 1 (K = 1), mu = 0.3: the GMS units.
-const ElasticMaterial kGms = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
+using test::kGms;
 
 TEST(RateForm, UniformLatticeIsAnEquilibriumToRounding) {
   for (bool periodic : {false, true})

@@ -22,16 +22,7 @@
 namespace sphstab {
 namespace threads_determinism_test {
 
-const ElasticMaterial kGms = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
-
-/// Number of entries where a and b differ in any bit (NaN included).
-long differing(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-  if (a.size() != b.size()) return -1;
-  long count = 0;
-  for (long k = 0; k < a.size(); ++k)
-    if (std::bit_cast<std::uint64_t>(a[k]) != std::bit_cast<std::uint64_t>(b[k])) ++count;
-  return count;
-}
+using test::kGms;
 
 /// A state off equilibrium: the uniform state with random velocities, densities and stresses.
 Eigen::VectorXd perturbed_state(const RateFormScheme<2>& scheme, unsigned seed) {
@@ -88,7 +79,7 @@ TEST(Threads, RateFormRateIsTheSameBitsWithTwoThreads) {
       scheme.rate(y, two);
     }
     EXPECT_GT(one.cwiseAbs().maxCoeff(), 1e-6) << name;  // a real, non-zero rate
-    EXPECT_EQ(differing(one, two), 0) << name;
+    EXPECT_EQ(test::differing_bits(one, two), 0) << name;
   }
 }
 
@@ -114,7 +105,7 @@ TEST(Threads, RateFormRunIsTheSameBitsAfter100Steps) {
   ASSERT_TRUE(one.completed()) << one.message;
   ASSERT_EQ(one.steps, 100);
   EXPECT_GT((one.y - y0).cwiseAbs().maxCoeff(), 1e-4);  // the state moved
-  EXPECT_EQ(differing(one.y, two.y), 0);
+  EXPECT_EQ(test::differing_bits(one.y, two.y), 0);
 }
 
 /// The reported failure is the same with two threads: the lowest particle with a singular NCSPH moment matrix.
@@ -156,8 +147,8 @@ TEST(Threads, LinearElasticAccelerationIsTheSameBitsWithTwoThreads) {
       form.acceleration_pair_loop(u, b[t - 1]);
     }
     EXPECT_GT(a[0].cwiseAbs().maxCoeff(), 1e-6);
-    EXPECT_EQ(differing(a[0], a[1]), 0);
-    EXPECT_EQ(differing(b[0], b[1]), 0);
+    EXPECT_EQ(test::differing_bits(a[0], a[1]), 0);
+    EXPECT_EQ(test::differing_bits(b[0], b[1]), 0);
   }
 }
 

@@ -15,7 +15,7 @@
 namespace sphstab {
 namespace rate_form_spectrum_test {
 
-const ElasticMaterial kGms = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
+using test::kGms;
 
 /// The reduction against the dense spectrum of the whole J: every reduced eigenvalue is an eigenvalue of J, and the
 /// growth rates agree.

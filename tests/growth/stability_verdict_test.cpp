@@ -18,7 +18,7 @@
 namespace sphstab {
 namespace stability_verdict_test {
 
-const ElasticMaterial kGms = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
+using test::kGms;
 
 RateFormRunOptions pc(double dt) { return {.dt = dt}; }
 RateFormRunOptions pc1(double dt) { return {.dt = dt, .reuse_corrector_rate = true}; }

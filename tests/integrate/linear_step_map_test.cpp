@@ -15,7 +15,7 @@
 namespace sphstab {
 namespace linear_step_map_test {
 
-const ElasticMaterial kGms = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
+using test::kGms;
 
 /// Every integrator configuration the closed forms cover.
 std::vector<RateFormRunOptions> integrators(double dt) {

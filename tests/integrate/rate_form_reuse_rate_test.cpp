@@ -14,7 +14,7 @@
 namespace sphstab {
 namespace rate_form_reuse_rate_test {
 
-const ElasticMaterial kGms = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
+using test::kGms;
 
 /// A wave packet on a periodic 8 x 8 lattice in slight compression (xi = 0.99), as the predictor-corrector's order
 /// test (tests/growth/rate_form_spectrum_test.cpp).

@@ -15,7 +15,7 @@
 namespace sphstab {
 namespace complex_step_product_test {
 
-const ElasticMaterial kGms = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
+using test::kGms;
 
 TEST(ComplexStepProduct, IsTheAssembledJacobianTimesTheVector) {
   // Stretched (xi = 1.02) block with a deviator, viscosity, XSPH and the artificial stress: every term of F.

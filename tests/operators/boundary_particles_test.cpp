@@ -8,22 +8,14 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "../forms/forms_fixture.hpp"
 #include "sphstab/neighbours/neighbour_list.hpp"
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
 namespace boundary_particles_test {
 
-ParticleSet<2> block(int nx, int ny, double dx) {
-  ParticleSet<2> p;
-  p.x.resize(nx * ny, 2);
-  p.volume = Eigen::VectorXd::Constant(nx * ny, dx * dx);
-  p.role.assign(nx * ny, Role::Free);
-  p.spacing = dx;
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) p.x.row(j * nx + i) << (i + 0.5) * dx, (j + 0.5) * dx;
-  return p;
-}
+using test::free_block;
 
 TEST(BoundaryParticles, SquareBlockLayersAndNormals) {
   const int nx = 20, ny = 16;
@@ -31,7 +23,7 @@ TEST(BoundaryParticles, SquareBlockLayersAndNormals) {
   const Kernel<2> kernel(KernelType::CubicSpline);
   for (double hdx : {1.3, 1.7}) {
     const double h = hdx * dx;
-    const ParticleSet<2> p = block(nx, ny, dx);
+    const ParticleSet<2> p = free_block(nx, ny, dx);
     const NeighbourList nl = find_neighbours(p, kernel.support_radius(h));
     const BoundaryParticles<2> b = boundary_particles(p, kernel, h, nl);
     const int expected_layers = static_cast<int>(std::floor(2 * hdx)) + 1;  // Powell: floor(2h / dx) + 1

@@ -2,6 +2,7 @@
 // Shared test fixture for the kernel-correction tests: a lattice, its neighbour list and operators.
 #include <complex>
 
+#include "../forms/forms_fixture.hpp"  // max_abs
 #include "sphstab/kernel/kernel.hpp"
 #include "sphstab/neighbours/neighbour_list.hpp"
 #include "sphstab/operators/operators.hpp"
@@ -47,7 +48,6 @@ inline double complex_mismatch(const SparseMatrix<double>& a, const SparseMatrix
   return d.cwiseAbs().maxCoeff();
 }
 
-inline double max_abs(const Eigen::VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
 
 inline Eigen::VectorXd row_sums(const SparseMatrix<double>& a) { return a * Eigen::VectorXd::Ones(a.cols()); }
 inline Eigen::VectorXd column_sums(const SparseMatrix<double>& a) {

@@ -15,7 +15,7 @@
 namespace sphstab {
 namespace rate_form_symbol_test {
 
-const ElasticMaterial kGms = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
+using test::kGms;
 
 template <int Dim>
 RateFormScheme<Dim> periodic_scheme(int n, double h, const RateFormOptions& o, double xi, LatticeType type,

@@ -97,7 +97,7 @@ struct FiniteStrainOptions {
 };
 
 template <int Dim>
-class FiniteStrainTotalLagrangian final : public ForceFunction, public HyperelasticBody<Dim> {
+class FiniteStrainTotalLagrangian final : public HyperelasticBody<Dim> {
  public:
   /// @param[in] discretisation  reference set X, kernel, h, neighbours (shared)
   /// @param[in] material        hyperelastic model (shared)
@@ -114,25 +114,18 @@ class FiniteStrainTotalLagrangian final : public ForceFunction, public Hyperelas
       : FiniteStrainTotalLagrangian(std::move(discretisation), std::move(material),
                                     Eigen::VectorXd::Constant(1, density), std::move(options)) {}
 
-  int dofs() const override { return this->m_disc->dofs(); }
-  int dim() const override { return Dim; }
   std::string name() const override;
-  void acceleration(const Eigen::VectorXd& u, Eigen::VectorXd& a) const override { evaluate(u, a); }
-  void acceleration(const Eigen::VectorXcd& u, Eigen::VectorXcd& a) const override { evaluate(u, a); }
-  double load() const override { return 0; }
+  /// [Ismail2009, (5.6), (5.8)] with the chosen divergence (file comment).
+  void acceleration(const Eigen::VectorXd& u, Eigen::VectorXd& a) const override;
+  void acceleration(const Eigen::VectorXcd& u, Eigen::VectorXcd& a) const override;
   /// A copy for load == 0; throws std::invalid_argument otherwise (no affine load; see the file comment).
   std::unique_ptr<ForceFunction> with_load(double load) const override;
   SparsityPattern dof_pattern() const override;
   /// Plain reference gradient, StrainSum::Difference and the Plus divergence (the variational pair), without
   /// hourglass control.
   bool conservative() const override;
-  /// U = sum_{active i} V_i Psi(F_i) (the potential of the conservative configuration).
-  double strain_energy(const Eigen::VectorXd& u) const override { return this->energy(u); }
-  std::complex<double> strain_energy(const Eigen::VectorXcd& u) const override { return this->energy(u); }
-  /// rho0_i V_i per DOF.
-  Eigen::VectorXd dof_mass() const override { return this->lumped_mass(); }
-  // set_fixed_displacement, deformation_gradients, stresses, material, discretisation, density, active: the body's
-  // (forms/hyperelastic_body.hpp).
+  // dofs, load, strain_energy, dof_mass, set_fixed_displacement, deformation_gradients, stresses, material, density,
+  // active: the body's (forms/hyperelastic_body.hpp).
 
  private:
   using Body = HyperelasticBody<Dim>;

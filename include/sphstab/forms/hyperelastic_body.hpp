@@ -5,8 +5,9 @@
 /// hyperelastic body — particles, material, density, the reference strain gradient K (assembled once at X), the
 /// active particles (the free ones and their neighbours, whose F and P are evaluated), the prescribed displacements of
 /// the fixed particles and the hourglass control — and what follows from it alone: F_i = I + sum_j (u_j - u_i) x K_ij
-/// (or sum_j u_j x K_ij for the direct sum), the strain energy U = sum_i V_i Psi(F_i), P_i, lumped masses. The forms
-/// add their momentum equation (acceleration, conservativeness, pattern, name).
+/// (or sum_j u_j x K_ij for the direct sum), the strain energy U = sum_i V_i Psi(F_i), P_i, lumped masses, and the
+/// ForceFunction members that follow from these. The forms add their momentum equation (acceleration,
+/// conservativeness, pattern, name, with_load).
 #include <Eigen/Core>
 #include <array>
 #include <complex>
@@ -14,16 +15,28 @@
 #include <string>
 #include <vector>
 
+#include "sphstab/core/scratch.hpp"
 #include "sphstab/forms/discretisation.hpp"
 #include "sphstab/forms/hourglass_control.hpp"
 #include "sphstab/models/hyperelastic_model.hpp"
 #include "sphstab/operators/operators.hpp"
+#include "sphstab/system/force_function.hpp"
 
 namespace sphstab {
 
 template <int Dim>
-class HyperelasticBody {
+class HyperelasticBody : public ForceFunction {
  public:
+  int dofs() const override { return m_disc->dofs(); }
+  int dim() const override { return Dim; }
+  /// 0: the finite-strain forms have no affine load (the body is loaded through set_fixed_displacement).
+  double load() const override { return 0; }
+  /// U = sum_{active i} V_i Psi(F_i) (the potential of the conservative configurations).
+  double strain_energy(const Eigen::VectorXd& u) const override { return energy(u); }
+  std::complex<double> strain_energy(const Eigen::VectorXcd& u) const override { return energy(u); }
+  /// rho0_i V_i per DOF.
+  Eigen::VectorXd dof_mass() const override { return lumped_mass(); }
+
   /// Prescribed displacements of the fixed particles, interleaved (Dim per fixed particle, ascending particle
   /// index; default zero). Throws std::invalid_argument for a wrong size or non-finite entries.
   void set_fixed_displacement(const Eigen::VectorXd& d);
@@ -49,17 +62,13 @@ class HyperelasticBody {
 
   /// rho0_i V_i per DOF.
   Eigen::VectorXd lumped_mass() const;
+  /// with_load's check: throws std::invalid_argument (one line) unless load == 0.
+  void check_no_load(double load) const;
 
-  /// evaluate()'s and energy()'s scratch arrays, kept between calls (resized, not reallocated, while N is unchanged).
-  /// Every entry an evaluation reads is written earlier in the same call. Copying a form does not copy them: the
-  /// copy starts empty.
+  /// evaluate()'s and energy()'s scratch arrays, kept between calls (resized, not reallocated, while N is unchanged;
+  /// core/scratch.hpp: a copied form starts with empty ones).
   template <class Scalar>
   struct Workspace {
-    Workspace() = default;
-    Workspace(const Workspace&) {}
-    Workspace(Workspace&&) = default;
-    Workspace& operator=(const Workspace&) { return *this; }
-    Workspace& operator=(Workspace&&) = default;
     Positions<Dim, Scalar> u;                          ///< displacement of every particle, N x Dim
     std::vector<Deformation<Scalar, Dim>> F, P;        ///< per particle (NaN / zero outside the active set)
     Eigen::Matrix<Scalar, Eigen::Dynamic, Dim> force;  ///< per particle, N x Dim (the variational form's sums)
@@ -84,8 +93,7 @@ class HyperelasticBody {
   std::vector<int> m_active;
   Eigen::VectorXd m_fixed_u;
   HourglassControl<Dim> m_hg;  ///< [Ganzenmueller2015] pair term (forms/hourglass_control.hpp); inactive when off
-  mutable Workspace<double> m_work_real;                   ///< the real overloads
-  mutable Workspace<std::complex<double>> m_work_complex;  ///< the complex overloads (complex-step Jacobians)
+  mutable Scratch<Workspace> m_work;
 };
 
 extern template class HyperelasticBody<1>;

@@ -72,6 +72,7 @@
 #include <utility>
 #include <vector>
 
+#include "sphstab/core/scratch.hpp"
 #include "sphstab/forms/absorbing_boundary.hpp"
 #include "sphstab/forms/discretisation.hpp"
 #include "sphstab/forms/stabilised_sph.hpp"
@@ -293,15 +294,9 @@ class RateFormScheme final : public SemiDiscreteSystem {
                 Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& dydt) const;
 
   /// evaluate()'s scratch arrays, kept between calls (std::vector::resize reallocates only when the particle or pair
-  /// count grows). Every entry evaluate() reads is written earlier in the same call. Copying a scheme does not copy
-  /// them: the copy starts empty.
+  /// count grows; core/scratch.hpp: a copied scheme starts with empty ones).
   template <class Scalar>
   struct Workspace {
-    Workspace() = default;
-    Workspace(const Workspace&) {}
-    Workspace(Workspace&&) = default;
-    Workspace& operator=(const Workspace&) { return *this; }
-    Workspace& operator=(Workspace&&) = default;
     // Per particle.
     std::vector<Eigen::Matrix<Scalar, Dim, 1>> x, v, vhat, row_mean, col_mean, mean_mean;
     std::vector<Scalar> rho, vol, bulk_q;
@@ -350,8 +345,7 @@ class RateFormScheme final : public SemiDiscreteSystem {
   int m_first = 0, m_last = -1;       // set_row_partition: the particles this process evaluates (-1: all)
   std::function<void(Eigen::VectorXd&)> m_exchange;
   int m_size = 0;
-  mutable Workspace<double> m_work_real;                   // rate(VectorXd)
-  mutable Workspace<std::complex<double>> m_work_complex;  // rate(VectorXcd): complex-step Jacobians
+  mutable Scratch<Workspace> m_work;  // rate(VectorXd), rate(VectorXcd) (complex-step Jacobians)
 };
 
 }  // namespace sphstab

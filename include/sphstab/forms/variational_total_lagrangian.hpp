@@ -47,7 +47,7 @@
 namespace sphstab {
 
 template <int Dim>
-class VariationalTotalLagrangian final : public ForceFunction, public HyperelasticBody<Dim> {
+class VariationalTotalLagrangian final : public HyperelasticBody<Dim> {
  public:
   /// @param[in] discretisation  reference set X, kernel, h, neighbours (shared, not null)
   /// @param[in] material        hyperelastic model (shared, not null)
@@ -67,21 +67,17 @@ class VariationalTotalLagrangian final : public ForceFunction, public Hyperelast
       : VariationalTotalLagrangian(std::move(discretisation), std::move(material),
                                    Eigen::VectorXd::Constant(1, density), std::move(gradient), hourglass) {}
 
-  int dofs() const override { return this->m_disc->dofs(); }
-  int dim() const override { return Dim; }
   std::string name() const override;
-  void acceleration(const Eigen::VectorXd& u, Eigen::VectorXd& a) const override { evaluate(u, a); }
-  void acceleration(const Eigen::VectorXcd& u, Eigen::VectorXcd& a) const override { evaluate(u, a); }
-  double load() const override { return 0; }
+  /// -M^{-1} dU/du (file comment).
+  void acceleration(const Eigen::VectorXd& u, Eigen::VectorXd& a) const override;
+  void acceleration(const Eigen::VectorXcd& u, Eigen::VectorXcd& a) const override;
   /// A copy for load == 0; throws std::invalid_argument otherwise (no affine load).
   std::unique_ptr<ForceFunction> with_load(double load) const override;
   SparsityPattern dof_pattern() const override;
   /// True unless the hourglass term is on.
   bool conservative() const override { return !this->m_hg.active(); }
-  double strain_energy(const Eigen::VectorXd& u) const override { return this->energy(u); }
-  std::complex<double> strain_energy(const Eigen::VectorXcd& u) const override { return this->energy(u); }
-  Eigen::VectorXd dof_mass() const override { return this->lumped_mass(); }
-  // set_fixed_displacement, deformation_gradients, stresses, active, ...: the body's (forms/hyperelastic_body.hpp).
+  // dofs, load, strain_energy, dof_mass, set_fixed_displacement, deformation_gradients, stresses, active, ...: the
+  // body's (forms/hyperelastic_body.hpp).
 
  private:
   using Body = HyperelasticBody<Dim>;

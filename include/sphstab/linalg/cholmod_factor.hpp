@@ -29,7 +29,7 @@ enum class CholmodFactorKind { LLT, LDLT };
 
 /// Systems that solve() can apply: A^-1, L^-1, L^-T, P, P^T (CHOLMOD_A, CHOLMOD_L, CHOLMOD_Lt, CHOLMOD_P,
 /// CHOLMOD_Pt). L and Lt are the triangular factor of an LLT factorisation; for LDLT use A.
-enum class CholmodSystem { A, L, Lt, P, Pt };
+enum class CholmodSystem { A, L, Lt, P, Pt };  // keep the order: CholmodFactor::solve indexes a table by it
 
 /// \code{.cpp}
 /// sphstab::CholmodFactor chol(sphstab::CholmodVariant::Simplicial);

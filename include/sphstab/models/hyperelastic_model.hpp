@@ -71,10 +71,17 @@ class HyperelasticModel {
   Real cauchy_stress(const Real& F) const { return stress(F) * F.transpose() / volume_ratio(F); }
 };
 
-/// CRTP helper: Derived implements energy_impl, stress_impl, tangent_impl templated on the scalar.
+/// CRTP helper: Derived implements energy_impl, stress_impl, tangent_impl templated on the scalar (and volume_ratio);
+/// the constants, the 1D lateral state and the name are kept here.
 template <int Dim, class Derived>
 class HyperelasticModelT : public HyperelasticModel<Dim> {
  public:
+  /// "<label>/1d-<uniaxial state>" in 1D, "<label>/plane-strain" in 2D.
+  std::string name() const override {
+    return std::string(m_label) + (Dim == 1 ? "/1d-" + uniaxial_state_name(m_uniaxial) : std::string("/plane-strain"));
+  }
+  const ElasticMaterial& material() const override { return m_material; }
+  UniaxialState uniaxial() const override { return m_uniaxial; }
   using typename HyperelasticModel<Dim>::Real;
   using typename HyperelasticModel<Dim>::Complex;
   using HyperelasticModel<Dim>::energy;  // the expression overloads
@@ -87,8 +94,21 @@ class HyperelasticModelT : public HyperelasticModel<Dim> {
   MaterialTangent<double, Dim> tangent(const Real& F) const override { return self().tangent_impl(F); }
   MaterialTangent<std::complex<double>, Dim> tangent(const Complex& F) const override { return self().tangent_impl(F); }
 
+ protected:
+  /// Throws std::invalid_argument for invalid constants (ElasticMaterial::validate, the message naming `who`).
+  HyperelasticModelT(const ElasticMaterial& material, UniaxialState uniaxial, const char* who, const char* label)
+      : m_material(material), m_uniaxial(uniaxial), m_label(label) {
+    m_material.validate(who);
+  }
+  /// Uniaxial stress in 1D: the lateral stretches follow from the zero lateral stress.
+  bool one_d_stress() const { return Dim == 1 && m_uniaxial == UniaxialState::Stress; }
+
+  ElasticMaterial m_material;
+  UniaxialState m_uniaxial;
+
  private:
   const Derived& self() const { return static_cast<const Derived&>(*this); }
+  const char* m_label;
 };
 
 namespace detail {

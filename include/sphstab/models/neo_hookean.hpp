@@ -35,17 +35,13 @@ namespace sphstab {
 
 template <int Dim>
 class NeoHookean final : public HyperelasticModelT<Dim, NeoHookean<Dim>> {
+  using Base = HyperelasticModelT<Dim, NeoHookean<Dim>>;
+  using Base::m_material, Base::m_uniaxial, Base::one_d_stress;
+
  public:
   /// Throws std::invalid_argument for invalid constants (ElasticMaterial::validate).
   explicit NeoHookean(const ElasticMaterial& material, UniaxialState uniaxial = UniaxialState::Strain)
-      : m_material(material), m_uniaxial(uniaxial) {
-    m_material.validate("NeoHookean");
-  }
-  std::string name() const override {
-    return Dim == 1 ? "neo-hookean/1d-" + uniaxial_state_name(m_uniaxial) : std::string("neo-hookean/plane-strain");
-  }
-  const ElasticMaterial& material() const override { return m_material; }
-  UniaxialState uniaxial() const override { return m_uniaxial; }
+      : Base(material, uniaxial, "NeoHookean", "neo-hookean") {}
   double volume_ratio(const Deformation<double, Dim>& F) const override {
     if (one_d_stress()) {
       const double s = lateral_stretch<double>(F(0, 0));
@@ -136,14 +132,11 @@ class NeoHookean final : public HyperelasticModelT<Dim, NeoHookean<Dim>> {
   }
 
  private:
-  bool one_d_stress() const { return Dim == 1 && m_uniaxial == UniaxialState::Stress; }
   template <class Scalar>
   static void check(const Scalar& J) {
     const double j = detail::re(J);
     if (!(j > 0)) detail::require_positive_jacobian(j, "NeoHookean");
   }
-  ElasticMaterial m_material;
-  UniaxialState m_uniaxial;
 };
 
 }  // namespace sphstab

@@ -22,18 +22,13 @@ namespace sphstab {
 
 template <int Dim>
 class StVenantKirchhoff final : public HyperelasticModelT<Dim, StVenantKirchhoff<Dim>> {
+  using Base = HyperelasticModelT<Dim, StVenantKirchhoff<Dim>>;
+  using Base::m_material, Base::m_uniaxial, Base::one_d_stress;
+
  public:
   /// Throws std::invalid_argument for invalid constants (ElasticMaterial::validate).
   explicit StVenantKirchhoff(const ElasticMaterial& material, UniaxialState uniaxial = UniaxialState::Strain)
-      : m_material(material), m_uniaxial(uniaxial) {
-    m_material.validate("StVenantKirchhoff");
-  }
-  std::string name() const override {
-    return Dim == 1 ? "st-venant-kirchhoff/1d-" + uniaxial_state_name(m_uniaxial)
-                    : std::string("st-venant-kirchhoff/plane-strain");
-  }
-  const ElasticMaterial& material() const override { return m_material; }
-  UniaxialState uniaxial() const override { return m_uniaxial; }
+      : Base(material, uniaxial, "StVenantKirchhoff", "st-venant-kirchhoff") {}
   /// 1D stress: J = F s^2 with s^2 = 1 + 2 E_22 = 1 - nu (F^2 - 1); otherwise det F.
   double volume_ratio(const Deformation<double, Dim>& F) const override {
     if (Dim == 1 && m_uniaxial == UniaxialState::Stress)
@@ -78,8 +73,6 @@ class StVenantKirchhoff final : public HyperelasticModelT<Dim, StVenantKirchhoff
   /// 1D: the uniaxial modulus M as lambda + 2 mu with (lambda, mu) = (M, 0).
   double lam() const { return Dim == 1 ? m_material.uniaxial_modulus(m_uniaxial) : m_material.lambda(); }
   double mu() const { return Dim == 1 ? 0.0 : m_material.mu(); }
-  ElasticMaterial m_material;
-  UniaxialState m_uniaxial;
 };
 
 }  // namespace sphstab

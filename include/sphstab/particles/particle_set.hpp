@@ -30,6 +30,9 @@ struct ParticleSet {
   Point box_hi = Point::Zero();
   double spacing = 0;  ///< lattice spacing dx (nearest-neighbour distance), 0 if not a lattice
 
+  /// n free particles of a grid with spacing dp: volume dp^Dim, depth 0, positions left for the caller to set.
+  static ParticleSet free_grid(int n, double dp);
+
   int size() const { return static_cast<int>(x.rows()); }
   int count(Role r) const;
   /// Indices of the particles with role r, ascending.

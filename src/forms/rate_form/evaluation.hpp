@@ -107,12 +107,7 @@ struct Evaluation {
   void finish(int i, bool free, const Mat& L, Scalar drho, const Vec& acc);
 
  private:
-  static Workspace& workspace(const Scheme& s) {
-    if constexpr (std::is_same_v<Scalar, double>)
-      return s.m_work_real;
-    else
-      return s.m_work_complex;
-  }
+  static Workspace& workspace(const Scheme& s) { return s.m_work.template get<Scalar>(); }
 };
 
 template <int Dim, class Scalar>
