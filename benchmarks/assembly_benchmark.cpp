@@ -48,20 +48,27 @@ const Setup& setup(long n_total, double h_over_dx) {
   return cache.emplace(key, std::move(s)).first->second;
 }
 
+/// The counters of an assembly benchmark: particles, nonzeros, nonzeros per second and bytes per second at
+/// `bytes_per_nonzero` over the matrices written.
+void assembly_counters(benchmark::State& state, const Setup& s, double bytes_per_nonzero) {
+  const double nnz = double(s.neighbours.nonzeros());
+  state.counters["particles"] = double(s.particles.size());
+  state.counters["nnz"] = nnz;
+  state.counters["nnz_per_s"] = benchmark::Counter(nnz, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["bytes_per_s"] =
+      benchmark::Counter(bytes_per_nonzero * nnz, benchmark::Counter::kIsIterationInvariantRate);
+}
+
 void BM_AssembleWG(benchmark::State& state) {
   const double h = state.range(1) / 10.0;
   const Setup& s = setup(state.range(0), h);
   Kernel<2> kernel(KernelType::CubicSpline);
-  long nnz = s.neighbours.nonzeros();
   for (auto _ : state) {
     auto ops = assemble_operators(s.particles, s.neighbours, kernel, h, {.kernel = true, .gradient = true});
     benchmark::DoNotOptimize(ops.W.valuePtr());
   }
-  state.counters["particles"] = double(s.particles.size());
-  state.counters["nnz"] = double(nnz);
-  state.counters["nnz_per_s"] = benchmark::Counter(double(nnz), benchmark::Counter::kIsIterationInvariantRate);
   // Three matrices, each with values (8 B) and inner indices (4 B) per nonzero.
-  state.counters["bytes_per_s"] = benchmark::Counter(3.0 * 12.0 * nnz, benchmark::Counter::kIsIterationInvariantRate);
+  assembly_counters(state, s, 3.0 * 12.0);
 }
 
 // Re-assembly into existing storage (updated-Lagrangian steady state: no allocation, pattern reused).
@@ -69,17 +76,13 @@ void BM_ReassembleWG(benchmark::State& state) {
   const double h = state.range(1) / 10.0;
   const Setup& s = setup(state.range(0), h);
   Kernel<2> kernel(KernelType::CubicSpline);
-  long nnz = s.neighbours.nonzeros();
   Operators<2> ops;
   assemble_operators_into(ops, s.particles, s.neighbours, kernel, h, {.kernel = true, .gradient = true});
   for (auto _ : state) {
     assemble_operators_into(ops, s.particles, s.neighbours, kernel, h, {.kernel = true, .gradient = true});
     benchmark::DoNotOptimize(ops.W.valuePtr());
   }
-  state.counters["particles"] = double(s.particles.size());
-  state.counters["nnz"] = double(nnz);
-  state.counters["nnz_per_s"] = benchmark::Counter(double(nnz), benchmark::Counter::kIsIterationInvariantRate);
-  state.counters["bytes_per_s"] = benchmark::Counter(3.0 * 8.0 * nnz, benchmark::Counter::kIsIterationInvariantRate);
+  assembly_counters(state, s, 3.0 * 8.0);
 }
 
 void BM_NeighbourSearch(benchmark::State& state) {

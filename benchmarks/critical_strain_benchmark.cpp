@@ -23,6 +23,7 @@
 #include "sphstab/spectral/fourier_symbol_2d.hpp"
 #include "sphstab/stability/critical_load.hpp"
 #include "strain_lattice.hpp"
+#include "timed_critical_load.hpp"
 
 namespace {
 
@@ -110,13 +111,7 @@ void critical(benchmark::State& state, CriticalLoadMethod method) {
   opt.method = method;
   opt.want_mode = false;
   opt.backend = EigenBackend::Spectra;
-  CriticalLoad r;
-  volatile double sink = 0;
-  for (auto _ : state) {
-    r = critical_load(j, LoadDirection::Tension, opt);
-    sink = r.load;
-  }
-  (void)sink;
+  const CriticalLoad r = bench::timed_critical_tension(state, j, opt);
   state.counters["ecrit"] = r.load;
   state.counters["factorizations"] = r.evaluations;
   state.counters["ok"] = r.status == Status::Successful;

@@ -13,6 +13,7 @@
 #include "sphstab/linalg/symmetric_pencil.hpp"
 #include "sphstab/particles/lattice_presets.hpp"
 #include "sphstab/stability/critical_load.hpp"
+#include "timed_critical_load.hpp"
 
 namespace {
 
@@ -42,15 +43,7 @@ CriticalLoadOptions options(CriticalLoadMethod method, EigenBackend backend = Ei
 
 void run(benchmark::State& state, CriticalLoadOptions opt) {
   const Linearisation& jac = jacobian(static_cast<int>(state.range(0)));
-  CriticalLoad r;
-  // Note: benchmark::DoNotOptimize on a double (constraint "+m,r") corrupts the value with GCC 12 and
-  // libbenchmark 1.7.1 here; a volatile sink keeps the result observable instead.
-  volatile double sink = 0;
-  for (auto _ : state) {
-    r = critical_load(jac, LoadDirection::Tension, opt);
-    sink = r.load;
-  }
-  (void)sink;
+  const CriticalLoad r = bench::timed_critical_tension(state, jac, opt);
   // Reference: bisection, to report the agreement of each route.
   const CriticalLoad ref = critical_load(jac, LoadDirection::Tension, options(CriticalLoadMethod::Bisection));
   state.counters["tcrit"] = r.load;

@@ -41,6 +41,7 @@
 #include <string>
 #include <vector>
 
+#include "max_particles.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/threads.hpp"
 #include "sphstab/forms/rate_form.hpp"
@@ -239,25 +240,8 @@ void bm_rebuild(benchmark::State& st, const std::string& key) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  long max_particles = 1000000;
-  std::vector<char*> args;
-  for (int i = 0; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a.rfind("--max-particles=", 0) == 0) {
-      char* end = nullptr;
-      max_particles = std::strtol(a.c_str() + 16, &end, 10);
-      if (*end != '\0' || max_particles < 1) {
-        std::fprintf(stderr, "gms_step_benchmark: --max-particles must be a positive integer (got '%s')\n",
-                     a.c_str() + 16);
-        return 2;
-      }
-    } else {
-      args.push_back(argv[i]);
-    }
-  }
-  int n = static_cast<int>(args.size());
-  benchmark::Initialize(&n, args.data());
-  if (benchmark::ReportUnrecognizedArguments(n, args.data())) return 2;
+  const long max_particles = bench::initialize_with_max_particles(argc, argv, "gms_step_benchmark");
+  if (max_particles < 0) return 2;
   benchmark::RegisterBenchmark("Triad", bench::stream_triad)->Unit(benchmark::kMillisecond)->MinTime(1.0);
   std::vector<std::pair<std::string, long>> keys = {{"RingsSI", 17608},          {"RingsSI/pairs", 17608},
                                                     {"Lattice99856", 99856},     {"Lattice99856/pairs", 99856},

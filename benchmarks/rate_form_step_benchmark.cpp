@@ -116,17 +116,52 @@ void write_jaumann(const Scheme& s, const Eigen::VectorXd& y, int ro, const Mat2
   dydt[ro + 3] = ds(0, 1);
 }
 
+/// The per-particle arrays of the routes that read the state into arrays first (FusedPrealloc, LibraryBefore), kept
+/// between calls: the state's positions, velocities, densities and stored deviators, and the work arrays; and the
+/// write-out of the rates.
+struct ParticleArrays {
+  std::vector<Vec2> m_x, m_v, m_vhat;
+  std::vector<double> m_rho, m_vol;
+  std::vector<Eigen::Vector3d> m_S;
+  std::vector<Mat2> m_sigma, m_R;
+
+  void resize(long n) {
+    m_x.resize(n), m_v.resize(n), m_vhat.resize(n), m_rho.resize(n), m_vol.resize(n), m_S.resize(n);
+    m_sigma.resize(n), m_R.resize(n);
+  }
+
+  /// m_x, m_v, m_rho, m_S of the state y (the layout of s).
+  void unpack(const Scheme& s, const Eigen::VectorXd& y) {
+    for (int i = 0; i < static_cast<int>(m_x.size()); ++i) {
+      const int xo = s.position_offset(i), ro = s.density_offset(i);
+      m_x[i] = y.segment<2>(xo);
+      m_v[i] = y.segment<2>(xo + 2);
+      m_rho[i] = y[ro];
+      m_S[i] = y.segment<3>(ro + 1);
+    }
+  }
+
+  /// Particle i's rates into dydt: position m_vhat[i], velocity acc, density drho, stored deviator (Jaumann, from L).
+  void write_rates(const Scheme& s, const Eigen::VectorXd& y, int i, const Vec2& acc, double drho, const Mat2& L,
+                   Eigen::VectorXd& dydt) const {
+    const int xo = s.position_offset(i), ro = s.density_offset(i);
+    dydt.segment<2>(xo) = m_vhat[i];
+    dydt.segment<2>(xo + 2) = acc;
+    dydt[ro] = drho;
+    write_jaumann(s, y, ro, L, dydt);
+  }
+};
+
 /// The library's OLD algorithm for the plain subset (RateFormScheme::evaluate, double, Dim 2, before commit 01c0a1c):
 /// per-pair arrays r, grad W, W, r^2 filled for every stored pair, then the pair loop reading grad W back. Kept as
 /// the reference copy of that algorithm, with its buffers kept between calls (the old library allocated them on
 /// every call); the library itself no longer materialises per-pair arrays for these forms.
-class FusedPrealloc {
+class FusedPrealloc : ParticleArrays {
  public:
   explicit FusedPrealloc(const Scheme& s) : m_s(s) {
     require_subset(s, "FusedPrealloc");
     const long n = s.discretisation().size(), nnz = s.discretisation().neighbours.nonzeros();
-    m_x.resize(n), m_v.resize(n), m_vhat.resize(n), m_rho.resize(n), m_vol.resize(n), m_S.resize(n);
-    m_sigma.resize(n), m_R.resize(n);
+    resize(n);
     m_rij.resize(nnz), m_grad.resize(nnz), m_w.resize(nnz), m_r2s.resize(nnz);
   }
 
@@ -137,13 +172,7 @@ class FusedPrealloc {
     const int n = p.size();
     const double h = d.h, rho0 = m_s.material().density(), K = m_s.material().bulk_modulus();
     const Eigen::VectorXd& mass = m_s.mass();
-    for (int i = 0; i < n; ++i) {
-      const int xo = m_s.position_offset(i), ro = m_s.density_offset(i);
-      m_x[i] = y.segment<2>(xo);
-      m_v[i] = y.segment<2>(xo + 2);
-      m_rho[i] = y[ro];
-      m_S[i] = y.segment<3>(ro + 1);
-    }
+    unpack(m_s, y);
     Vec2 box;
     for (int a = 0; a < 2; ++a) box[a] = p.box_hi[a] - p.box_lo[a];
     for (int i = 0; i < n; ++i)
@@ -196,20 +225,14 @@ class FusedPrealloc {
         acc += mass[j] * ((si + sj) * m_grad[k]);  // the library adds a zero pair matrix: exact
       }
       if (!summation) drho = -m_rho[i] * L.trace();
-      const int xo = m_s.position_offset(i), ro = m_s.density_offset(i);
-      dydt.segment<2>(xo) = m_vhat[i];
-      dydt.segment<2>(xo + 2) = acc;
-      dydt[ro] = drho;
-      write_jaumann(m_s, y, ro, L, dydt);
+      write_rates(m_s, y, i, acc, drho, L, dydt);
     }
   }
 
  private:
   const Scheme& m_s;
-  std::vector<Vec2> m_x, m_v, m_vhat, m_rij, m_grad;
-  std::vector<double> m_rho, m_vol, m_w, m_r2s;
-  std::vector<Eigen::Vector3d> m_S;
-  std::vector<Mat2> m_sigma, m_R;
+  std::vector<Vec2> m_rij, m_grad;
+  std::vector<double> m_w, m_r2s;
 };
 
 /// RateFormScheme<2>::evaluate (double) before the row-pipeline change, for the plain gradient with symmetric (or
@@ -218,7 +241,7 @@ class FusedPrealloc {
 /// |r_ij| and W_ij in the XSPH pass, then again |r_ij|, grad W_ij (and W_ij for the artificial stress) in the row
 /// pass, sigma_j / rho_j^2 and f_ij^n (through artificial_stress_pair_factor) per pair, and R_i through
 /// artificial_stress() (with its principal angle).
-class LibraryBefore {
+class LibraryBefore : ParticleArrays {
  public:
   explicit LibraryBefore(const Scheme& s) : m_s(s) {
     const RateFormOptions& o = s.options();
@@ -230,8 +253,7 @@ class LibraryBefore {
       throw std::invalid_argument("LibraryBefore: plain gradient, symmetric pairing, free undriven particles only");
     if (o.artificial_stress > 0) m_w_dp = d.kernel.value(d.particles.spacing, d.h);
     const int n = d.size();
-    m_x.resize(n), m_v.resize(n), m_vhat.resize(n), m_rho.resize(n), m_vol.resize(n), m_S.resize(n);
-    m_sigma.resize(n), m_R.resize(n);
+    resize(n);
   }
 
   void rate(const Eigen::VectorXd& y, Eigen::VectorXd& dydt) {
@@ -243,13 +265,7 @@ class LibraryBefore {
     const double h = d.h, rho0 = m_s.material().density(), K = m_s.material().bulk_modulus();
     const RateFormOptions& o = m_s.options();
     const Eigen::VectorXd& mass = m_s.mass();
-    for (int i = 0; i < n; ++i) {
-      const int xo = m_s.position_offset(i), ro = m_s.density_offset(i);
-      m_x[i] = y.segment<2>(xo);
-      m_v[i] = y.segment<2>(xo + 2);
-      m_rho[i] = y[ro];
-      m_S[i] = y.segment<3>(ro + 1);
-    }
+    unpack(m_s, y);
     Vec2 box;
     for (int a = 0; a < 2; ++a) box[a] = p.box_hi[a] - p.box_lo[a];
     const auto geometry = [&](int i, int j, Vec2& r, double& r2, double& rr) {
@@ -343,21 +359,15 @@ class LibraryBefore {
         acc += mass[j] * ((si + sj + pair) * gk);
       }
       if (o.continuity == ContinuityForm::Divergence) drho = -m_rho[i] * L.trace();
-      const int xo = m_s.position_offset(i), ro = m_s.density_offset(i);
-      dydt.segment<2>(xo) = m_vhat[i];
-      dydt.segment<2>(xo + 2) = acc;
-      dydt[ro] = drho;
-      write_jaumann(m_s, y, ro, L, dydt);
+      write_rates(m_s, y, i, acc, drho, L, dydt);
     }
   }
 
  private:
   const Scheme& m_s;
   double m_w_dp = 1;
-  std::vector<Vec2> m_x, m_v, m_vhat, m_row_grad, m_row_r;
-  std::vector<double> m_rho, m_vol, m_row_r2, m_row_w;
-  std::vector<Eigen::Vector3d> m_S;
-  std::vector<Mat2> m_sigma, m_R;
+  std::vector<Vec2> m_row_grad, m_row_r;
+  std::vector<double> m_row_r2, m_row_w;
 };
 
 /// Values of a and b whose bits differ (a different size counts every value).
@@ -842,41 +852,30 @@ void bm_route(benchmark::State& state, int side, double h_over_dx, Route r) {
   }
   Eigen::VectorXd dydt = Eigen::VectorXd::Zero(s.size());
   const Eigen::VectorXd& y = P.y;
+  // The route object f is built before the timed loop, which calls f.rate(at, dydt).
+  const auto time_route = [&](auto&& f, const Eigen::VectorXd& at) {
+    time_rate(
+        state, [&] { f.rate(at, dydt); }, dydt);
+  };
   switch (r) {
     case Route::Fused:
-      time_rate(
-          state, [&] { s.rate(y, dydt); }, dydt);
+      time_route(s, y);
       break;
-    case Route::FusedPrealloc: {
-      FusedPrealloc f(s);
-      time_rate(
-          state, [&] { f.rate(y, dydt); }, dydt);
+    case Route::FusedPrealloc:
+      time_route(FusedPrealloc(s), y);
       break;
-    }
-    case Route::FusedOnePass: {
-      FusedOnePass<false, false> f(s);
-      time_rate(
-          state, [&] { f.rate(y, dydt); }, dydt);
+    case Route::FusedOnePass:
+      time_route(FusedOnePass<false, false>(s), y);
       break;
-    }
-    case Route::FusedOnePassCubic: {
-      FusedOnePass<true, false> f(s);
-      time_rate(
-          state, [&] { f.rate(y, dydt); }, dydt);
+    case Route::FusedOnePassCubic:
+      time_route(FusedOnePass<true, false>(s), y);
       break;
-    }
-    case Route::FusedHalfPairs: {
-      FusedOnePass<true, true> f(s);
-      time_rate(
-          state, [&] { f.rate(y, dydt); }, dydt);
+    case Route::FusedHalfPairs:
+      time_route(FusedOnePass<true, true>(s), y);
       break;
-    }
-    case Route::Operator: {
-      OperatorRoute op(s);
-      time_rate(
-          state, [&] { op.rate(y, dydt); }, dydt);
+    case Route::Operator:
+      time_route(OperatorRoute(s), y);
       break;
-    }
     case Route::OperatorSpMV: {
       OperatorRoute op(s);
       op.assemble(y);
@@ -889,24 +888,15 @@ void bm_route(benchmark::State& state, int side, double h_over_dx, Route r) {
       for (auto _ : state) benchmark::DoNotOptimize(find_neighbours(d.particles, d.kernel.support_radius(d.h)));
       break;
     }
-    case Route::LibraryBefore: {
-      LibraryBefore f(s);
-      time_rate(
-          state, [&] { f.rate(y, dydt); }, dydt);
+    case Route::LibraryBefore:
+      time_route(LibraryBefore(s), y);
       break;
-    }
-    case Route::Gms: {
-      const Scheme& g = *P.gms;
-      time_rate(
-          state, [&] { g.rate(P.y_gms, dydt); }, dydt);
+    case Route::Gms:
+      time_route(*P.gms, P.y_gms);
       break;
-    }
-    case Route::GmsBefore: {
-      LibraryBefore f(*P.gms);
-      time_rate(
-          state, [&] { f.rate(P.y_gms, dydt); }, dydt);
+    case Route::GmsBefore:
+      time_route(LibraryBefore(*P.gms), P.y_gms);
       break;
-    }
   }
   const double N = s.discretisation().size(), E = static_cast<double>(s.discretisation().neighbours.nonzeros());
   const Traffic t = traffic(r, N, E);

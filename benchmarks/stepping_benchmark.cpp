@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "sphstab/core/named_values.hpp"
 #include "sphstab/core/threads.hpp"
 #include "sphstab/forms/linear_elastic.hpp"
 #include "sphstab/integrate/leapfrog.hpp"
@@ -92,19 +93,11 @@ Problem& problem(int side) {
 }
 
 enum class Variant { TlSpmv, TlPairLoop, UlReassembly, UlPairLoop };
-const char* variant_name(Variant v) {
-  switch (v) {
-    case Variant::TlSpmv:
-      return "TL_SpMV";
-    case Variant::TlPairLoop:
-      return "TL_PairLoop";
-    case Variant::UlReassembly:
-      return "UL_Reassembly";
-    case Variant::UlPairLoop:
-      return "UL_PairLoop";
-  }
-  return "?";
-}
+constexpr NamedValue<Variant> kVariantNames[] = {{Variant::TlSpmv, "TL_SpMV"},
+                                                 {Variant::TlPairLoop, "TL_PairLoop"},
+                                                 {Variant::UlReassembly, "UL_Reassembly"},
+                                                 {Variant::UlPairLoop, "UL_PairLoop"}};
+std::string variant_name(Variant v) { return name_of(v, kVariantNames); }
 
 struct Extra {  // per-benchmark facts for the summary
   long particles = 0;

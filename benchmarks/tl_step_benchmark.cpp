@@ -38,6 +38,7 @@
 #include <string>
 #include <vector>
 
+#include "max_particles.hpp"
 #include "sphstab/forms/correction_gradient.hpp"
 #include "sphstab/forms/finite_strain_total_lagrangian.hpp"
 #include "sphstab/integrate/leapfrog.hpp"
@@ -200,25 +201,8 @@ void bm_stress(benchmark::State& st, int side, Variant v) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  long max_particles = 1000000;
-  std::vector<char*> args;
-  for (int i = 0; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a.rfind("--max-particles=", 0) == 0) {
-      char* end = nullptr;
-      max_particles = std::strtol(a.c_str() + 16, &end, 10);
-      if (*end != '\0' || max_particles < 1) {
-        std::fprintf(stderr, "tl_step_benchmark: --max-particles must be a positive integer (got '%s')\n",
-                     a.c_str() + 16);
-        return 2;
-      }
-    } else {
-      args.push_back(argv[i]);
-    }
-  }
-  int n = static_cast<int>(args.size());
-  benchmark::Initialize(&n, args.data());
-  if (benchmark::ReportUnrecognizedArguments(n, args.data())) return 2;
+  const long max_particles = bench::initialize_with_max_particles(argc, argv, "tl_step_benchmark");
+  if (max_particles < 0) return 2;
   benchmark::RegisterBenchmark("Triad", bench::stream_triad)
       ->Unit(benchmark::kMillisecond)
       ->MinTime(1.0)

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "common/cli.hpp"
 #include "common/study.hpp"
 #include "sphstab/io/csv.hpp"
 #include "sphstab/jacobian/analytic_jacobian_2d.hpp"
@@ -59,41 +60,38 @@ double equilibrium_residual(const RateFormScheme<Dim>& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Critical stress of the rate-form SPH scheme beside the §3.3 model (Powell Fig. 3.2)"};
-  std::string out = "results/critical-stress-rate-form";
+  study::DriverCli cli{
+      "Critical stress of the rate-form SPH scheme beside the §3.3 model (Powell Fig. 3.2)",
+      "results/critical-stress-rate-form",
+      "the study's test case: 1D cubic at h/dx 0.8, 1.3, ..., 2.8 with --n1 12; 2D square at h/dx 1.3 with "
+      "--n2 3 (unless given), no hexagonal block"};
   int n1 = 30, n2 = 9;
-  app.add_option("--out", out, "output directory");
-  app.add_option("--n1", n1, "free particles of the 1D bar")->check(CLI::Range(5, 400));
-  app.add_option("--n2", n2, "free particles per side of the 2D block")->check(CLI::Range(3, 41));
-  bool quick = false;
-  app.add_flag("--quick", quick,
-               "the study's test case: 1D cubic at h/dx 0.8, 1.3, ..., 2.8 with --n1 12; 2D square at h/dx 1.3 with "
-               "--n2 3 (unless given), no hexagonal block");
-  CLI11_PARSE(app, argc, argv);
-  if (quick && app.count("--n1") == 0) n1 = 12;
-  if (quick && app.count("--n2") == 0) n2 = 3;
+  cli.app.add_option("--n1", n1, "free particles of the 1D bar")->check(CLI::Range(5, 400));
+  cli.app.add_option("--n2", n2, "free particles per side of the 2D block")->check(CLI::Range(3, 41));
+  if (const auto exit = cli.parse(argc, argv)) return *exit;
+  if (cli.quick && cli.app.count("--n1") == 0) n1 = 12;
+  if (cli.quick && cli.app.count("--n2") == 0) n2 = 3;
   const auto t0 = study::Clock::now();
-  std::filesystem::create_directories(out);
   // rho0 = 1, K = 1, mu = 0.3 (GMS units, nu = 0.36): M = 1.4.
   const ElasticMaterial material = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);
   const double M = material.bulk_modulus() + 4 * material.mu() / 3;
   const std::vector<LoadDirection> dirs = {LoadDirection::Tension, LoadDirection::Compression};
 
   // 1D bar: kernels x h / dx as Fig. 3.2, both directions.
-  std::ofstream bar(out + "/bar_1d.csv");
+  std::ofstream bar(cli.out + "/bar_1d.csv");
   bar << "kernel,h_over_dx,direction,formulation,layer_supports,stress_over_modulus,xi,growth_above,evaluations,"
          "equilibrium_residual,t_plus_33,t_conservative_33,predicted_sph,status,reason\n";
   const std::vector<KernelType> kernels =
-      quick ? std::vector<KernelType>{KernelType::CubicSpline}
-            : std::vector<KernelType>{KernelType::CubicSpline, KernelType::QuarticSpline, KernelType::QuinticSpline,
-                                      KernelType::WendlandC2, KernelType::WendlandC4};
+      cli.quick ? std::vector<KernelType>{KernelType::CubicSpline}
+                : std::vector<KernelType>{KernelType::CubicSpline, KernelType::QuarticSpline, KernelType::QuinticSpline,
+                                          KernelType::WendlandC2, KernelType::WendlandC4};
   double worst_prediction = 0;
   int bar_rows = 0;
 
   std::string cubic_table;
   for (KernelType type : kernels) {
     const Kernel<1> kernel(type);
-    for (int hk = 0; hk <= 22; hk += quick ? 5 : 1) {
+    for (int hk = 0; hk <= 22; hk += cli.quick ? 5 : 1) {
       const double h = 0.8 + 0.1 * hk;
       const ParticleSet<1> plain_set = tension_lattice_1d(kernel, h, n1);
       const auto plain = make_discretisation(plain_set, kernel, h);
@@ -138,11 +136,11 @@ int main(int argc, char** argv) {
   const double lambda = elastic.lambda(), mu = elastic.mu();
   const Kernel<2> k2(KernelType::CubicSpline);
   auto blocks = [&](LatticeType type, const std::string& file) {
-    std::ofstream block(out + "/" + file);
+    std::ofstream block(cli.out + "/" + file);
     block << "h_over_dx,direction,formulation,stress_over_modulus,xi,growth_above,evaluations,equilibrium_residual,"
              "plus_33,conservative_33,status,reason\n";
     std::string table;
-    for (double h : quick ? std::vector<double>{1.3} : std::vector<double>{1.0, 1.2, 1.3, 1.5, 2.0}) {
+    for (double h : cli.quick ? std::vector<double>{1.3} : std::vector<double>{1.0, 1.2, 1.3, 1.5, 2.0}) {
       const auto disc = make_discretisation(strain_lattice_2d(type, k2, h, n2), k2, h);
       for (LoadDirection dir : dirs) {
         double s33[2];
@@ -175,7 +173,7 @@ int main(int argc, char** argv) {
     return table;
   };
   const std::string block_table = blocks(LatticeType::Square, "block_2d.csv");
-  const std::string hex_table = quick ? "" : blocks(LatticeType::Hexagonal, "block_2d_hex.csv");
+  const std::string hex_table = cli.quick ? "" : blocks(LatticeType::Hexagonal, "block_2d_hex.csv");
 
   study::Summary s;
   s.set("n1", n1);
@@ -186,7 +184,7 @@ int main(int argc, char** argv) {
   s.set("block_table", block_table);
   s.set("hex_table", hex_table);
   s.set("wall_total", study::seconds_since(t0), 3);
-  s.write(out);
+  s.write(cli.out);
   std::printf("1D sph against T_plus/(1 - T_plus): worst relative difference %.2g\n", worst_prediction);
   return 0;
 }

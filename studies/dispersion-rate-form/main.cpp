@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "common/cli.hpp"
 #include "common/study.hpp"
 #include "dispersion_cases.hpp"
 #include "sphstab/io/csv.hpp"
@@ -28,27 +29,24 @@ using namespace dispersion_study;
 namespace {}  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"dispersion-rate-form: all dispersion branches of the rate-form scheme from its Bloch symbol"};
-  std::string out = "results/dispersion-rate-form";
+  study::DriverCli cli{
+      "dispersion-rate-form: all dispersion branches of the rate-form scheme from its Bloch symbol",
+      "results/dispersion-rate-form",
+      "the study's test case: gms and ncsph at h/dx 1.3, --path-points 16, --grid 9 (unless given); 1D at "
+      "h/dx 0.8, 1.9, 3.0"};
   int path_points = 48, grid = 33;
-  app.add_option("--out", out);
-  app.add_option("--path-points", path_points, "points per segment of Gamma-X-M-Gamma")->check(CLI::Range(4, 2000));
-  app.add_option("--grid", grid, "k points per axis of the growth map over [0, pi]^2")->check(CLI::Range(5, 400));
-  bool quick = false;
-  app.add_flag("--quick", quick,
-               "the study's test case: gms and ncsph at h/dx 1.3, --path-points 16, --grid 9 (unless given); 1D at "
-               "h/dx 0.8, 1.9, 3.0");
-  CLI11_PARSE(app, argc, argv);
-  if (quick && app.count("--path-points") == 0) path_points = 16;
-  if (quick && app.count("--grid") == 0) grid = 9;
-  std::filesystem::create_directories(out);
+  cli.app.add_option("--path-points", path_points, "points per segment of Gamma-X-M-Gamma")->check(CLI::Range(4, 2000));
+  cli.app.add_option("--grid", grid, "k points per axis of the growth map over [0, pi]^2")->check(CLI::Range(5, 400));
+  if (const auto exit = cli.parse(argc, argv)) return *exit;
+  if (cli.quick && cli.app.count("--path-points") == 0) path_points = 16;
+  if (cli.quick && cli.app.count("--grid") == 0) grid = 9;
   const auto t0 = study::Clock::now();
   const double cp = kSteel.p_wave_speed();
 
   // --- 2D square lattice: branches along Gamma-X-M-Gamma, growth over the Brillouin zone ---------------------------
-  const std::vector<double> hs = quick ? std::vector<double>{1.3} : std::vector<double>{1.3, 1.5};
+  const std::vector<double> hs = cli.quick ? std::vector<double>{1.3} : std::vector<double>{1.3, 1.5};
   const std::vector<double> xis{0.98, 1.0, 1.02};
-  std::ofstream branches(out + "/branches_2d.csv"), growth(out + "/growth_2d.csv");
+  std::ofstream branches(cli.out + "/branches_2d.csv"), growth(cli.out + "/growth_2d.csv");
   branches << "formulation,h_over_dx,xi,s,kx_over_pi,ky_over_pi,omega_l,omega_t,growth_l,growth_t,"
               "longitudinality_l,growth_all,slaved_lambda,gms_rel_diff\n";
   growth << "formulation,h_over_dx,xi,box,growth_rate,kx_over_pi,ky_over_pi,longitudinality,max_slaved_lambda,"
@@ -56,7 +54,7 @@ int main(int argc, char** argv) {
   std::string growth_table;
   double worst_slaved = 0, worst_invariance = 0, worst_gms = 0;
   const Kernel<2> kernel2(KernelType::CubicSpline);
-  for (const Formulation& f : formulations(quick))
+  for (const Formulation& f : formulations(cli.quick))
     for (double h : hs)
       for (double xi : xis) {
         const int n = box_for(h);
@@ -139,11 +137,11 @@ int main(int argc, char** argv) {
       }
 
   // --- Long waves: omega^2 / k^2 against the continuum GMS (4.9)/(4.10) with a uniaxial prestress ---------------
-  std::ofstream longwave(out + "/long_wave_2d.csv");
+  std::ofstream longwave(cli.out + "/long_wave_2d.csv");
   longwave << "formulation,h_over_dx,k_dx,direction,rel_error_l,rel_error_t\n";
   std::string long_table;
   double ncsph_order = NAN;
-  for (const Formulation& f : formulations(quick)) {
+  for (const Formulation& f : formulations(cli.quick)) {
     if (f.name == "sph-as" || f.name == "gms") continue;  // R is ignored by the continuum relation
     for (double h : hs) {
       const int n = box_for(h);
@@ -183,7 +181,7 @@ int main(int argc, char** argv) {
   // critical sigma0/M is |g|^2 / (2L - |g|^2) where 2L > |g|^2. The bisection on the symbol's spectrum and this closed
   // form are compared on the same k grid; the grid-free infimum (T/(1 - T), T of fourier_symbol.hpp with n = 2)
   // is reported beside them.
-  std::ofstream bar(out + "/bar_1d.csv");
+  std::ofstream bar(cli.out + "/bar_1d.csv");
   bar << "formulation,h_over_dx,sigma_crit_over_M_symbol,closed_form_grid,rel_diff,abs_diff,closed_form_infinite,"
          "k_over_pi\n";
   double worst_1d = 0, worst_1d_abs = 0;
@@ -191,7 +189,7 @@ int main(int argc, char** argv) {
   const Kernel<1> kernel1(KernelType::CubicSpline);
   const double M = kSteel.bulk_modulus() + 4 * kSteel.mu() / 3;
   const int kgrid = 400;
-  for (int ih = 0; ih <= 22; ih += quick ? 11 : 1) {
+  for (int ih = 0; ih <= 22; ih += cli.quick ? 11 : 1) {
     const double h = 0.8 + 0.1 * ih;
     const int n = box_for(h);
     // Unstable at sigma0 = tau M if some grid k in (0, pi] has -omega^2 > 1e-14 c_P^2 k^2.
@@ -257,7 +255,7 @@ int main(int argc, char** argv) {
   s.set("path_points", path_points);
   s.set("grid", grid);
   s.set("wall_total", study::seconds_since(t0), 3);
-  s.write(out);
+  s.write(cli.out);
   std::printf("GMS (5.8)/(5.9) worst %.2g, slaved |lambda| worst %.2g, 1D closed form worst %.2g\n", worst_gms,
               worst_slaved, worst_1d);
   return 0;

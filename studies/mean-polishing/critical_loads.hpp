@@ -6,7 +6,6 @@
 // [Powell2012, Theorem 3.1]); the sweep over N = n (h/dx grid) and the size check N = n_check (h/dx = 1.3, 2.0), and
 // tcrit.csv.
 #include <Eigen/Core>
-#include <fstream>
 #include <iostream>
 #include <string>
 #include <utility>
@@ -36,6 +35,14 @@ struct Row {
   double tcrit, growth, mode_k, a1_rel, asym0, asym1, residual;
   std::string status, reason;
   double seconds;
+
+  static constexpr const char* kCsvHeader =
+      "N,kernel,h_over_dx,correction,form,corrected_operator,strain_sum,direction,criterion,tcrit,growth_2tcrit,"
+      "mode_k_over_pi,a1_relative,asymmetry_T0,asymmetry_T1,equilibrium_residual,status,seconds,reason";
+  void csv(std::ostream& o) const {
+    csv_line(o, n, kernel, h, correction, form, target, strain_sum, direction, criterion, tcrit, growth, mode_k, a1_rel,
+             asym0, asym1, residual, status, seconds, "\"" + reason + "\"");
+  }
 };
 
 /// The critical loads of one case, appended to rows (one row per direction and criterion).
@@ -91,17 +98,6 @@ inline CriticalLoadSweep critical_load_sweep(int n, int n_check, const std::vect
                   << " s)" << std::endl;
       }
   return {std::move(rows), dense_conservative_seconds};
-}
-
-/// tcrit.csv: one row per case x direction x criterion.
-inline void write_tcrit(const std::string& path, const std::vector<Row>& rows) {
-  std::ofstream csv(path);
-  csv << "N,kernel,h_over_dx,correction,form,corrected_operator,strain_sum,direction,criterion,tcrit,growth_2tcrit,"
-         "mode_k_over_pi,a1_relative,asymmetry_T0,asymmetry_T1,equilibrium_residual,status,seconds,reason\n";
-  for (const Row& r : rows)
-    csv_line(csv, r.n, r.kernel, r.h, r.correction, r.form, r.target, r.strain_sum, r.direction, r.criterion, r.tcrit,
-             r.growth, r.mode_k, r.a1_rel, r.asym0, r.asym1, r.residual, r.status, r.seconds, "\"" + r.reason + "\"");
-  csv.close();
 }
 
 }  // namespace mean_polishing

@@ -1,9 +1,11 @@
 #pragma once
 // The CSV format of the mean-polishing study: numbers with 10 significant digits (format_number), integers and
 // text as they are, one line per call (tcrit.csv, momentum.csv, locality.csv, thin_layers.csv).
+#include <fstream>
 #include <ostream>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include "sphstab/core/format.hpp"
 
@@ -31,6 +33,14 @@ void csv_line(std::ostream& o, const T&... v) {
   const char* sep = "";
   ((o << sep << cell(v), sep = ","), ...);
   o << "\n";
+}
+
+/// The file `path`: the header Row::kCsvHeader, then one line per row (Row::csv, with csv_line).
+template <class Row>
+void write_csv(const std::string& path, const std::vector<Row>& rows) {
+  std::ofstream file(path);
+  file << Row::kCsvHeader << "\n";
+  for (const Row& r : rows) r.csv(file);
 }
 
 }  // namespace mean_polishing

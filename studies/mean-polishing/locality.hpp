@@ -5,7 +5,6 @@
 // and Ghat and of the complex-step Jacobians of the plus and conservative forms, and their colour counts; locality.csv.
 #include <Eigen/Core>
 #include <array>
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -21,11 +20,19 @@ namespace mean_polishing {
 using namespace sphstab;
 using study::random_vector;
 
-/// One row of locality.csv.
+/// One row of locality.csv: a correction.
 struct LocalityRow {
   std::string correction;
   long g_stored, g_nonzero, gh_stored, gh_nonzero, pattern_plus, jac_plus, pattern_cons, jac_cons;
   int colours_plus, colours_cons;
+
+  static constexpr const char* kCsvHeader =
+      "correction,G_stored,G_nonzero,Ghat_stored,Ghat_nonzero,jacobian_pattern_plus,jacobian_nonzero_plus,"
+      "colours_plus,jacobian_pattern_conservative,jacobian_nonzero_conservative,colours_conservative";
+  void csv(std::ostream& o) const {
+    csv_line(o, correction, g_stored, g_nonzero, gh_stored, gh_nonzero, pattern_plus, jac_plus, colours_plus,
+             pattern_cons, jac_cons, colours_cons);
+  }
 };
 
 /// Entries of m larger than relative x max |m|.
@@ -59,17 +66,6 @@ inline std::vector<LocalityRow> locality_counts(int n) {
                         count_nonzero(Eigen::MatrixXd(jc.compute(u)), 1e-14), jp.colours(), jc.colours()});
   }
   return locality;
-}
-
-/// locality.csv: one row per correction.
-inline void write_locality(const std::string& path, const std::vector<LocalityRow>& locality) {
-  std::ofstream csv(path);
-  csv << "correction,G_stored,G_nonzero,Ghat_stored,Ghat_nonzero,jacobian_pattern_plus,jacobian_nonzero_plus,"
-         "colours_plus,jacobian_pattern_conservative,jacobian_nonzero_conservative,colours_conservative\n";
-  for (const LocalityRow& r : locality)
-    csv_line(csv, r.correction, r.g_stored, r.g_nonzero, r.gh_stored, r.gh_nonzero, r.pattern_plus, r.jac_plus,
-             r.colours_plus, r.pattern_cons, r.jac_cons, r.colours_cons);
-  csv.close();
 }
 
 }  // namespace mean_polishing

@@ -53,20 +53,20 @@ int main(int argc, char** argv) {
   // 1. Critical loads, N = n sweep and N = n_check check.
   const CriticalLoadSweep sweep = critical_load_sweep(n, n_check, hs, kernels);
   const std::vector<Row>& rows = sweep.rows;
-  write_tcrit(out + "/tcrit.csv", rows);
+  write_csv(out + "/tcrit.csv", rows);
 
   // 2. Momentum conservation on a periodic displaced lattice, row and column sums of Ghat there.
   const std::vector<MomentumRow> momentum = momentum_conservation(kernels);
-  write_momentum(out + "/momentum.csv", momentum);
+  write_csv(out + "/momentum.csv", momentum);
   std::cout << "momentum done" << std::endl;
 
   // 3. Locality: entries of Ghat and of the Jacobian at a displaced state (N = n, cubic, h = 1.3).
   const std::vector<LocalityRow> locality = locality_counts(n);
-  write_locality(out + "/locality.csv", locality);
+  write_csv(out + "/locality.csv", locality);
 
   // 4. Boundary sensitivity: the same at N = n, cubic, h = 1.3, with fixed layers only ONE support thick.
   const std::vector<ThinRow> thin = thin_layers(n);
-  write_thin_layers(out + "/thin_layers.csv", thin);
+  write_csv(out + "/thin_layers.csv", thin);
   const double seconds = seconds_since(start);
 
   // 5. Key numbers. Per correction|form|target over the N = n sweep, first criterion of each direction.

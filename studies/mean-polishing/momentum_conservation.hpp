@@ -5,7 +5,6 @@
 // form x corrected operator, and the largest row and column sums of Ghat (relative to max |Ghat|); momentum.csv.
 #include <Eigen/Core>
 #include <cmath>
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -20,10 +19,15 @@ namespace mean_polishing {
 using namespace sphstab;
 using study::random_vector;
 
-/// One row of momentum.csv.
+/// One row of momentum.csv: a kernel, correction and form x corrected operator.
 struct MomentumRow {
   std::string kernel, correction, form, target;
   double total, rowsum, colsum;
+
+  static constexpr const char* kCsvHeader =
+      "kernel,correction,form,corrected_operator,total_force_relative,max_row_sum_relative,"
+      "max_column_sum_relative";
+  void csv(std::ostream& o) const { csv_line(o, kernel, correction, form, target, total, rowsum, colsum); }
 };
 
 /// Momentum conservation on a periodic displaced lattice, row and column sums of Ghat there, for every kernel.
@@ -54,16 +58,6 @@ inline std::vector<MomentumRow> momentum_conservation(const std::vector<KernelTy
     }
   }
   return momentum;
-}
-
-/// momentum.csv: one row per kernel, correction and form x corrected operator.
-inline void write_momentum(const std::string& path, const std::vector<MomentumRow>& momentum) {
-  std::ofstream csv(path);
-  csv << "kernel,correction,form,corrected_operator,total_force_relative,max_row_sum_relative,"
-         "max_column_sum_relative\n";
-  for (const MomentumRow& r : momentum)
-    csv_line(csv, r.kernel, r.correction, r.form, r.target, r.total, r.rowsum, r.colsum);
-  csv.close();
 }
 
 }  // namespace mean_polishing

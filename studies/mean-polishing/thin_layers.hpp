@@ -6,7 +6,6 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -20,11 +19,18 @@ namespace mean_polishing {
 
 using namespace sphstab;
 
-/// One row of thin_layers.csv.
+/// One row of thin_layers.csv: a correction and form.
 struct ThinRow {
   std::string correction, form, target;
   double residual, asymmetry, t_first, t_second, t_compression;
   std::string first, second;
+
+  static constexpr const char* kCsvHeader =
+      "correction,form,corrected_operator,equilibrium_residual,asymmetry,criterion,tcrit,second_criterion,"
+      "tcrit_second,tcrit_compression";
+  void csv(std::ostream& o) const {
+    csv_line(o, correction, form, target, residual, asymmetry, first, t_first, second, t_second, t_compression);
+  }
 };
 
 /// Boundary sensitivity: the critical loads at N = n, cubic, h = 1.3, with fixed layers only ONE support thick.
@@ -48,17 +54,6 @@ inline std::vector<ThinRow> thin_layers(int n) {
                       t.results.size() > 1 ? criterion_name(t.results[1].criterion) : "-"});
     }
   return thin;
-}
-
-/// thin_layers.csv: one row per correction and form.
-inline void write_thin_layers(const std::string& path, const std::vector<ThinRow>& thin) {
-  std::ofstream csv(path);
-  csv << "correction,form,corrected_operator,equilibrium_residual,asymmetry,criterion,tcrit,second_criterion,"
-         "tcrit_second,tcrit_compression\n";
-  for (const ThinRow& r : thin)
-    csv_line(csv, r.correction, r.form, r.target, r.residual, r.asymmetry, r.first, r.t_first, r.second, r.t_second,
-             r.t_compression);
-  csv.close();
 }
 
 }  // namespace mean_polishing

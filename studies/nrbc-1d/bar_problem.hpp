@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sphstab/core/format.hpp"
+#include "sphstab/core/named_values.hpp"
 #include "sphstab/forms/rate_form.hpp"
 #include "sphstab/integrate/rate_form_run.hpp"
 
@@ -33,19 +34,9 @@ inline double exact_velocity(double x, double t) {
 }
 
 enum class Form { Sph, Xsph, Ncsph, Ncxsph };
-inline const char* form_name(Form f) {
-  switch (f) {
-    case Form::Sph:
-      return "SPH";
-    case Form::Xsph:
-      return "XSPH";
-    case Form::Ncsph:
-      return "NCSPH";
-    case Form::Ncxsph:
-      return "NCXSPH";
-  }
-  return "?";
-}
+constexpr NamedValue<Form> kFormNames[] = {
+    {Form::Sph, "SPH"}, {Form::Xsph, "XSPH"}, {Form::Ncsph, "NCSPH"}, {Form::Ncxsph, "NCXSPH"}};
+inline std::string form_name(Form f) { return name_of(f, kFormNames); }
 inline bool normalised(Form f) { return f == Form::Ncsph || f == Form::Ncxsph; }
 inline bool smoothed(Form f) { return f == Form::Xsph || f == Form::Ncxsph; }
 /// The four formulations of Table 2.1, in its column order.

@@ -14,6 +14,7 @@
 
 #include "bar_problem.hpp"
 #include "bar_run.hpp"
+#include "common/cli.hpp"
 #include "common/driver.hpp"
 #include "common/study.hpp"
 #include "nrbc_summary.hpp"
@@ -25,31 +26,29 @@ using namespace nrbc1d;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) try {
-  CLI::App app{"Powell 2012 ch. 2: 1D non-reflecting boundary, Table 2.1, h-study, time-step limits"};
-  std::string out = "results/nrbc-1d";
+  study::DriverCli cli{
+      "Powell 2012 ch. 2: 1D non-reflecting boundary, Table 2.1, h-study, time-step limits", "results/nrbc-1d",
+      "pipeline check: every run to 10 us; Table 2.1 in full, the sweep at the tuned step only, h / dx 1.3 "
+      "only, and the step limits of SPH with one absorbing layer and NCXSPH with the upwind eight (half-step "
+      "timing)"};
   double cfl = 0.5, tssfac = 0.8;
   int threads = 2;
-  bool quick = false;
   std::vector<double> sweep = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8};
   std::vector<double> h_values = {1.1, 1.2, 1.3, 1.5, 1.7, 2.0, 2.5, 3.0};
-  app.add_option("--out", out, "output directory");
-  app.add_option("--cfl", cfl,
-                 "the tuned dt = cfl dx / c of the Table 2.1 sensitivity (the value at which the "
-                 "symmetric bar reproduces Powell's X pattern)")
+  cli.app
+      .add_option("--cfl", cfl,
+                  "the tuned dt = cfl dx / c of the Table 2.1 sensitivity (the value at which the "
+                  "symmetric bar reproduces Powell's X pattern)")
       ->check(CLI::Range(0.01, 2.0));
-  app.add_option("--tssfac", tssfac, "the headline dt = tssfac h / c (MCM deck TSSFAC 0.8, DYNA's rule at rest)")
+  cli.app.add_option("--tssfac", tssfac, "the headline dt = tssfac h / c (MCM deck TSSFAC 0.8, DYNA's rule at rest)")
       ->check(CLI::Range(0.01, 1.5));
-  app.add_option("--threads", threads, "concurrent runs")->check(CLI::Range(1, 64));
-  app.add_option("--cfl-sweep", sweep, "CFL values of the sweep")->delimiter(',')->check(CLI::Range(0.01, 2.0));
-  app.add_option("--h", h_values, "h / dx of the h-study")->delimiter(',')->check(CLI::Range(1.0, 4.0));
-  app.add_flag("--quick", quick,
-               "pipeline check: every run to 10 us; Table 2.1 in full, the sweep at the tuned step only, h / dx 1.3 "
-               "only, and the step limits of SPH with one absorbing layer and NCXSPH with the upwind eight (half-step "
-               "timing)");
-  CLI11_PARSE(app, argc, argv);
-  if (quick) sweep = {cfl}, h_values = {1.3};
+  cli.app.add_option("--threads", threads, "concurrent runs")->check(CLI::Range(1, 64));
+  cli.app.add_option("--cfl-sweep", sweep, "CFL values of the sweep")->delimiter(',')->check(CLI::Range(0.01, 2.0));
+  cli.app.add_option("--h", h_values, "h / dx of the h-study")->delimiter(',')->check(CLI::Range(1.0, 4.0));
+  if (const auto exit = cli.parse(argc, argv)) return *exit;
+  if (cli.quick) sweep = {cfl}, h_values = {1.3};
   const auto t0 = study::Clock::now();
-  fs::create_directories(out + "/series");
+  fs::create_directories(cli.out + "/series");
   study::Summary sum;
 
   // 1. Table 2.1. Headline: Powell's geometry (free end) and timing (half) at MCM's time step, dt = TSSFAC h / c
@@ -59,28 +58,28 @@ int main(int argc, char** argv) try {
   const double cfl_mcm = tssfac * 1.3;
   const std::vector<Variant> variants = table_variants(cfl_mcm, cfl);
   const auto quick_length = [&](std::vector<BarCase> cases) {  // --quick: every run to 10 us, as the h-study's
-    if (quick)
+    if (cli.quick)
       for (BarCase& c : cases) c.t_to = 10;
     return cases;
   };
   const std::vector<BarRun> runs = run_all(quick_length(table_cases(variants, cfl)), threads);
-  write_table(out + "/table.csv", runs);
-  write_series(out, runs);
+  write_table(cli.out + "/table.csv", runs);
+  write_series(cli.out, runs);
   summarise_table(sum, runs, variants, cfl);
 
   // 2. CFL sweep: stable or not, and the error, for the truncated bars at each dt (both timings).
   const std::vector<BarRun> sweep_runs = run_all(quick_length(sweep_cases(sweep)), threads);
-  write_table(out + "/cfl_sweep.csv", sweep_runs);
+  write_table(cli.out + "/cfl_sweep.csv", sweep_runs);
 
   // 3. The largest stable CFL of every truncated configuration (bisection on whole runs to 20 us), and from the
   // linearised step (spectral radius at rest, undamped and damped).
-  const StepLimits limits = step_limits(quick_length(limit_cases(quick)), cfl, threads);
-  write_dt_limit(out, limits);
+  const StepLimits limits = step_limits(quick_length(limit_cases(cli.quick)), cfl, threads);
+  write_dt_limit(cli.out, limits);
   summarise_step_limits(sum, limits);
 
   // 4. Fig. 2.12: NCXSPH, floor(2h/dx) + 1 absorbing particles, error over 3 < t < 10 us, reference and truncated.
   const std::vector<BarRun> hruns = run_all(h_cases(h_values, cfl), threads);
-  write_h_study(out, hruns);
+  write_h_study(cli.out, hruns);
   summarise_h_study(sum, hruns);
 
   sum.set("cfl", cfl, 3);
@@ -88,7 +87,7 @@ int main(int argc, char** argv) try {
   sum.set("tssfac", tssfac, 3);
   sum.set("c", bar_speed(), 5);
   sum.set("runs", static_cast<long>(runs.size() + sweep_runs.size() + hruns.size()));
-  study::write_summary(sum, out, t0);
+  study::write_summary(sum, cli.out, t0);
   return 0;
 } catch (const std::exception& e) {
   return study::exit_on_error("nrbc-1d", e);

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "common/cli.hpp"
 #include "common/driver.hpp"
 #include "common/study.hpp"
 #include "sphstab/core/format.hpp"
@@ -171,22 +172,19 @@ StripRun run_strip(const StripCase& c) {
 }  // namespace
 
 int main(int argc, char** argv) try {
-  CLI::App app{"Plane P-wave reflection at SPH absorbing boundaries, measured against the plane-wave analysis"};
-  std::string out = "results/nrbc-plane-wave";
+  study::DriverCli cli{"Plane P-wave reflection at SPH absorbing boundaries, measured against the plane-wave analysis",
+                       "results/nrbc-plane-wave",
+                       "pipeline check: a strip of 50 particles, wavelength 6 dx, theta 0 and 45 degrees only"};
   int threads = 2, nx = 400;
   double lambda = 12;
-  bool quick = false;
   std::vector<double> degrees{15, 30, 45, 60};  // the oblique angles of the tables
-  app.add_option("--out", out, "output directory");
-  app.add_option("--threads", threads, "concurrent runs")->check(CLI::Range(1, 64));
-  app.add_option("--nx", nx, "particles along the strip")->check(CLI::Range(100, 5000));
-  app.add_option("--lambda", lambda, "wavelength in particle spacings")->check(CLI::Range(4.0, 100.0));
-  app.add_flag("--quick", quick,
-               "pipeline check: a strip of 50 particles, wavelength 6 dx, theta 0 and 45 degrees only");
-  CLI11_PARSE(app, argc, argv);
-  if (quick) nx = 50, lambda = 6, degrees = {45};
+  cli.app.add_option("--threads", threads, "concurrent runs")->check(CLI::Range(1, 64));
+  cli.app.add_option("--nx", nx, "particles along the strip")->check(CLI::Range(100, 5000));
+  cli.app.add_option("--lambda", lambda, "wavelength in particle spacings")->check(CLI::Range(4.0, 100.0));
+  if (const auto exit = cli.parse(argc, argv)) return *exit;
+  if (cli.quick) nx = 50, lambda = 6, degrees = {45};
   const auto t0 = study::Clock::now();
-  fs::create_directories(out + "/series");
+  fs::create_directories(cli.out + "/series");
   // Angle tables at lambda and 2 lambda (the strip's length in proportion): periods across the strip for theta = 0
   // and about 15, 30, 45 and 60 degrees (--quick: 45); then normal incidence at 4 lambda.
   std::vector<StripCase> cases;
@@ -209,8 +207,8 @@ int main(int argc, char** argv) try {
   const std::vector<StripRun> runs = study::run_costliest_first(
       cases, threads, [](const StripCase& c) { return std::max(c.ny, 6) * c.nx; }, run_strip);
 
-  CsvWriter w(out + "/runs.csv", {"condition", "gradient", "ny", "lambda", "theta_deg", "particles", "absorbing",
-                                  "status", "measured", "analytic", "periodic_check", "cpu_seconds"});
+  CsvWriter w(cli.out + "/runs.csv", {"condition", "gradient", "ny", "lambda", "theta_deg", "particles", "absorbing",
+                                      "status", "measured", "analytic", "periodic_check", "cpu_seconds"});
   std::string md_lambda;
   std::string md;
   double worst_periodic = 0;
@@ -221,7 +219,7 @@ int main(int argc, char** argv) try {
     const bool plain = label_of(r.c).find("plain") != std::string::npos;
     w.row({condition_name(r.c.condition), plain ? "plain" : "normalised", r.c.ny, r.c.lambda, r.theta * 180 / M_PI,
            r.particles, r.absorbing, r.status, r.measured, r.analytic, per.measured, r.cpu});
-    CsvWriter s(out + "/series/" + tag_of(r.c) + ".csv", {"t", "two_ke_over_ke0"}, false);
+    CsvWriter s(cli.out + "/series/" + tag_of(r.c) + ".csv", {"t", "two_ke_over_ke0"}, false);
     for (std::size_t k = 0; k < r.t.size(); ++k) s.row({r.t[k], r.e[k]});
     if (r.c.condition == Condition::Periodic) {
       worst_periodic = std::max(worst_periodic, std::abs(r.measured - 1));
@@ -242,7 +240,7 @@ int main(int argc, char** argv) try {
   sum.set("nx", nx);
   sum.set("lambda", lambda, 3);
   sum.set("periodic_worst", 100 * worst_periodic, 2);
-  study::write_summary(sum, out, t0);
+  study::write_summary(sum, cli.out, t0);
   return 0;
 } catch (const std::exception& e) {
   return study::exit_on_error("nrbc-plane-wave", e);

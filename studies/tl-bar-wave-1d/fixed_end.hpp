@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "common/ismail_bar.hpp"
+#include "sphstab/core/named_values.hpp"
 #include "sphstab/operators/ismail_boundary.hpp"
 #include "sphstab/operators/operators.hpp"
 
@@ -25,19 +26,11 @@ enum class FixedEnd {
   Eta,       ///< Ismail's eta method (2.42) at the wall point x = L, one-sided on the ghosts within its support
   Modified,  ///< Ismail's modified SPH matrix (2.46)-(2.47): <u> = 0 on every right ghost row (exact form)
 };
-inline std::string fixed_end_name(FixedEnd e) {
-  switch (e) {
-    case FixedEnd::Clamped:
-      return "clamped";
-    case FixedEnd::Mirror:
-      return "mirror";
-    case FixedEnd::Eta:
-      return "eta";
-    case FixedEnd::Modified:
-      return "modified";
-  }
-  return "?";
-}
+constexpr NamedValue<FixedEnd> kFixedEndNames[] = {{FixedEnd::Clamped, "clamped"},
+                                                   {FixedEnd::Mirror, "mirror"},
+                                                   {FixedEnd::Eta, "eta"},
+                                                   {FixedEnd::Modified, "modified"}};
+inline std::string fixed_end_name(FixedEnd e) { return name_of(e, kFixedEndNames); }
 
 /// The right end's ghost sets of one resolution.
 struct RightGhosts {

@@ -23,6 +23,7 @@
 
 #include "bar_runs.hpp"
 #include "closed_loop.hpp"
+#include "common/cli.hpp"
 #include "common/ismail_bar.hpp"
 #include "common/study.hpp"
 #include "fixed_end.hpp"
@@ -33,16 +34,12 @@ using namespace bar_wave;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
-  CLI::App app{"Ismail 2009 §4.6.3 / §5.3.1: pulse in the 1D validation bar, finite-strain TL SPH"};
-  std::string out = "results/tl-bar-wave-1d";
+  study::DriverCli cli{"Ismail 2009 §4.6.3 / §5.3.1: pulse in the 1D validation bar, finite-strain TL SPH",
+                       "results/tl-bar-wave-1d", "pipeline check: n = 50 free particles (resolutions 50, 100, 200)"};
   int n = 300;
-  bool quick = false;
-  app.add_option("--out", out, "output directory");
-  app.add_option("--n", n, "free particles")->check(CLI::Range(50, 5000));
-  app.add_flag("--quick", quick, "pipeline check: n = 50 free particles (resolutions 50, 100, 200)");
-  CLI11_PARSE(app, argc, argv);
-  if (quick) n = 50;
-  fs::create_directories(out);
+  cli.app.add_option("--n", n, "free particles")->check(CLI::Range(50, 5000));
+  if (const auto exit = cli.parse(argc, argv)) return *exit;
+  if (cli.quick) n = 50;
   const auto t0 = study::Clock::now();
   const ElasticMaterial lame = ElasticMaterial::from_young_poisson(kE, kNu, kRho);
   const double cb = std::sqrt(kE / kRho), cl = std::sqrt((lame.lambda() + 2 * lame.mu()) / kRho);
@@ -55,9 +52,9 @@ int main(int argc, char** argv) {
   summary.set("c_l", cl, 6);
   summary.set("rise_us", kRise * 1e6, 3);
   summary.set("duration_us", kDuration * 1e6, 3);
-  PulseTables pulse_tables(out);
-  WccTables wcc_tables(out);
-  ClosureTables closure_tables(out);
+  PulseTables pulse_tables(cli.out);
+  WccTables wcc_tables(cli.out);
+  ClosureTables closure_tables(cli.out);
 
   for (const int level : {1, 2, 4}) {  // the resolution n, 2n, 4n at fixed h / dx
     const bool base = level == 1;
@@ -75,7 +72,7 @@ int main(int argc, char** argv) {
       if (run.fixed_end_run()) loop = closed_loop(r, bar, ends, base, closure_tables, summary);
 
       // 3. The pulse: probes, arrivals, speed; the observed growth of the end-particle error (Hooke runs).
-      const PulseResult pulse = pulse_run(r, bar, base, out);
+      const PulseResult pulse = pulse_run(r, bar, base, cli.out);
       if (base && run.fixed_end == FixedEnd::Clamped) summary.set("dt_ns_" + run.name, r.dt * 1e9, 4);
       std::cout << run.name << ": dt = " << r.dt * 1e9 << " ns, " << pulse.steps
                 << " steps, max |sigma - exact| = " << pulse.worst[0] << ", " << pulse.worst[1] << ", "
@@ -90,6 +87,6 @@ int main(int argc, char** argv) {
   wcc_tables.summarise(summary);
   closure_tables.summarise(summary);
   summary.set("wall_seconds", study::seconds_since(t0), 3);
-  summary.write(out);
+  summary.write(cli.out);
   return 0;
 }

@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "common/cli.hpp"
 #include "common/csm3.hpp"
 #include "common/study.hpp"
 #include "sphstab/growth/growth_rate.hpp"
@@ -86,30 +87,29 @@ double centroid_x(const ZigzagMode& m, const Discretisation<2>& d) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Hourglass modes and the Ganzenmueller (2015) control term on the Turek-Hron CSM3 beam"};
-  std::string out = "results/tl-csm3-hourglass";
+  study::DriverCli cli{
+      "Hourglass modes and the Ganzenmueller (2015) control term on the Turek-Hron CSM3 beam",
+      "results/tl-csm3-hourglass",
+      "pipeline check: spectra at 2 and 3 particles across (dense up to 200 DOFs, so 3 across takes the "
+      "shift-invert path), gravity runs at 2 across to t = 3 s, measured from t = 0.5 s"};
   std::vector<int> across{4, 8}, run_across{4, 8};
   double t_end = 6, t_measure = 2, cfl = 0.8, h_over_dx = 1.5;
   int clamp_layers = 4, dense_max = 1200, nev = 24;
-  app.add_option("--out", out, "output directory");
-  app.add_option("--across", across, "resolutions of the spectra (particles through the thickness)");
-  app.add_option("--run-across", run_across, "resolutions of the gravity runs (ncsph-variational; plain: coarsest)");
-  app.add_option("--t-end", t_end, "physical time of the gravity runs (s)")->check(CLI::PositiveNumber);
-  app.add_option("--t-measure", t_measure, "start of the measuring window (s)")->check(CLI::NonNegativeNumber);
-  app.add_option("--cfl", cfl, "fraction of the leap-frog limit")->check(CLI::Range(0.05, 0.9));
-  app.add_option("--dense-max", dense_max,
-                 "largest DOF count for the full dense spectrum at c_HG > 0 (above: the nev softest modes)")
+  cli.app.add_option("--across", across, "resolutions of the spectra (particles through the thickness)");
+  cli.app.add_option("--run-across", run_across,
+                     "resolutions of the gravity runs (ncsph-variational; plain: coarsest)");
+  cli.app.add_option("--t-end", t_end, "physical time of the gravity runs (s)")->check(CLI::PositiveNumber);
+  cli.app.add_option("--t-measure", t_measure, "start of the measuring window (s)")->check(CLI::NonNegativeNumber);
+  cli.app.add_option("--cfl", cfl, "fraction of the leap-frog limit")->check(CLI::Range(0.05, 0.9));
+  cli.app
+      .add_option("--dense-max", dense_max,
+                  "largest DOF count for the full dense spectrum at c_HG > 0 (above: the nev softest modes)")
       ->check(CLI::PositiveNumber);
-  app.add_option("--nev", nev, "softest modes by shift-invert above --dense-max")->check(CLI::Range(2, 50));
-  bool quick = false;
-  app.add_flag("--quick", quick,
-               "pipeline check: spectra at 2 and 3 particles across (dense up to 200 DOFs, so 3 across takes the "
-               "shift-invert path), gravity runs at 2 across to t = 3 s, measured from t = 0.5 s");
-  CLI11_PARSE(app, argc, argv);
-  if (quick) across = {2, 3}, run_across = {2}, dense_max = 200, t_end = 3, t_measure = 0.5;
+  cli.app.add_option("--nev", nev, "softest modes by shift-invert above --dense-max")->check(CLI::Range(2, 50));
+  if (const auto exit = cli.parse(argc, argv)) return *exit;
+  if (cli.quick) across = {2, 3}, run_across = {2}, dense_max = 200, t_end = 3, t_measure = 0.5;
   if (across.empty() || run_across.empty())
     throw std::invalid_argument("tl-csm3-hourglass: --across and --run-across need at least one resolution");
-  fs::create_directories(out);
   const auto t0 = study::Clock::now();
   study::Summary summary;
   auto svk = std::make_shared<StVenantKirchhoff<2>>(study::csm3::lame());
@@ -117,13 +117,14 @@ int main(int argc, char** argv) {
   const study::csm3::BeamTheory theory = study::csm3::beam_theory();
 
   // ---------------- (a) + (b): spectra at u = 0 against c_HG ----------------
-  CsvWriter spec_csv(out + "/spectrum.csv",
+  CsvWriter spec_csv(cli.out + "/spectrum.csv",
                      {"across", "form", "hourglass", "rank", "mu", "f_hz", "abs_imag", "zigzag", "centroid_x"});
-  CsvWriter lift_csv(out + "/lift.csv", {"across", "form", "hourglass", "spectrum", "mu_zigzag_min", "mu_smooth_min",
-                                         "zigzag_below_smooth", "modes_below_smooth", "zigzag_rank", "mu_max_computed",
-                                         "mu_fundamental", "fundamental_overlap", "fundamental_shift_rel",
-                                         "max_abs_imag", "growth_rate", "asymmetry", "seconds"});
-  CsvWriter mode_csv(out + "/modes.csv",
+  CsvWriter lift_csv(
+      cli.out + "/lift.csv",
+      {"across", "form", "hourglass", "spectrum", "mu_zigzag_min", "mu_smooth_min", "zigzag_below_smooth",
+       "modes_below_smooth", "zigzag_rank", "mu_max_computed", "mu_fundamental", "fundamental_overlap",
+       "fundamental_shift_rel", "max_abs_imag", "growth_rate", "asymmetry", "seconds"});
+  CsvWriter mode_csv(cli.out + "/modes.csv",
                      {"across", "form", "kind", "rank", "mu", "zigzag", "x", "y", "phi_x", "phi_y"});
   std::string md_rest, md_lift, md_softest;
   std::map<std::string, double> removing;  // form -> smallest swept c_HG with no zigzag mode below the fundamental
@@ -234,9 +235,9 @@ int main(int argc, char** argv) {
   for (const std::string& form : kForms) summary.set("removing_" + form, removing[form], 2);
 
   // ---------------- (c) the gravity run against c_HG ----------------
-  CsvWriter rcsv(out + "/runs.csv", {"run", "across", "form", "hourglass", "dt", "dt_limit", "steps", "wall_seconds",
-                                     "status", "energy_drift", "ux_mean", "ux_amplitude", "ux_frequency", "uy_mean",
-                                     "uy_amplitude", "uy_frequency"});
+  CsvWriter rcsv(cli.out + "/runs.csv", {"run", "across", "form", "hourglass", "dt", "dt_limit", "steps",
+                                         "wall_seconds", "status", "energy_drift", "ux_mean", "ux_amplitude",
+                                         "ux_frequency", "uy_mean", "uy_amplitude", "uy_frequency"});
   std::string md_runs;
   auto rel = [](double v, double ref) { return study::fixed(100 * (v / ref - 1), 2, true) + " %"; };
   struct Spec {
@@ -261,9 +262,9 @@ int main(int argc, char** argv) {
     const auto disc = make_discretisation(beam.particles, kernel, h_over_dx * beam.dx);
     const study::csm3::Form f = study::csm3::make_form(s.form, "plus", disc, svk, s.chg);
     const std::string name = "n" + std::to_string(s.across) + "-" + s.form + "-hg" + study::sig(s.chg, 2);
+    const std::string tip_csv = cli.out + "/tip_" + name + ".csv";
     const study::csm3::Run r = study::csm3::gravity_run(
-        f.force, beam,
-        {.name = name, .csv_path = out + "/tip_" + name + ".csv", .t_end = t_end, .t_measure = t_measure, .cfl = cfl});
+        f.force, beam, {.name = name, .csv_path = tip_csv, .t_end = t_end, .t_measure = t_measure, .cfl = cfl});
     const std::string key = std::to_string(s.across) + s.form;
     if (s.chg == 0) base[key] = r;
     const study::csm3::Run& b = base[key];
@@ -291,6 +292,6 @@ int main(int argc, char** argv) {
   summary.set("t_measure", t_measure, 3);
   summary.set("load", study::load_average());
   summary.set("wall_seconds", study::seconds_since(t0), 3);
-  summary.write(out);
+  summary.write(cli.out);
   return 0;
 }

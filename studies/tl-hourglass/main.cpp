@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "bar_accuracy.hpp"
+#include "common/cli.hpp"
 #include "common/ismail_bar.hpp"
 #include "common/study.hpp"
 #include "hourglass_cases.hpp"
@@ -30,27 +31,23 @@ using namespace hourglass;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
-  CLI::App app{"Hourglass modes of the finite-strain TL form and the Ganzenmueller (2015) control term"};
-  std::string out = "results/tl-hourglass";
+  study::DriverCli cli{"Hourglass modes of the finite-strain TL form and the Ganzenmueller (2015) control term",
+                       "results/tl-hourglass",
+                       "pipeline check: lattices of 20 (1D) and 8 x 8 (2D) free particles instead of 40 and 12 x 12, "
+                       "validation bar of 50 free particles"};
   int bar_n = 300;
-  app.add_option("--out", out, "output directory");
-  app.add_option("--bar-n", bar_n, "free particles of the validation bar")->check(CLI::Range(50, 5000));
-  bool quick = false;
-  app.add_flag("--quick", quick,
-               "pipeline check: lattices of 20 (1D) and 8 x 8 (2D) free particles instead of 40 and 12 x 12, "
-               "validation bar of 50 free particles");
-  CLI11_PARSE(app, argc, argv);
+  cli.app.add_option("--bar-n", bar_n, "free particles of the validation bar")->check(CLI::Range(50, 5000));
+  if (const auto exit = cli.parse(argc, argv)) return *exit;
   std::vector<Config> configs = kConfigs;
-  if (quick) {
+  if (cli.quick) {
     bar_n = 50;
     for (Config& c : configs) c.n = c.dim == 1 ? 20 : 8;
   }
-  fs::create_directories(out);
   const auto t0 = study::Clock::now();
   study::Summary summary;
 
   // ---------------- (a) + (b): spectra at u = 0 against the coefficient ----------------
-  SpectrumTables spectrum_tables(out);
+  SpectrumTables spectrum_tables(cli.out);
   for (const Config& cfg : configs) {
     if (cfg.dim == 1)
       spectra<1>(cfg, spectrum_tables, summary, t0);
@@ -62,7 +59,7 @@ int main(int argc, char** argv) {
   // ---------------- (c) the validation bar against the coefficient ----------------
   {
     const ib::Bar bar = ib::make_bar(bar_n);
-    BarTables bar_tables(out);
+    BarTables bar_tables(cli.out);
     for (double chg : kCoefficients) {
       const BarResult r = bar_run(bar, chg, bar_tables.probes);
       bar_tables.add(chg, r);
@@ -75,7 +72,7 @@ int main(int argc, char** argv) {
 
   // ---------------- (c) explicit runs from a noisy initial velocity ----------------
   {
-    NoiseTables noise_tables(out);
+    NoiseTables noise_tables(cli.out);
     noise_run<1>(configs[0], noise_tables);
     noise_run<1>(configs[1], noise_tables);
     noise_run<2>(configs[3], noise_tables);
@@ -83,6 +80,6 @@ int main(int argc, char** argv) {
     summary.set("noise", noise_tables.md_noise);
   }
   summary.set("wall_seconds", study::seconds_since(t0), 3);
-  summary.write(out);
+  summary.write(cli.out);
   return 0;
 }

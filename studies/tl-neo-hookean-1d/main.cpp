@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "common/cli.hpp"
 #include "common/reference_t11_table.hpp"
 #include "common/study.hpp"
 #include "hyperbolicity.hpp"
@@ -32,21 +33,18 @@ using namespace nh1d;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
-  CLI::App app{"Ismail 2009 §5.3: finite-strain TL SPH of a 1D Neo-Hookean bar stretched to 6"};
-  std::string out = "results/tl-neo-hookean-1d";
+  study::DriverCli cli{"Ismail 2009 §5.3: finite-strain TL SPH of a 1D Neo-Hookean bar stretched to 6",
+                       "results/tl-neo-hookean-1d",
+                       "pipeline check: n = 40 free particles (the resolution runs at 20, 40, 80)"};
   int n = 100;
   double ramp_transits = 30, spread = 0.25;
-  app.add_option("--out", out, "output directory");
-  app.add_option("--n", n, "free particles")->check(CLI::Range(20, 2000));
-  app.add_option("--ramp", ramp_transits, "loading time in small-strain transit times L / c_L (Ismail: 30)")
+  cli.app.add_option("--n", n, "free particles")->check(CLI::Range(20, 2000));
+  cli.app.add_option("--ramp", ramp_transits, "loading time in small-strain transit times L / c_L (Ismail: 30)")
       ->check(CLI::PositiveNumber);
-  app.add_option("--spread", spread, "departure: max F - min F over the free particles above this")
+  cli.app.add_option("--spread", spread, "departure: max F - min F over the free particles above this")
       ->check(CLI::PositiveNumber);
-  bool quick = false;
-  app.add_flag("--quick", quick, "pipeline check: n = 40 free particles (the resolution runs at 20, 40, 80)");
-  CLI11_PARSE(app, argc, argv);
-  if (quick) n = 40;
-  fs::create_directories(out);
+  if (const auto exit = cli.parse(argc, argv)) return *exit;
+  if (cli.quick) n = 40;
   const auto t0 = study::Clock::now();
   const fs::path here = SPHSTAB_STUDY_DIR;
   const std::vector<study::TableRow> table = study::read_table((here / "reference_t11_table.csv").string());
@@ -58,9 +56,10 @@ int main(int argc, char** argv) {
   summary.set("spread", spread, 3);
 
   // 1. and 2. per nu: the quasi-static runs at every ramp, then static, dynamic (--ramp), analytic and thesis T11
-  CsvWriter tcsv(out + "/table.csv", {"nu", "lambda1", "t11_thesis_over_mu", "t11_analytic_over_mu",
-                                      "t11_static_sph_over_mu", "t11_dynamic_sph_over_mu", "dynamic_relative_error"});
-  CsvWriter rcsv(out + "/ramps.csv",
+  CsvWriter tcsv(cli.out + "/table.csv",
+                 {"nu", "lambda1", "t11_thesis_over_mu", "t11_analytic_over_mu", "t11_static_sph_over_mu",
+                  "t11_dynamic_sph_over_mu", "dynamic_relative_error"});
+  CsvWriter rcsv(cli.out + "/ramps.csv",
                  {"nu", "ramp_transits", "t_load_us", "dt_ns", "steps", "spread_at_3.5", "departure_lambda", "end"});
   std::vector<double> ramps{ramp_transits, 100, 300, 1000};
   std::sort(ramps.begin(), ramps.end());
@@ -74,7 +73,7 @@ int main(int argc, char** argv) {
     std::cout << "nu = " << nu << ": c_L = " << bar.c_l() << " m/s, m1 = " << bar.m1 << "\n";
     QuasiStaticRun run;
     for (double r : ramps) {
-      const QuasiStaticRun q = quasi_static_run(bar, nu, r, stretches, spread, out);
+      const QuasiStaticRun q = quasi_static_run(bar, nu, r, stretches, spread, cli.out);
       std::cout << "  ramp " << r << ": " << q.steps << " steps, " << q.end << ", departure at lambda = " << q.departure
                 << "\n";
       rcsv.row({nu, r, q.t_load * 1e6, q.dt * 1e9, q.steps, q.spread_before, q.departure, q.end});
@@ -111,11 +110,11 @@ int main(int argc, char** argv) {
   // resolution: the departure at the slowest ramp for n / 2, n, 2 n (nu = 0.49)
   {
     std::string md_res;
-    CsvWriter ncsv(out + "/resolution.csv", {"n", "ramp_transits", "spread_at_3.5", "departure_lambda", "end"});
+    CsvWriter ncsv(cli.out + "/resolution.csv", {"n", "ramp_transits", "spread_at_3.5", "departure_lambda", "end"});
     for (int nr : {n / 2, n, 2 * n}) {
       Bar bar(nr, 0.49);
       const QuasiStaticRun q =
-          quasi_static_run(bar, 0.49, ramps.back(), stretches, spread, out, "_n" + std::to_string(nr));
+          quasi_static_run(bar, 0.49, ramps.back(), stretches, spread, cli.out, "_n" + std::to_string(nr));
       std::cout << "  n = " << nr << ", ramp " << ramps.back() << ": departure at lambda = " << q.departure << "\n";
       ncsv.row({nr, ramps.back(), q.spread_before, q.departure, q.end});
       study::md_row(md_res, {std::to_string(nr), study::sig(ramps.back(), 4), study::sig(q.spread_before, 2),
@@ -140,8 +139,8 @@ int main(int argc, char** argv) {
     summary.set("f_tangent_residual", std::abs(residual) / lam, 2);
     std::cout << "tangent dP/dF = 0 at F = " << f1 << " and " << f2 << "\n";
     // SPH: A(lambda) on a grid, then the engine's crossing
-    CsvWriter hcsv(out + "/hyperbolicity.csv", {"lambda_imposed", "F_sph", "tangent_over_modulus",
-                                                "mu_min_over_mu_min_rest", "mu_max_over_mu_max_rest"});
+    CsvWriter hcsv(cli.out + "/hyperbolicity.csv", {"lambda_imposed", "F_sph", "tangent_over_modulus",
+                                                    "mu_min_over_mu_min_rest", "mu_max_over_mu_max_rest"});
     const auto rest = symmetric_eigen(bar.jacobian_at(1.0)).values;
     double lo = 1, hi = std::nan("");
     for (double l = 1.0; l <= 7.0 + 1e-9; l += 0.05) {
@@ -164,6 +163,6 @@ int main(int argc, char** argv) {
               << "), |F - F_tangent| = " << std::abs(f_sph - f1) << "\n";
   }
   summary.set("wall_seconds", study::seconds_since(t0), 3);
-  summary.write(out);
+  summary.write(cli.out);
   return 0;
 }

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "common/cli.hpp"
 #include "common/reference_t11_table.hpp"
 #include "common/study.hpp"
 #include "sphstab/forms/finite_strain_total_lagrangian.hpp"
@@ -75,18 +76,15 @@ struct Case {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Ismail 2009 §5.4.3: 31 x 6 Neo-Hookean block stretched to lambda_1 = 6 (plane strain)"};
-  std::string out = "results/tl-neo-hookean-2d";
+  study::DriverCli cli{"Ismail 2009 §5.4.3: 31 x 6 Neo-Hookean block stretched to lambda_1 = 6 (plane strain)",
+                       "results/tl-neo-hookean-2d",
+                       "pipeline check: loading over 10 transit times instead of --ramp (same block)"};
   double ramp_transits = 30, nu = 0.3;
-  app.add_option("--out", out, "output directory");
-  app.add_option("--ramp", ramp_transits, "loading time in small-strain transit times (31 dx) / c_L")
+  cli.app.add_option("--ramp", ramp_transits, "loading time in small-strain transit times (31 dx) / c_L")
       ->check(CLI::PositiveNumber);
-  app.add_option("--nu", nu, "Poisson's ratio")->check(CLI::Range(0.0, 0.4999));
-  bool quick = false;
-  app.add_flag("--quick", quick, "pipeline check: loading over 10 transit times instead of --ramp (same block)");
-  CLI11_PARSE(app, argc, argv);
-  if (quick) ramp_transits = 10;
-  fs::create_directories(out);
+  cli.app.add_option("--nu", nu, "Poisson's ratio")->check(CLI::Range(0.0, 0.4999));
+  if (const auto exit = cli.parse(argc, argv)) return *exit;
+  if (cli.quick) ramp_transits = 10;
   const auto t0 = study::Clock::now();
   const Kernel<2> kernel(KernelType::ModifiedMollifier);
   const double h = kHOverDx * kDx;
@@ -134,8 +132,8 @@ int main(int argc, char** argv) {
   // the reference table (nu = 0.3 only): (lambda2, lambda1) -> T11 / mu
   const std::vector<study::TableRow> reference =
       study::read_table((fs::path(SPHSTAB_STUDY_DIR) / "reference_t11_table.csv").string());
-  CsvWriter tcsv(out + "/table.csv", {"case", "lambda1", "lambda2", "t11_notes_over_mu", "t11_analytic_over_mu",
-                                      "t11_sph_over_mu", "relative_error", "F22_centre"});
+  CsvWriter tcsv(cli.out + "/table.csv", {"case", "lambda1", "lambda2", "t11_notes_over_mu", "t11_analytic_over_mu",
+                                          "t11_sph_over_mu", "relative_error", "F22_centre"});
   std::string md, md_end;
   for (const Case& c : cases) {
     SecondOrderSystem sys;
@@ -156,7 +154,7 @@ int main(int argc, char** argv) {
     sys.set_time(0);
     LeapfrogStepper stepper(sys, Eigen::VectorXd::Zero(tl.dofs()), Eigen::VectorXd::Zero(tl.dofs()));
     CsvWriter hcsv(
-        out + "/history_case" + std::to_string(c.id) + ".csv",
+        cli.out + "/history_case" + std::to_string(c.id) + ".csv",
         {"t_us", "lambda1", "lambda2", "F11_centre", "F22_centre", "t11_sph_over_mu", "t11_analytic_over_mu"}, false);
     std::vector<double> at(stretches.size(), std::nan("")), f22_at(stretches.size(), std::nan(""));
     const long nsteps = static_cast<long>(std::ceil(t_load / dt));
@@ -217,6 +215,6 @@ int main(int argc, char** argv) {
   summary.set("table", md);
   summary.set("ends", md_end);
   summary.set("wall_seconds", study::seconds_since(t0), 3);
-  summary.write(out);
+  summary.write(cli.out);
   return 0;
 }

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "case_table.hpp"
+#include "common/cli.hpp"
 #include "common/study.hpp"
 #include "dynamic_load.hpp"
 #include "plate_cases.hpp"
@@ -25,39 +26,37 @@ using namespace plate_hole;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
-  CLI::App app{"Issue 11 / Ismail 2009 §5.4.4: plate with a hole (quarter), static TL SPH against Kirsch"};
-  std::string out = "results/tl-plate-hole";
+  study::DriverCli cli{
+      "Issue 11 / Ismail 2009 §5.4.4: plate with a hole (quarter), static TL SPH against Kirsch",
+      "results/tl-plate-hole",
+      "pipeline check: static runs at a/dx = 4 (the resolution study also 8, the width W/a = 10 only), the "
+      "suddenly applied load at a/dx = 4 only, over 2 transit times"};
   double c_hg = 0;
   int finest = 32;
   double transits = 6;
-  app.add_option("--out", out, "output directory");
-  app.add_option("--hourglass", c_hg, "hourglass coefficient c_HG (0 = off)")->check(CLI::NonNegativeNumber);
-  app.add_option("--finest", finest, "finest a/dx of the resolution study (4, 8, 16, ...)")->check(CLI::Range(4, 64));
-  app.add_option("--transits", transits, "length of the dynamic runs in shear transit times W / c_s")
+  cli.app.add_option("--hourglass", c_hg, "hourglass coefficient c_HG (0 = off)")->check(CLI::NonNegativeNumber);
+  cli.app.add_option("--finest", finest, "finest a/dx of the resolution study (4, 8, 16, ...)")
+      ->check(CLI::Range(4, 64));
+  cli.app.add_option("--transits", transits, "length of the dynamic runs in shear transit times W / c_s")
       ->check(CLI::PositiveNumber);
-  bool quick = false;
-  app.add_flag("--quick", quick,
-               "pipeline check: static runs at a/dx = 4 (the resolution study also 8, the width W/a = 10 only), the "
-               "suddenly applied load at a/dx = 4 only, over 2 transit times");
-  CLI11_PARSE(app, argc, argv);
-  if (quick) transits = 2;
-  fs::create_directories(out);
+  if (const auto exit = cli.parse(argc, argv)) return *exit;
+  if (cli.quick) transits = 2;
   const auto t0 = study::Clock::now();
 
   // ---- 1. Static runs (Newton): resolution and width against Kirsch, Ismail's case with Hooke and Neo-Hookean. ----
-  CsvWriter csv = cases_csv(out);
+  CsvWriter csv = cases_csv(cli.out);
   PlateSummary tables;
-  for (const Run& run : quick ? quick_static_runs() : static_runs(finest)) {
-    const Outcome o = solve(run, c_hg, out);
+  for (const Run& run : cli.quick ? quick_static_runs() : static_runs(finest)) {
+    const Outcome o = solve(run, c_hg, cli.out);
     write_case(csv, run, o);
     tables.add_static(run, o);
   }
 
   // ---- 2. Dynamic runs: the suddenly applied load. ----
   // the suddenly applied load (Ismail's "dynamically from rest") on his 21 x 21-like grid and at twice the resolution
-  for (int n : quick ? std::vector<int>{4} : std::vector<int>{4, 8}) {
+  for (int n : cli.quick ? std::vector<int>{4} : std::vector<int>{4, 8}) {
     const Run run = dynamic_run(n);
-    tables.add_dynamic(run, dynamic_step(run, c_hg, transits, out));
+    tables.add_dynamic(run, dynamic_step(run, c_hg, transits, cli.out));
   }
 
   // ---- 3. Key numbers for summary.md.in. ----
@@ -68,6 +67,6 @@ int main(int argc, char** argv) {
   summary.set("heywood5", heywood_gross_concentration(1, 5), 4);
   summary.set("wall_seconds", study::seconds_since(t0), 3);
   summary.set("load", study::load_average());
-  summary.write(out);
+  summary.write(cli.out);
   return 0;
 }

@@ -1,0 +1,42 @@
+#pragma once
+/// \file cli.hpp
+/// The command line a study driver starts with, the same in every driver that uses it: CLI11's app, --out (the output
+/// directory, first in --help, created once parsed) and --quick (the study's test case, last in --help), parsed as
+/// CLI11_PARSE parses.
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <utility>
+
+namespace sphstab::study {
+
+/// The app, its --out and its --quick. A driver adds its own options to `app` between the two.
+struct DriverCli {
+  CLI::App app;
+  std::string out;
+  bool quick = false;
+  std::string quick_help;
+
+  /// The app described by `description`, with --out (default `default_out`) as its first option; `quick_help` is what
+  /// --help says of --quick.
+  DriverCli(std::string description, std::string default_out, std::string quick_help)
+      : app{std::move(description)}, out{std::move(default_out)}, quick_help{std::move(quick_help)} {
+    app.add_option("--out", out, "output directory");
+  }
+
+  /// Adds --quick, parses the command line and creates the directory --out. Returns the exit code of the app after
+  /// --help or a command-line error (the message and code of CLI11_PARSE; nothing created), else none.
+  std::optional<int> parse(int argc, char** argv) {
+    app.add_flag("--quick", quick, quick_help);
+    try {
+      app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+      return app.exit(e);
+    }
+    std::filesystem::create_directories(out);
+    return std::nullopt;
+  }
+};
+
+}  // namespace sphstab::study
