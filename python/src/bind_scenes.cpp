@@ -14,6 +14,7 @@
 #include "sphstab/integrate/rate_form_run.hpp"
 #include "sphstab/integrate/run.hpp"
 #include "sphstab/integrate/run_observer.hpp"
+#include "sphstab/integrate/scene_run.hpp"
 #include "sphstab/problems/gms_scenes.hpp"
 #include "sphstab/problems/powell_impact.hpp"
 #include "sphstab/problems/scene.hpp"
@@ -73,16 +74,18 @@ class PythonObserver final : public RunObserver {
 
 RateFormRunResult run_scene(const Scene2& s, double dt, double cfl, double t_end, const std::string& integrator,
                             int record_every, double energy_growth, double xsph, py::object observer) {
-  RateFormRunOptions o;
   if (!std::isnan(dt) && !std::isnan(cfl)) throw std::invalid_argument("run: give dt or cfl, not both");
-  o.dt = !std::isnan(dt) ? dt : s.time_step(std::isnan(cfl) ? 0.5 : cfl);
-  o.t_end = std::isnan(t_end) ? s.t_end : t_end;
+  RateFormRunOptions o = scene_run_options(s);  // the scene's step rule, integrator and XSPH (integrate/scene_run.hpp)
+  if (!std::isnan(dt)) o.dt = dt;
+  if (!std::isnan(cfl)) o.dt = s.time_step(cfl);
+  if (!std::isnan(t_end)) o.t_end = t_end;
   o.record_every = record_every;
   o.energy_growth = energy_growth;
-  o.yield_stress = s.yield_stress;
-  o.neighbour_skin = s.neighbour_skin;
-  select_rate_form_integrator(o, integrator);
-  o.leapfrog_xsph = xsph;  // run_rate_form refuses it off the leap-frog, or negative
+  if (integrator != "auto") {
+    select_rate_form_integrator(o, integrator);
+    if (o.integrator != RateFormIntegrator::Leapfrog) o.leapfrog_xsph = 0;  // Powell's (2.71) is the leap-frog's
+  }
+  if (!std::isnan(xsph)) o.leapfrog_xsph = xsph;  // run_rate_form refuses it off the leap-frog, or negative
   std::optional<PythonObserver> py_observer;
   if (!observer.is_none()) {
     if (!PyCallable_Check(observer.ptr())) throw std::invalid_argument("run: observer must be callable");
@@ -109,6 +112,9 @@ void bind_scenes(py::module_& m) {
       .def_readonly("t_end", &Scene2::t_end)
       .def_readonly("yield_stress", &Scene2::yield_stress)
       .def_readonly("neighbour_skin", &Scene2::neighbour_skin)
+      .def_readonly("integrator", &Scene2::integrator, "the default integrator: pc, pc1 or leapfrog")
+      .def_readonly("leapfrog_xsph", &Scene2::leapfrog_xsph)
+      .def_readonly("cfl", &Scene2::cfl, "the default time step is time_step(cfl)")
       .def_property_readonly("particles", [](const Scene2& s) { return s.scheme->discretisation().size(); })
       .def_property_readonly("h", [](const Scene2& s) { return s.scheme->discretisation().h; })
       .def_property_readonly("scheme_options", [](const Scene2& s) { return s.scheme->options(); })
@@ -191,8 +197,8 @@ void bind_scenes(py::module_& m) {
       py::arg("problem"), py::arg("spacing") = 0.02, py::arg("formulation") = "ssph",
       py::arg("speed") = std::nan(""), py::arg("t_end") = std::nan(""),
       "Powell 2012 ch. 4 §4: 'symmetric', 'bar' or 'beam' in g-cm-us (steel), with MCM's rate form 'sph', 'ncsph' "
-      "or 'ssph' (speed, t_end: NaN for the problem's defaults). Run it as Powell did: run(scene, cfl=0.8, "
-      "integrator='leapfrog', xsph=0.1).");
+      "or 'ssph' (speed, t_end: NaN for the problem's defaults). run(scene) runs it as Powell did (the scene's "
+      "defaults: leap-frog, XSPH (2.71) 0.1, cfl 0.8).");
 
   py::class_<RateFormRunResult>(m, "RunResult", "A run's outcome (integrate/run.hpp): status, series, last state.")
       .def_property_readonly("status", [](const RateFormRunResult& r) { return run_status_name(r.status); })
@@ -206,12 +212,14 @@ void bind_scenes(py::module_& m) {
       .def_readonly("kinetic_energy", &RateFormRunResult::kinetic_energy)
       .def_readonly("y", &RateFormRunResult::y);
   m.def("run", &run_scene, py::arg("scene"), py::arg("dt") = std::nan(""), py::arg("cfl") = std::nan(""),
-        py::arg("t_end") = std::nan(""), py::arg("integrator") = "pc", py::arg("record_every") = 1,
-        py::arg("energy_growth") = std::numeric_limits<double>::infinity(), py::arg("xsph") = 0.0,
+        py::arg("t_end") = std::nan(""), py::arg("integrator") = "auto", py::arg("record_every") = 1,
+        py::arg("energy_growth") = std::numeric_limits<double>::infinity(), py::arg("xsph") = std::nan(""),
         py::arg("observer") = py::none(),
-        "Runs a scene with the run loop (run_rate_form): dt, or cfl (default 0.5) times h / c_P; t_end (default the "
-        "scene's); integrator 'pc', 'pc1' or 'leapfrog' (xsph: Powell's velocity smoothing (2.71) on the leap-frog); "
-        "observer(step, time, y) at every record, a truthy return (or a reason string) stops the run.");
+        "Runs a scene with the run loop (run_rate_form) as `sphstab scene` runs it: dt, or cfl times h / c_P (default "
+        "the scene's cfl); t_end (default the scene's); integrator 'auto' (the scene's: pc1 for GMS's plate and rings, "
+        "pc for the slab, leapfrog for Powell's impacts), 'pc', 'pc1' or 'leapfrog'; xsph: Powell's velocity "
+        "smoothing (2.71) on the leap-frog (default the scene's: 0.1 for the impacts); observer(step, time, y) at "
+        "every record, a truthy return (or a reason string) stops the run.");
 }
 
 }  // namespace sphstab::python

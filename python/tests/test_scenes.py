@@ -13,6 +13,7 @@ def test_rings_run_equals_the_cli_scene(cli):
     assert rc == 0, err
     rows = [r for r in csv_rows(out) if r["status"] == ""]  # the last row is the run's status
     scene = sphstab.gms_rings_scene(spacing=0.5)
+    assert scene.integrator == "pc1"  # one rate evaluation per step (results/gms-pc1), as the CLI's default
     r = sphstab.run(scene, cfl=0.5, t_end=3.0, record_every=1)
     assert r.status == "completed"
     assert len(r.times) == len(rows)
@@ -31,6 +32,9 @@ def test_powell_bar_impact_equals_the_cli_scene(cli):
     r = sphstab.run(scene, cfl=0.8, integrator="leapfrog", xsph=0.1)
     assert r.status == "completed"
     assert np.array_equal(np.array(r.kinetic_energy), np.array([float(x["kinetic"]) for x in rows]))
+    # and these are the scene's own defaults (integrate/scene_run.hpp), which run(scene) takes
+    assert (scene.integrator, scene.leapfrog_xsph, scene.cfl) == ("leapfrog", 0.1, 0.8)
+    assert np.array_equal(np.array(sphstab.run(scene).kinetic_energy), np.array(r.kinetic_energy))
     with pytest.raises(ValueError, match="clamp"):
         sphstab.powell_impact_scene("beam", spacing=0.03)
     with pytest.raises(ValueError, match="formulation"):

@@ -184,6 +184,10 @@ Scene<2> powell_impact_scene(const PowellImpactOptions& options) {
                                                  : "clamped-beam";
   s.spacing = dx;
   s.t_end = o.t_end;
+  // as the MCM deck runs them: Powell's leap-frog [Powell2012, algorithm 1.1] with XSPH (2.71) 0.1, TSSFAC 0.8
+  s.integrator = "leapfrog";
+  s.leapfrog_xsph = 0.1;
+  s.cfl = 0.8;
   const Kernel<2> kernel(KernelType::CubicSpline);
   s.scheme = std::make_shared<RateFormScheme<2>>(make_discretisation(std::move(p), kernel, o.h_over_dx * dx),
                                                  o.material, o.scheme);

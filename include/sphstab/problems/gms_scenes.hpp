@@ -27,14 +27,16 @@ struct GmsSceneOptions {
 };
 
 /// §7.1: the plate of make_cantilever_plate, its free particles started with the first clamped-free mode's velocity of
-/// tip speed `tip_speed` ((7.3)-(7.4), cantilever_mode_velocity). Run length 1.25 thin-plate periods. Measure
+/// tip speed `tip_speed` ((7.3)-(7.4), cantilever_mode_velocity). Integrator "pc1" (one rate evaluation per step:
+/// results/gms-pc1). Run length 1.25 thin-plate periods. Measure
 /// "tip_deflection": the mean y displacement of the particles within dp of the tip.
 Scene<2> gms_plate_scene(const CantileverPlateOptions& plate, double tip_speed, const GmsSceneOptions& options = {});
 
 /// The run lengths of GMS's rings (§7.2) and slab (§7.3), GMS units.
 inline constexpr double kGmsRingsRunLength = 100, kGmsSlabRunLength = 200;
 
-/// §7.2: the rings of make_colliding_rings at their speeds. Run length kGmsRingsRunLength. Measure "ring_fragments":
+/// §7.2: the rings of make_colliding_rings at their speeds. Integrator "pc1" (results/gms-pc1). Run length
+/// kGmsRingsRunLength. Measure "ring_fragments":
 /// the larger of the two rings' fragment counts (bond-graph fragments, bonds < 1.5 dp; analysis/fragments.hpp).
 Scene<2> gms_rings_scene(const CollidingRingsOptions& rings, const GmsSceneOptions& options = {});
 

@@ -6,11 +6,12 @@
 /// studies build a scene here and run it with the run loop (integrate/run.hpp, run_rate_form), so a scene is set up
 /// once.
 ///
+/// A scene also says how it is stepped unless the caller chooses otherwise (integrator, Powell's XSPH, CFL number);
+/// integrate/scene_run.hpp turns that into the run's options, so the CLI and Python run a scene the same way.
+///
 /// \code{.cpp}
 /// sphstab::Scene<2> s = sphstab::gms_rings_scene({.spacing = 0.2});
-/// sphstab::RateFormRunOptions o{.dt = s.time_step(0.5), .t_end = s.t_end, .yield_stress = s.yield_stress,
-///                               .neighbour_skin = s.neighbour_skin};
-/// const auto r = sphstab::run_rate_form(*s.scheme, s.y0, o);
+/// const auto r = sphstab::run_rate_form(*s.scheme, s.y0, sphstab::scene_run_options(s));  // integrate/scene_run.hpp
 /// const double fragments = s.measures.front().value(sphstab::rate_form_positions(*s.scheme, r.y), r.y);
 /// \endcode
 #include <Eigen/Core>
@@ -42,6 +43,11 @@ struct Scene {
   double yield_stress = std::numeric_limits<double>::infinity();  ///< von Mises Y of the run (+inf: elastic)
   double neighbour_skin = 0;                      ///< Verlet skin the run needs (bodies that move by many h), a length
   std::vector<SceneMeasure<Dim>> measures;        ///< the case's own measures (the first is its headline)
+  /// The default integrator, by the names of select_rate_form_integrator: "pc" (GMS's predictor-corrector, two rate
+  /// evaluations per step), "pc1" (one per step) or "leapfrog".
+  std::string integrator = "pc";
+  double leapfrog_xsph = 0;  ///< Powell's XSPH (2.71) epsilon of the leap-frog (0: off)
+  double cfl = 0.5;          ///< the default time step is time_step(cfl)
 
   /// dt = cfl h / c_P (the CFL rule of the scheme's P-wave speed); throws std::invalid_argument for cfl <= 0.
   double time_step(double cfl) const;
