@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <random>
 #include <string>
 #include <utility>
 #include <vector>
@@ -81,10 +82,22 @@ inline SlabRun run_slab(const SlabCase& c, const std::string& out, std::vector<F
   r.h = 1.5 * c.dp;
   const Kernel<2> kernel(KernelType::CubicSpline);
   const ElasticMaterial mat = ElasticMaterial::from_bulk_shear(1, kMu, 1);
-  const Scene<2> scene = gms_slab_scene({.spacing = c.dp, .end_zone = kEndZone, .acceleration = kAcceleration}, kYield,
-                                        {.material = mat, .scheme = row_loop(gms_scheme_options(c.eps))});
+  const Scene<2> scene = gms_slab_scene(
+      {.spacing = c.dp, .end_zone = kEndZone, .acceleration = kAcceleration}, kYield,
+      {.material = mat, .scheme = c.pair_loop ? gms_scheme_options(c.eps) : row_loop(gms_scheme_options(c.eps))});
   const RateFormScheme<2>& scheme = *scene.scheme;
   Eigen::VectorXd y = scene.y0;
+  if (c.perturbation > 0) {  // the free particles only: the driven ends keep their prescribed motion
+    std::mt19937_64 rng(c.seed);
+    std::uniform_real_distribution<double> u(-c.perturbation * c.dp, c.perturbation * c.dp);
+    std::vector<char> driven(scheme.discretisation().size(), 0);
+    for (int i : slab.driven) driven[i] = 1;
+    for (int i = 0; i < scheme.discretisation().size(); ++i) {
+      const int xo = scheme.position_offset(i);
+      if (xo < 0 || driven[i]) continue;
+      for (int a = 0; a < 2; ++a) y[xo + a] += u(rng);
+    }
+  }
   double right0 = 0;
   for (int i : slab.right_end) right0 += slab.particles.x(i, 0) / slab.right_end.size();
 
