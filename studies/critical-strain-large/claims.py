@@ -40,8 +40,9 @@ def claim_routes_agree(r):
     sc = r.csv("scipy_eigsh.csv")
     for x in sc:
         check(x["status"] == "successful", f"{x.where()}: eigsh {x['status']}")
+        # the e_crit columns carry 15 significant digits: their ratio resolves a difference to ~2e-15
         approx(x["rel_diff"], abs(x["e_crit_lobpcg"] / x["e_crit_eigsh"] - 1), f"{x.where()} rel_diff", rel=0.01,
-               abs_=1e-16)
+               abs_=2e-15)
         check(x["rel_diff"] <= 2e-12, f"{x.where()}: LOBPCG vs eigsh {x['rel_diff']:.3g}")
         check(x["eigs_above_upper"] == 0 and x["eigs_above_lower"] == 2,
               f"{x.where()}: inertia {x['eigs_above_upper']} / {x['eigs_above_lower']}")
@@ -70,19 +71,19 @@ def claim_steps_independent_of_n(r):
 
 def claim_cost_linear_in_dofs(r):
     """Cost exponents (least squares of log wall time on log DOFs, n = 128-1000): solve, total and linearisation all in
-    N^0.85-1.05 on 1 and on 2 threads (issue 13: total <= N^1.2), as summary.md types them (2 decimals); peak RSS is
-    the same on 1 and 2 threads (within 3 %) and 0.40 kB per DOF at n = 1000 (by-offset storage; per pair 0.86, the
-    Storage section); 2 threads are only 1.1-1.4x faster than 1 at n >= 256 in this run (load average 5.7-6 before
-    the cases: the second core was busy with other jobs).
-    SciPy's eigsh, in contrast, grows like N^1.6-1.8 (n >= 64) and takes 3x-35x the LOBPCG's time, the ratio growing
-    with n."""
+    N^0.80-1.05 on 1 and on 2 threads (issue 13: total <= N^1.2), as summary.md types them (2 decimals); peak RSS is
+    the same on 1 and 2 threads up to the second thread's stack and transform buffers (<= 3 MB + 40 bytes per site) and 0.40 kB per DOF at n = 1000 (by-offset storage; per pair 0.86, the
+    Storage section); 2 threads are only 1.3-1.6x faster than 1 at n >= 256 in the run of 2026-12-07 (load average
+    about 1.1 before the cases, the machine otherwise quiet; 1.1-1.4x in the run before, at load 5.7-6).
+    SciPy's eigsh, in contrast, grows like N^1.6-1.9 (n >= 64; 1.72 in the run of 2026-12-06, 1.82 in that of
+    2026-12-07) and takes 3x-200x the LOBPCG's time, the ratio growing with n."""
     out = []
     for th in (1, 2):
         rows = [x for x in _default(r, th) if x["n"] >= 128]
         dofs = [x["dofs"] for x in rows]
         fit = {c: _slope(dofs, [x[c] for x in rows]) for c in ("solve_s", "total_s", "linearisation_s")}
         for c, p in fit.items():
-            check(0.85 <= p <= 1.05, f"{th} thread(s): {c} ~ N^{p:.3f}")
+            check(0.80 <= p <= 1.05, f"{th} thread(s): {c} ~ N^{p:.3f}")
         m = [float(v) for v in r.stated(rf"\*\*Cost exponent\*\* \({th} thread\(s\), .*?: (solve N\^[\d.]+, total "
                                         rf"N\^[\d.]+, linearisation N\^[\d.]+)", convert=False)
              .replace("solve N^", "").replace(" total N^", "").replace(" linearisation N^", "").split(",")]
@@ -91,11 +92,14 @@ def claim_cost_linear_in_dofs(r):
         out.append(f"{th} thread(s): total N^{fit['total_s']:.2f}")
     for a, b in zip(_default(r, 1), _default(r, 2)):
         check(a["n"] == b["n"], f"{b.where()}: 1- and 2-thread rows out of step")
-        approx(b["peak_rss_MB"], a["peak_rss_MB"], f"{b.where()} peak RSS on 2 threads against 1 (MB)",
-               rel=0.03, abs_=1.5)
+        # the second thread adds its stack (a few MB) and its transform buffers: the complex n x n field of the
+        # sine-transform preconditioner and FFTW's, up to 40 bytes per lattice site
+        extra = b["peak_rss_MB"] - a["peak_rss_MB"]
+        check(-0.03 * a["peak_rss_MB"] <= extra <= 3.0 + 40e-6 * a["n"] ** 2,
+              f"{b.where()}: peak RSS on 2 threads {b['peak_rss_MB']} MB, on 1 {a['peak_rss_MB']} MB")
         if a["n"] >= 256:
             s = a["total_s"] / b["total_s"]
-            check(1.1 <= s <= 1.4, f"n = {a['n']}: 2 threads {s:.3g}x faster than 1")
+            check(1.3 <= s <= 1.6, f"n = {a['n']}: 2 threads {s:.3g}x faster than 1")
     top = _default(r, 1)[-1]
     approx(top["peak_rss_MB"] * 1e3 / top["dofs"], 0.40, f"{top.where()} kB per DOF", abs_=0.02)
     pp = one(r.csv("results.csv"), variant="--storage per-pair", n=top["n"], threads=1)
@@ -103,10 +107,10 @@ def claim_cost_linear_in_dofs(r):
     sc = sorted(r.csv("scipy_eigsh.csv"), key=lambda x: x["n"])
     big = [x for x in sc if x["n"] >= 64]
     e = _slope([x["dofs"] for x in big], [x["eigsh_s"] for x in big])
-    check(1.6 <= e <= 1.8, f"eigsh time ~ N^{e:.3f}")
+    check(1.6 <= e <= 1.9, f"eigsh time ~ N^{e:.3f}")
     approx(r.stated(r"\*\*eigsh cost\*\* .*?: time N\^([\d.]+)"), e, "summary.md eigsh exponent", abs_=0.0051)
     ratios = [1 / x["ratio_lobpcg_eigsh"] for x in sc]
-    check(all(a < b for a, b in zip(ratios, ratios[1:])) and 2.5 <= ratios[0] and ratios[-1] <= 40,
+    check(all(a < b for a, b in zip(ratios, ratios[1:])) and 2.5 <= ratios[0] and ratios[-1] <= 200,
           f"eigsh / LOBPCG time {ratios}")
     return "; ".join(out) + f"; eigsh N^{e:.2f}, {ratios[0]:.2g}-{ratios[-1]:.3g}x the LOBPCG"
 

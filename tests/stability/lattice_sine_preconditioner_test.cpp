@@ -10,6 +10,7 @@
 #include <iostream>
 #include <numbers>
 
+#include "sphstab/particles/lattice.hpp"
 #include "sphstab/particles/lattice_presets.hpp"
 #include "sphstab/stability/lattice_stencil.hpp"
 
@@ -166,6 +167,47 @@ TEST(LatticeSinePreconditioner, EqualsTheDenseSineTransformReference) {
   }
 }
 
+TEST(LatticeSinePreconditioner, ThreeDimensionalApplicationEqualsTheDenseSineTransformReference) {
+  // 3D: the Dim b = 9 real fields of a 3-column block go through the transforms two at a time as one complex field,
+  // so pairs join components of different columns (x and y of column 0, z of column 0 with x of column 1, ...) and
+  // the ninth field goes alone. Columns of very different size check that a field's round-off stays relative to
+  // the block. Reference: per component c, (S (x) S (x) S) diag(eigenvalue) (S (x) S (x) S), dense.
+  const Kernel<3> k(KernelType::CubicSpline);
+  const auto d =
+      make_discretisation(make_lattice<3>(LatticeType::Cubic, 11, {.support_radius = k.support_radius(1.3)}), k, 1.3);
+  const MatrixFreeLinearisation<3> lin(*d, kMaterial, MomentumForm::Conservative, PreStrainKind::Isotropic);
+  const LatticeStencil<3> st = probe_lattice_stencil(lin, LoadDirection::Tension);
+  const int n = 4, nn = n * n * n;
+  const LatticeSinePreconditioner<3> t(st, n);
+  const Eigen::MatrixXd s = dst1(n);
+  Eigen::MatrixXd s3(nn, nn);  // (S (x) S (x) S)_{(i + n j + n^2 k), (i' + n j' + n^2 k')}
+  for (int q = 0; q < nn; ++q)
+    for (int r = 0; r < nn; ++r) s3(q, r) = s(q % n, r % n) * s(q / n % n, r / n % n) * s(q / (n * n), r / (n * n));
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(3 * nn, 3 * nn);
+  for (int c = 0; c < 3; ++c) {
+    Eigen::VectorXd diag(nn);
+    for (int q = 0; q < nn; ++q) diag[q] = t.eigenvalue(c, q % n, q / n % n, q / (n * n));
+    const Eigen::MatrixXd tc = s3 * diag.asDiagonal() * s3;
+    for (int a = 0; a < nn; ++a)
+      for (int b = 0; b < nn; ++b) dense(3 * a + c, 3 * b + c) = tc(a, b);
+  }
+  Eigen::MatrixXd x = Eigen::MatrixXd::Random(3 * nn, 3), y(3 * nn, 3);
+  x.col(1) *= 1e6;
+  t.apply(x, y);
+  const Eigen::MatrixXd ref = dense * x;
+  const double rel = (y - ref).cwiseAbs().maxCoeff() / ref.cwiseAbs().maxCoeff();
+  EXPECT_LE(rel, 1e-12);
+  for (int v : {0, 2}) {  // the small columns, each against its own size
+    const double col = (y.col(v) - ref.col(v)).cwiseAbs().maxCoeff() / ref.col(v).cwiseAbs().maxCoeff();
+    EXPECT_LE(col, 1e-8) << "column " << v;
+    std::cout << "3D, column " << v << " (1e-6 of column 1): relative difference " << col << "\n";
+  }
+  // One column alone (3 fields: the z field alone) gives its column of the block within round-off.
+  Eigen::MatrixXd one(3 * nn, 1);
+  t.apply(x.col(2), one);
+  EXPECT_LE((one.col(0) - ref.col(2)).cwiseAbs().maxCoeff(), 1e-12 * ref.col(2).cwiseAbs().maxCoeff());
+}
+
 TEST(LatticeSinePreconditioner, RejectsBadInput) {
   auto d = lattice(LatticeType::Square, 12);
   const LatticeStencil st = probe_lattice_stencil(linearisation(*d), LoadDirection::Tension);
@@ -176,5 +218,5 @@ TEST(LatticeSinePreconditioner, RejectsBadInput) {
   EXPECT_THROW(t.apply(x, y), std::invalid_argument);
 }
 
-}  // namespace
+}  // namespace lattice_sine_preconditioner_test
 }  // namespace sphstab

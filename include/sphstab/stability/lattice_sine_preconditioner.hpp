@@ -20,9 +20,14 @@
 /// benchmarks/prototypes/lattice-preconditioner, n = 32-512): 32-54 iterations independent of n, margin 0.02-1 all
 /// converge.
 ///
-/// Cost per vector: 2 components x 2 two-dimensional DST-I of n x n (FFTW, O(n^2 log n)); memory: the 2 n^2 inverse
-/// symbol values plus one n x n buffer per thread. Threads (core/threads.hpp): the 2 b transforms of a block of b
-/// vectors run side by side, each on its own buffer (same bits for any thread count).
+/// Cost per vector: 2 two-dimensional DST-I of n x n (O(n^2 log n)): the two components of a vector are the real and
+/// imaginary parts of one complex field (the DST is real-linear), transformed line by line as complex DFTs of length
+/// 2 (n + 1) of the odd extension, 8 lines per batched FFTW plan, which runs FFTW's SIMD complex codelets: about 3
+/// times faster than FFTW's real RODFT00 of each component (measured in one process at n = 1000, 1 thread: 0.073 s ->
+/// 0.023 s for the 2D transform of both components; in 3D the 3 b fields of a block pair up in (column, component)
+/// order). Memory: the 2 n^2 inverse symbol values plus one complex n x n field and 8 extended lines per thread.
+/// Threads (core/threads.hpp): the pairs of fields of a block of b vectors run side by side, each on its own buffers
+/// (same bits for any thread count).
 ///
 /// \note The stencil may come from a larger lattice of the same kernel, h, material and form than the n of the
 ///       preconditioner (lattice_stencil.hpp needs n >= 11 at h = 1.3 dx).
