@@ -10,7 +10,6 @@
 
 #include "bindings.hpp"
 #include "sphstab/forms/rate_form_state.hpp"
-#include "sphstab/integrate/linear_step_map.hpp"
 #include "sphstab/integrate/rate_form_run.hpp"
 #include "sphstab/integrate/run.hpp"
 #include "sphstab/integrate/run_observer.hpp"
@@ -75,16 +74,13 @@ class PythonObserver final : public RunObserver {
 RateFormRunResult run_scene(const Scene2& s, double dt, double cfl, double t_end, const std::string& integrator,
                             int record_every, double energy_growth, double xsph, py::object observer) {
   if (!std::isnan(dt) && !std::isnan(cfl)) throw std::invalid_argument("run: give dt or cfl, not both");
-  RateFormRunOptions o = scene_run_options(s);  // the scene's step rule, integrator and XSPH (integrate/scene_run.hpp)
+  // the scene's step rule, integrator (unless chosen) and XSPH (integrate/scene_run.hpp), as `sphstab scene`
+  RateFormRunOptions o = scene_run_options(s, integrator);
   if (!std::isnan(dt)) o.dt = dt;
   if (!std::isnan(cfl)) o.dt = s.time_step(cfl);
   if (!std::isnan(t_end)) o.t_end = t_end;
   o.record_every = record_every;
   o.energy_growth = energy_growth;
-  if (integrator != "auto") {
-    select_rate_form_integrator(o, integrator);
-    if (o.integrator != RateFormIntegrator::Leapfrog) o.leapfrog_xsph = 0;  // Powell's (2.71) is the leap-frog's
-  }
   if (!std::isnan(xsph)) o.leapfrog_xsph = xsph;  // run_rate_form refuses it off the leap-frog, or negative
   std::optional<PythonObserver> py_observer;
   if (!observer.is_none()) {

@@ -35,7 +35,6 @@
 #include "sphstab/core/memory_budget.hpp"
 #include "sphstab/forms/rate_form.hpp"
 #include "sphstab/forms/rate_form_state.hpp"
-#include "sphstab/integrate/linear_step_map.hpp"
 #include "sphstab/integrate/rate_form_run.hpp"
 #include "sphstab/integrate/scene_run.hpp"
 #include "sphstab/io/csv.hpp"
@@ -171,15 +170,11 @@ void run_scene(const SceneArgs& a) {
   const double bond = 1.5 * sc.spacing;
   const SceneMeasure<2>& measure = sc.measures.front();
   std::printf("%s", csv_line({"step", "t", "kinetic", "fragments", measure.name, "status", "particle"}).c_str());
-  RateFormRunOptions o = scene_run_options(sc);  // the scene's integrator (integrate/scene_run.hpp)
+  RateFormRunOptions o = scene_run_options(sc, a.integrator);  // the scene's integrator unless chosen
   o.dt = dt;
   o.t_end = t_end;
   o.record_every = every;
   o.neighbour_skin = skin;
-  if (a.integrator != "auto") {
-    select_rate_form_integrator(o, a.integrator);
-    if (o.integrator != RateFormIntegrator::Leapfrog) o.leapfrog_xsph = 0;  // Powell's (2.71) is the leap-frog's
-  }
   o.observer = [&](long step, double t, const Eigen::VectorXd& y) {
     const Eigen::Matrix2Xd x = rate_form_positions(scheme, y);
     std::printf("%s", csv_line({std::to_string(step), num(t), num(scheme.kinetic_energy(y)),

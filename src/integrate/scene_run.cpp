@@ -5,17 +5,17 @@
 namespace sphstab {
 
 template <int Dim>
-RateFormRunOptions scene_run_options(const Scene<Dim>& s) {
+RateFormRunOptions scene_run_options(const Scene<Dim>& s, const std::string& integrator) {
   RateFormRunOptions o{.dt = s.time_step(s.cfl),
                        .t_end = s.t_end,
                        .yield_stress = s.yield_stress,
                        .neighbour_skin = s.neighbour_skin};
-  select_rate_form_integrator(o, s.integrator);
-  o.leapfrog_xsph = s.leapfrog_xsph;
+  select_rate_form_integrator(o, integrator == "auto" ? s.integrator : integrator);
+  o.leapfrog_xsph = o.integrator == RateFormIntegrator::Leapfrog ? s.leapfrog_xsph : 0.0;
   return o;
 }
 
-template RateFormRunOptions scene_run_options(const Scene<1>&);
-template RateFormRunOptions scene_run_options(const Scene<2>&);
+template RateFormRunOptions scene_run_options(const Scene<1>&, const std::string&);
+template RateFormRunOptions scene_run_options(const Scene<2>&, const std::string&);
 
 }  // namespace sphstab

@@ -33,6 +33,13 @@ TEST(SceneRun, EachSceneRunsWithItsOwnIntegratorAndStep) {
   EXPECT_EQ(rate_form_integrator_name(b), "leapfrog");
   EXPECT_EQ(b.leapfrog_xsph, 0.1);
   EXPECT_EQ(b.dt, 0.8 * bar.scheme->discretisation().h / bar.scheme->material().p_wave_speed());
+  // a chosen integrator overrides the scene's; Powell's XSPH goes with the leap-frog
+  EXPECT_EQ(rate_form_integrator_name(scene_run_options(plate, "pc")), "pc");
+  const RateFormRunOptions bp = scene_run_options(bar, "pc1");
+  EXPECT_EQ(rate_form_integrator_name(bp), "pc1");
+  EXPECT_EQ(bp.leapfrog_xsph, 0.0);
+  EXPECT_EQ(scene_run_options(bar, "leapfrog").leapfrog_xsph, 0.1);
+  EXPECT_EQ(rate_form_integrator_name(scene_run_options(slab, "auto")), "pc");
 }
 
 TEST(SceneRun, TheDefaultRunIsTheRunWithThoseFieldsByHand) {
