@@ -23,6 +23,7 @@
 #include "common/study.hpp"
 #include "sphstab/forms/rate_form_state.hpp"
 #include "sphstab/integrate/rate_form_run.hpp"
+#include "sphstab/integrate/run.hpp"
 #include "sphstab/io/csv.hpp"
 #include "sphstab/problems/gms_scenes.hpp"
 
@@ -30,8 +31,8 @@ using namespace sphstab;
 
 namespace {
 
-constexpr double kCfl = 0.5;                    // `sphstab scene`'s default for the GMS scenes
-constexpr int kRefinements[] = {1, 2, 4};       // dt = dt0 / refinement
+constexpr double kCfl = 0.5;               // `sphstab scene`'s default for the GMS scenes
+constexpr int kRefinements[] = {1, 2, 4};  // dt = dt0 / refinement
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 struct SceneCase {
@@ -79,18 +80,22 @@ Outcome run(const SceneCase& c, bool pc1, int refinement) {
   Outcome o;
   const RateFormScheme<2>& scheme = *c.scene.scheme;
   const double dt = c.dt0 / refinement;
-  RateFormRunOptions opt{.dt = dt, .t_end = dt * static_cast<double>(c.base_steps * refinement),
-                         .yield_stress = c.scene.yield_stress, .neighbour_skin = c.scene.neighbour_skin};
+  RateFormRunOptions opt{.dt = dt,
+                         .t_end = dt * static_cast<double>(c.base_steps * refinement),
+                         .yield_stress = c.scene.yield_stress,
+                         .neighbour_skin = c.scene.neighbour_skin};
   opt.reuse_corrector_rate = pc1;
   const double cpu0 = study::thread_cpu_seconds();
   try {
-    RateFormStepper<2> stepper(scheme, c.scene.y0, opt);  // exactly base_steps x refinement steps of dt
-    for (long k = 0; k < c.base_steps * refinement; ++k) stepper.step(dt);
-    o.steps = stepper.steps();
+    RateFormStepper<2> stepper(scheme, c.scene.y0, opt);
+    // the run loop, exactly base_steps x refinement steps of dt (no last-step adjustment to t_end)
+    const RunResult rr = sphstab::run(stepper, {.dt = dt, .max_steps = c.base_steps * refinement}, "gms-pc1");
+    o.steps = rr.steps;
     o.evaluations = stepper.evaluations();
     const Eigen::VectorXd& y = stepper.state();
-    if (!y.allFinite()) {
-      o.status = "non-finite";
+    if (!rr.completed()) {
+      o.status = run_status_name(rr.status);
+      o.reason = rr.reason;
     } else {
       o.x = rate_form_positions(scheme, y);
       o.kinetic = scheme.kinetic_energy(y);
@@ -137,8 +142,10 @@ int main(int argc, char** argv) try {
   }
   const std::vector<Outcome> outcomes = study::run_costliest_first(
       runs, threads,
-      [&](const Run& r) { return static_cast<double>(r.refinement * (r.pc1 ? 1 : 2) * scenes[r.scene].base_steps) *
-                                 scenes[r.scene].scene.scheme->size(); },
+      [&](const Run& r) {
+        return static_cast<double>(r.refinement * (r.pc1 ? 1 : 2) * scenes[r.scene].base_steps) *
+               scenes[r.scene].scene.scheme->size();
+      },
       [&](const Run& r) { return run(scenes[r.scene], r.pc1, r.refinement); });
   // GMS's slab has a yield stress: does the one-rate step admit it? (one step suffices to ask)
   SceneCase slab{.name = "slab", .scene = gms_slab_scene({.spacing = 0.1}, 0.03, {})};

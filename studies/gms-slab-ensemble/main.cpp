@@ -9,7 +9,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/cli.hpp"
@@ -64,6 +66,9 @@ int main(int argc, char** argv) try {
       ->check(CLI::Range(0.0, 0.1));
   cli.app.add_option("--threads", threads, "runs side by side")->check(CLI::Range(1, 64));
   if (const auto exit = cli.parse(argc, argv)) return *exit;
+  for (const auto& [name, v] : {std::pair{"--dp", dp}, std::pair{"--perturbation", perturbation}})
+    if (!std::isfinite(v))
+      throw std::invalid_argument(std::string(name) + " must be a finite number");  // NaN passes Range
   if (cli.quick) dp = 0.08, perturbed = 2, t_max0 = t_max3 = 60;
   const auto t0 = study::Clock::now();
 
