@@ -8,12 +8,16 @@
 #include <string>
 #include <vector>
 
+#include "sphstab/core/threads.hpp"
+
 namespace sphstab::bench {
 
 /// Reads --max-particles=N and initialises Google Benchmark with the other arguments. Returns N, or -1 after a bad
 /// value ("<program>: --max-particles must be a positive integer (got '<value>')" on stderr) or an argument Google
-/// Benchmark does not know (its message): the program then exits with status 2.
+/// Benchmark does not know (its message): the program then exits with status 2. First of all, the program's OpenMP
+/// wait policy (core/threads.hpp), so that thread counts are measured as the CLI runs them.
 inline long initialize_with_max_particles(int argc, char** argv, const char* program) {
+  set_program_wait_policy(argv);
   long max_particles = 1000000;
   std::vector<char*> args;
   for (int i = 0; i < argc; ++i) {
@@ -32,6 +36,7 @@ inline long initialize_with_max_particles(int argc, char** argv, const char* pro
   int n = static_cast<int>(args.size());
   benchmark::Initialize(&n, args.data());
   if (benchmark::ReportUnrecognizedArguments(n, args.data())) return -1;
+  benchmark::AddCustomContext("wait_policy", wait_policy());
   return max_particles;
 }
 

@@ -12,10 +12,19 @@ Quick start (after ``bash scripts/test.sh``, with ``PYTHONPATH=build/python``)::
     ops = sphstab.operators(sphstab.lattice("square", 10, support_radius=2.6), "cubic", 1.3)
     ops["G_x"]                      # scipy.sparse.csr_matrix, sharing the library's storage
 """
-import numpy as _np
-import scipy.sparse as _sparse
+import os as _os
 
-from ._sphstab import (  # noqa: F401  (re-exported)
+# The program's OpenMP wait policy (core/threads.hpp, set_program_wait_policy): libgomp reads it once, when it is
+# loaded, so it is set here, before the compiled module (and NumPy) load it, unless the environment chose one. Without
+# it a waiting thread spins ~3 ms and, beside another process, stalls its descheduled partner. It has no effect if
+# libgomp was loaded earlier in this interpreter. Equal to _sphstab.program_wait_policy (tests/test_threads.py).
+if "OMP_WAIT_POLICY" not in _os.environ and "GOMP_SPINCOUNT" not in _os.environ:
+    _os.environ["OMP_WAIT_POLICY"] = "passive"
+
+import numpy as _np  # noqa: E402
+import scipy.sparse as _sparse  # noqa: E402
+
+from ._sphstab import (  # noqa: F401, E402  (re-exported)
     CriticalStrainCase,
     CriticalTensionCase,
     Kernel,
@@ -44,11 +53,14 @@ from ._sphstab import (  # noqa: F401  (re-exported)
     read_particle_state,
     run,
     set_max_memory,
+    set_threads,
+    threads,
+    wait_policy,
 )
 from . import _sphstab
 
 __all__ = [
-    "CriticalStrainCase", "critical_strain", "elastic_linearisation", "max_memory", "set_max_memory", "rate_form_jacobian",
+    "CriticalStrainCase", "critical_strain", "elastic_linearisation", "max_memory", "set_max_memory", "set_threads", "threads", "wait_policy", "rate_form_jacobian",
     "rate_form_dispersion",
     "critical_tension", "CriticalTensionCase", "detection_floor", "fourier_symbol_1d", "gms_plate_scene",
     "gms_rings_scene", "gms_slab_scene", "Kernel", "kernel_names", "lattice", "material_from_youngs", "MemoryLimitError",

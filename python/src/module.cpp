@@ -4,6 +4,7 @@
 // library's one line, the same text the CLI prints after "sphstab: error: ".
 #include "bindings.hpp"
 #include "sphstab/core/memory_budget.hpp"
+#include "sphstab/core/threads.hpp"
 
 PYBIND11_MODULE(_sphstab, m) {
   namespace py = pybind11;
@@ -22,6 +23,14 @@ PYBIND11_MODULE(_sphstab, m) {
       "The memory the size estimates allow (the CLI's --max-memory): bytes or text such as '4G'; None: the "
       "machine's. A computation estimated above it raises MemoryLimitError before it allocates.");
   m.def("max_memory", &sphstab::memory_limit_bytes, "The memory the size estimates allow, in bytes.");
+  m.def("set_threads", &sphstab::set_threads, py::arg("threads"),
+        "The OpenMP threads of later computations (the CLI's --threads; results are the same bits for any count). "
+        "ValueError for threads < 1.");
+  m.def("threads", &sphstab::max_threads, "The OpenMP threads computations use (default: OMP_NUM_THREADS, else 1).");
+  m.def("wait_policy", &sphstab::wait_policy,
+        "The OpenMP wait policy in force: 'OMP_WAIT_POLICY=<v>', 'GOMP_SPINCOUNT=<v>' or 'default'; sphstab/__init__.py "
+        "sets OMP_WAIT_POLICY=program_wait_policy when the environment chose none.");
+  m.attr("program_wait_policy") = sphstab::kProgramWaitPolicy;
   sphstab::python::bind_kernels(m);
   sphstab::python::bind_particles(m);
   sphstab::python::bind_stability(m);

@@ -6,6 +6,7 @@
 #include <iostream>
 #include <new>
 #include <stdexcept>
+#include <sstream>
 #include <string>
 
 #include "commands.hpp"
@@ -39,6 +40,14 @@ int run(int argc, const char* const* argv) {
          "OpenMP threads of the rate-form evaluation and the operator products (default: OMP_NUM_THREADS, else one; "
          "results are the same bits for any count")
       ->check(CLI::Range(1, 4096));
+  // What a timing or a result was produced with: the version, the threads and the wait policy (core/threads.hpp).
+  app.set_version_flag("--version", [] {
+    const int threads = max_threads();
+    std::ostringstream text;
+    text << "sphstab " << SPHSTAB_VERSION << ", OpenMP " << (threads_available() ? "on" : "off") << ", " << threads
+         << (threads == 1 ? " thread" : " threads") << ", wait policy " << wait_policy();
+    return text.str();
+  });
   register_commands(app);
   int code = 0;
   try {

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <unistd.h>
+
 #ifdef SPHSTAB_WITH_OPENMP
 #include <omp.h>
 #endif
@@ -37,6 +39,25 @@ void set_threads(int threads) {
   g_threads.store(threads);
   omp_set_num_threads(threads);
 #endif
+}
+
+void set_program_wait_policy(char** argv) {
+#ifdef SPHSTAB_WITH_OPENMP
+  if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT") || argv == nullptr || argv[0] == nullptr) return;
+  if (setenv("OMP_WAIT_POLICY", kProgramWaitPolicy, 1) != 0) return;
+  execv("/proc/self/exe", argv);  // returns only on failure: run on with libgomp's default, already loaded
+#else
+  (void)argv;
+#endif
+}
+
+const char* wait_policy() {
+  static const std::string policy = [] {
+    if (const char* p = std::getenv("OMP_WAIT_POLICY")) return std::string("OMP_WAIT_POLICY=") + p;
+    if (const char* s = std::getenv("GOMP_SPINCOUNT")) return std::string("GOMP_SPINCOUNT=") + s;
+    return std::string("default");
+  }();
+  return policy.c_str();
 }
 
 int thread_index() {

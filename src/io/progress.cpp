@@ -4,6 +4,8 @@
 
 #include <cstdio>
 
+#include "sphstab/core/threads.hpp"
+
 namespace sphstab {
 
 ProgressLine::ProgressLine(std::string label, double interval_seconds, bool enabled)
@@ -43,8 +45,11 @@ bool ProgressLine::update(double done, double total, const std::string& detail) 
 void ProgressLine::finish(const std::string& detail) {
   if (!m_enabled || m_finished) return;
   m_finished = true;
-  std::fprintf(stderr, "%s[%s] done %s (%.2f s)%s\n", m_tty ? "\r" : "", m_label.c_str(), detail.c_str(),
-               elapsed_seconds(), m_tty ? "\033[K" : "");
+  // The threads and the OpenMP wait policy beside the time: a timing means little without them.
+  const int threads = max_threads();
+  std::fprintf(stderr, "%s[%s] done %s (%.2f s, %d thread%s, wait policy %s)%s\n", m_tty ? "\r" : "", m_label.c_str(),
+               detail.c_str(), elapsed_seconds(), threads, threads == 1 ? "" : "s", wait_policy(),
+               m_tty ? "\033[K" : "");
   std::fflush(stderr);
   m_open = false;
 }

@@ -64,6 +64,27 @@ inline constexpr int kMinRowsPerThread = 512;
 /// The threads a loop over `rows` rows uses: max_threads(), fewer when rows < kMinRowsPerThread per thread, at least 1.
 int threads_for(long rows);
 
+/// The OpenMP wait policy this program runs with, chosen by the program rather than left to the user's environment.
+///
+/// Why: libgomp's default lets a thread that reaches a barrier spin for about 3 ms before it sleeps. With another
+/// process on one of the two cores, the partner the spinner waits for is descheduled, and the spin burns the time
+/// slice it needs: issue 35 measured `sphstab --threads 2 scene rings` three times slower than one thread beside one
+/// CPU-bound process, and 1.15x slower with OMP_WAIT_POLICY=passive. libgomp reads OMP_WAIT_POLICY and GOMP_SPINCOUNT
+/// once, when it is loaded, before main() runs; so the only way a program sets them is to set the variable and
+/// execute itself again. The policy is passive, a waiting thread sleeps at once: on this 2-core host it was the fastest
+/// of the spins tried with two threads, idle and busy (results/threads-speed compares it with a short spin and with
+/// libgomp's default in every report run).
+inline constexpr const char* kProgramWaitPolicy = "passive";
+
+/// Call first in main(). If the environment sets neither OMP_WAIT_POLICY nor GOMP_SPINCOUNT (the user's choice is
+/// kept), sets OMP_WAIT_POLICY=kProgramWaitPolicy and re-executes the program (/proc/self/exe) with the same
+/// arguments; returns only when no re-execution happened (a policy was already set, the build has no OpenMP, or exec
+/// failed, which leaves libgomp's default). The variable stays set in the new process, so this runs at most once.
+void set_program_wait_policy(char** argv);
+
+/// The wait policy in force: "OMP_WAIT_POLICY=<v>", "GOMP_SPINCOUNT=<v>" or "default" (for reports).
+const char* wait_policy();
+
 /// Restores the thread count on scope exit (tests and benchmarks that compare counts).
 class ThreadCountGuard {
  public:
