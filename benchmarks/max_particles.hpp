@@ -15,9 +15,10 @@ namespace sphstab::bench {
 /// Reads --max-particles=N and initialises Google Benchmark with the other arguments. Returns N, or -1 after a bad
 /// value ("<program>: --max-particles must be a positive integer (got '<value>')" on stderr) or an argument Google
 /// Benchmark does not know (its message): the program then exits with status 2. First of all, the program's OpenMP
-/// wait policy (core/threads.hpp), so that thread counts are measured as the CLI runs them.
+/// wait policy (core/threads.hpp), so that thread counts are measured as the CLI runs them, and fixed thread counts.
 inline long initialize_with_max_particles(int argc, char** argv, const char* program) {
   set_program_wait_policy(argv);
+  set_fixed_threads(true);  // a benchmark of N threads steps on N threads (core/adaptive_threads.hpp: not the faster)
   long max_particles = 1000000;
   std::vector<char*> args;
   for (int i = 0; i < argc; ++i) {

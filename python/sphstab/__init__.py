@@ -52,6 +52,7 @@ from ._sphstab import (  # noqa: F401, E402  (re-exported)
     powell_impact_scene,
     read_particle_state,
     run,
+    set_fixed_threads,
     set_max_memory,
     set_threads,
     threads,
@@ -60,7 +61,8 @@ from ._sphstab import (  # noqa: F401, E402  (re-exported)
 from . import _sphstab
 
 __all__ = [
-    "CriticalStrainCase", "critical_strain", "elastic_linearisation", "max_memory", "set_max_memory", "set_threads", "threads", "wait_policy", "rate_form_jacobian",
+    "CriticalStrainCase", "critical_strain", "elastic_linearisation", "max_memory", "set_max_memory",
+    "set_threads", "set_fixed_threads", "threads", "wait_policy", "rate_form_jacobian",
     "rate_form_dispersion",
     "critical_tension", "CriticalTensionCase", "detection_floor", "fourier_symbol_1d", "gms_plate_scene",
     "gms_rings_scene", "gms_slab_scene", "Kernel", "kernel_names", "lattice", "material_from_youngs", "MemoryLimitError",

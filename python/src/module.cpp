@@ -26,6 +26,9 @@ PYBIND11_MODULE(_sphstab, m) {
   m.def("set_threads", &sphstab::set_threads, py::arg("threads"),
         "The OpenMP threads of later computations (the CLI's --threads; results are the same bits for any count). "
         "ValueError for threads < 1.");
+  m.def("set_fixed_threads", &sphstab::set_fixed_threads, py::arg("fixed"),
+        "True: a run steps on exactly threads() threads; False (default): a run with several measures its steps with "
+        "them and with one and steps with the faster (the CLI's --fixed-threads; the same bits either way).");
   m.def("threads", &sphstab::max_threads, "The OpenMP threads computations use (default: OMP_NUM_THREADS, else 1).");
   m.def("wait_policy", &sphstab::wait_policy,
         "The OpenMP wait policy in force: 'OMP_WAIT_POLICY=<v>', 'GOMP_SPINCOUNT=<v>' or 'default'; sphstab/__init__.py "

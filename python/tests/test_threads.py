@@ -25,6 +25,7 @@ def cli_wait_policy(env):
     p = subprocess.run([os.environ["SPHSTAB_CLI"], "--version"], capture_output=True, text=True, env=env)
     assert p.returncode == 0, p.stderr
     assert p.stdout.startswith("sphstab "), p.stdout
+    assert ", 1 thread," in p.stdout  # ctest's OMP_NUM_THREADS=1
     return p.stdout.strip().split("wait policy ")[1]
 
 
@@ -54,7 +55,11 @@ def test_threads_are_settable_and_results_the_same_bits():
             sphstab.set_threads(t)
             assert sphstab.threads() == t
             runs.append(sphstab.run(sphstab.gms_rings_scene(spacing=0.25), t_end=2.0, record_every=1).kinetic_energy)
+        sphstab.set_fixed_threads(True)
+        runs.append(sphstab.run(sphstab.gms_rings_scene(spacing=0.25), t_end=2.0, record_every=1).kinetic_energy)
+        sphstab.set_fixed_threads(False)
         assert len(runs[0]) > 10
         assert np.array_equal(np.array(runs[0]), np.array(runs[1]))
+        assert np.array_equal(np.array(runs[0]), np.array(runs[2]))
     finally:
         sphstab.set_threads(before)

@@ -40,12 +40,18 @@ int run(int argc, const char* const* argv) {
          "OpenMP threads of the rate-form evaluation and the operator products (default: OMP_NUM_THREADS, else one; "
          "results are the same bits for any count")
       ->check(CLI::Range(1, 4096));
+  const bool fixed_before = fixed_threads();
+  app.add_flag_callback(
+      "--fixed-threads", [] { set_fixed_threads(true); },
+      "step on exactly --threads threads (default: a run with several measures its steps with them and with one thread "
+      "and steps with the faster, core/adaptive_threads.hpp; the same bits either way)");
   // What a timing or a result was produced with: the version, the threads and the wait policy (core/threads.hpp).
   app.set_version_flag("--version", [] {
     const int threads = max_threads();
     std::ostringstream text;
     text << "sphstab " << SPHSTAB_VERSION << ", OpenMP " << (threads_available() ? "on" : "off") << ", " << threads
-         << (threads == 1 ? " thread" : " threads") << ", wait policy " << wait_policy();
+         << (threads == 1 ? " thread" : fixed_threads() ? " threads (fixed)" : " threads (adaptive)") << ", wait policy "
+         << wait_policy();
     return text.str();
   });
   register_commands(app);
@@ -88,6 +94,7 @@ int run(int argc, const char* const* argv) {
   std::clearerr(stdout);
   set_memory_limit_bytes(0);  // process-wide: leave both as found for the next in-process call
   set_threads(threads_before);
+  set_fixed_threads(fixed_before);
   return code;
 }
 

@@ -60,6 +60,13 @@ const char* wait_policy() {
   return policy.c_str();
 }
 
+namespace {
+std::atomic<bool> g_fixed_threads{false};
+}  // namespace
+
+void set_fixed_threads(bool fixed) { g_fixed_threads.store(fixed); }
+bool fixed_threads() { return g_fixed_threads.load(); }
+
 int thread_index() {
 #ifdef SPHSTAB_WITH_OPENMP
   return omp_get_thread_num();

@@ -7,9 +7,11 @@
 #include <string>
 #include <utility>
 
+#include "sphstab/core/adaptive_threads.hpp"
 #include "sphstab/core/checked_arithmetic.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/named_values.hpp"
+#include "sphstab/core/threads.hpp"
 
 namespace sphstab {
 
@@ -103,8 +105,15 @@ RunResult run(Stepper& stepper, const RunOptions& o, const std::string& who) {
   StateFault fault = guarded([&] { output(0, false); });
   if (!fault) fault = check();
   if (!fault) fault = requested();
+  // A run asked for several threads measures its steps with them and with one, and steps with the faster: on a
+  // shared machine a second thread can cost more than it brings, and the count does not change the result.
+  const int asked_threads = max_threads();
+  const bool adaptive = asked_threads > 1 && !fixed_threads();
+  AdaptiveThreads threads(adaptive ? asked_threads : 1);
   while (!fault && more()) {
+    threads.before_step();
     fault = guarded([&] { stepper.step(dt); });
+    threads.after_step();
     if (fault) break;
     const long n = stepper.steps();
     const bool last = !more();
@@ -137,6 +146,8 @@ RunResult run(Stepper& stepper, const RunOptions& o, const std::string& who) {
     }
   }
   r.evaluations = stepper.evaluations();
+  r.threads = asked_threads;
+  r.steps_on_one_thread = adaptive ? threads.steps_with_one() : (asked_threads == 1 ? r.steps : 0);
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   for (RunObserver* obs : o.observers) obs->finished(r.message);
   return r;

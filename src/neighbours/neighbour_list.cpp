@@ -8,6 +8,7 @@
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/length_scale.hpp"
 #include "sphstab/core/memory_budget.hpp"
+#include "sphstab/core/threads.hpp"
 #include "sphstab/numerics/instantiation.hpp"
 
 namespace sphstab {
@@ -107,12 +108,8 @@ NeighbourList find_neighbours(const ParticleSet<Dim>& p, double radius) {
     any_periodic = any_periodic || p.periodic[a];
   }
 
-  NeighbourList list;
-  list.radius = radius;
-  list.offsets.assign(n + 1, 0);
-  list.indices.reserve(static_cast<size_t>(n) * (Dim == 1 ? 8 : Dim == 2 ? 30 : 120));
-  std::vector<int> row;
-  for (int i = 0; i < n; ++i) {
+  // One row: its neighbours in index order (appended to `out`), the same whichever thread finds it.
+  const auto find_row = [&](int i, std::vector<int>& row, std::vector<int>& out) {
     row.clear();
     const Point xi = p.x.row(i);
     std::array<int, Dim> ci;
@@ -159,8 +156,35 @@ NeighbourList find_neighbours(const ParticleSet<Dim>& p, double radius) {
     }
     std::sort(row.begin(), row.end());
     row.erase(std::unique(row.begin(), row.end()), row.end());
-    list.indices.insert(list.indices.end(), row.begin(), row.end());
-    list.offsets[i + 1] = static_cast<long>(list.indices.size());
+    out.insert(out.end(), row.begin(), row.end());
+    return static_cast<long>(row.size());
+  };
+
+  // Rows in contiguous blocks, one per thread, each into its own buffer (reserved from the expected pair count: a
+  // rebuild of the rings' Verlet list otherwise reallocates and page-faults its way up); the blocks are joined in
+  // order, so the list is the same for any thread count (tests/neighbours: 1, 2 and 3 threads).
+  NeighbourList list;
+  list.radius = radius;
+  list.offsets.assign(n + 1, 0);
+  const int threads = threads_for(n);
+  std::vector<std::vector<int>> block(threads);
+  FirstException first;
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (int t = 0; t < threads; ++t)
+    first.run([&] {
+      const int i0 = static_cast<int>(static_cast<long>(n) * t / threads);
+      const int i1 = static_cast<int>(static_cast<long>(n) * (t + 1) / threads);
+      block[t].reserve(static_cast<std::size_t>(1.1 * pairs * (i1 - i0) / std::max(n, 1)) + 64);
+      std::vector<int> row;
+      for (int i = i0; i < i1; ++i) list.offsets[i + 1] = find_row(i, row, block[t]);
+    });
+  first.rethrow();
+  for (int i = 0; i < n; ++i) list.offsets[i + 1] += list.offsets[i];
+  if (threads == 1) {
+    list.indices = std::move(block[0]);
+  } else {
+    list.indices.reserve(static_cast<std::size_t>(list.offsets[n]));
+    for (const std::vector<int>& b : block) list.indices.insert(list.indices.end(), b.begin(), b.end());
   }
   return list;
 }

@@ -105,12 +105,15 @@ using sphstab::random_vector;
 /// v with `digits` significant digits for prose and tables: "-" for NaN, "inf"/"-inf".
 inline std::string sig(double v, int digits = 3) { return std::isnan(v) ? "-" : format_number(v, digits); }
 
-/// v with `decimals` digits after the point (%.*f, or %+.*f with `sign`): "-" for NaN, "inf"/"-inf".
+/// v with `decimals` digits after the point (%.*f, or %+.*f with `sign`): "-" for NaN, "inf"/"-inf". A value that
+/// rounds to zero prints without a minus ("0.00", not printf's "-0.00" for -1e-9): a sign the digits do not carry.
 inline std::string fixed(double v, int decimals, bool sign = false) {
   if (std::isnan(v)) return "-";
   if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
   char buf[64];
   std::snprintf(buf, sizeof(buf), sign ? "%+.*f" : "%.*f", decimals, v);
+  if (buf[0] == '-' && std::string(buf).find_first_of("123456789") == std::string::npos)
+    return fixed(0.0, decimals, sign);
   return buf;
 }
 

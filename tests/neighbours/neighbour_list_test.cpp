@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "sphstab/core/threads.hpp"
 #include "sphstab/particles/lattice.hpp"
 
 namespace sphstab {
@@ -44,6 +45,24 @@ TEST(NeighbourList, MatchesBruteForceOnRandomSets) {
       expect_same(random_set<2>(600, 10.0, periodic, seed), 0.81);
       expect_same(random_set<3>(800, 6.0, periodic, seed), 1.3);
     }
+}
+
+TEST(NeighbourList, SameListOnAnyThreadCount) {
+  // Rows are searched in one block per thread and the blocks joined in order: the list may not depend on the count.
+  // 3000 rows: at least kMinRowsPerThread rows for each of 3 threads, so every count really splits the rows.
+  ASSERT_GE(3000 / 3, kMinRowsPerThread);
+  for (bool periodic : {false, true}) {
+    const ParticleSet<2> p = random_set<2>(3000, 30.0, periodic, 7u);
+    const NeighbourList reference = find_neighbours_brute_force(p, 0.81);
+    ASSERT_GT(reference.indices.size(), 3u * 3000u);  // not only the particles themselves
+    for (int threads : {1, 2, 3}) {
+      const ThreadCountGuard guard(threads);
+      ASSERT_EQ(threads_for(3000), threads);
+      const NeighbourList list = find_neighbours(p, 0.81);
+      EXPECT_EQ(list.offsets, reference.offsets) << threads << " threads, periodic " << periodic;
+      EXPECT_EQ(list.indices, reference.indices) << threads << " threads, periodic " << periodic;
+    }
+  }
 }
 
 TEST(NeighbourList, MatchesBruteForceOnLattices) {

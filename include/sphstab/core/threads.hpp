@@ -52,6 +52,12 @@ int max_threads();
 /// Sets the threads of later parallel loops. Throws std::invalid_argument (one line) for threads < 1.
 void set_threads(int threads);
 
+/// Whether a run keeps its thread count on every step (true) or measures its steps with max_threads() and with one
+/// thread and uses the faster (false, the default; core/adaptive_threads.hpp: the same bits either way). Process-wide
+/// like set_threads (`sphstab --fixed-threads`).
+void set_fixed_threads(bool fixed);
+bool fixed_threads();
+
 /// The calling thread's index within its parallel region (0 outside one).
 int thread_index();
 

@@ -114,6 +114,10 @@ struct RunResult {
   int particle = -1;    ///< the particle that stopped the run, or -1
   long evaluations = 0;
   double wall_seconds = 0;
+  /// The threads the run could use, and the steps it took on one of them (core/adaptive_threads.hpp: with several
+  /// threads the run measures both counts and steps with the faster; set_fixed_threads(true) keeps the count).
+  int threads = 1;
+  long steps_on_one_thread = 0;
   bool completed() const { return status == RunStatus::Completed; }
 };
 
