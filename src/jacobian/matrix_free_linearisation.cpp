@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "../linalg/tall_block_algebra.hpp"
 #include "../operators/pair_derivatives.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/memory_budget.hpp"
@@ -39,13 +40,6 @@ long component_stride(long sites) { return (sites + 511) / 512 * 512 + 72; }
 template <int Dim>
 constexpr int upper(int a, int b) {
   return a * Dim - a * (a - 1) / 2 + (b - a);
-}
-/// Index of (a, b) in the stress buffer: the diagonal first, then xy[, xz, yz].
-template <int Dim>
-constexpr int voigt(int a, int b) {
-  if (a == b) return a;
-  if (a > b) std::swap(a, b);
-  return Dim == 2 ? 2 : (a == 0 ? 2 + b : 5);
 }
 
 template <int Dim>
@@ -454,6 +448,21 @@ void MatrixFreeLinearisation<Dim>::apply_A1(const Eigen::Ref<const Eigen::Vector
 }
 
 template <int Dim>
+void MatrixFreeLinearisation<Dim>::apply_A0_and_A1(double c1, const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                   Eigen::Ref<Eigen::VectorXd> y0,
+                                                   Eigen::Ref<Eigen::VectorXd> y1) const {
+  check_vectors(x, y0, "apply_A0_and_A1");
+  check_vectors(x, y1, "apply_A0_and_A1");
+  check_vectors(y0, y1, "apply_A0_and_A1");
+  if (m_storage != MatrixFreeStorage::ByOffset) {
+    apply_combination(1.0, 0.0, x, y0);
+    apply_combination(0.0, c1, x, y1);
+    return;
+  }
+  apply_by_offset(1.0, c1, x.data(), y0.data(), y1.data());
+}
+
+template <int Dim>
 void MatrixFreeLinearisation<Dim>::apply_combination(double c0, double c1, const Eigen::Ref<const Eigen::VectorXd>& x,
                                                      Eigen::Ref<Eigen::VectorXd> y) const {
   check_vectors(x, y, "apply");
@@ -497,7 +506,7 @@ void MatrixFreeLinearisation<Dim>::apply_combination(double c0, double c1, const
       double* sj = sigma + S * j;
       for (int c = 0; c < Dim; ++c) sj[c] = lam * tr + 2 * mu * gr[c][c];
       for (int c = 0; c < Dim; ++c)
-        for (int d = c + 1; d < Dim; ++d) sj[voigt<Dim>(c, d)] = mu * (gr[c][d] + gr[d][c]);
+        for (int d = c + 1; d < Dim; ++d) sj[voigt(c, d)] = mu * (gr[c][d] + gr[d][c]);
     }
   }
 
@@ -527,16 +536,16 @@ void MatrixFreeLinearisation<Dim>::apply_combination(double c0, double c1, const
       const double* gi = m_gsum.data() + Dim * i;
       double acc[Dim];
       for (int a = 0; a < Dim; ++a) {
-        double t = gi[0] * si[voigt<Dim>(a, 0)];
-        for (int b = 1; b < Dim; ++b) t += gi[b] * si[voigt<Dim>(a, b)];
+        double t = gi[0] * si[voigt(a, 0)];
+        for (int b = 1; b < Dim; ++b) t += gi[b] * si[voigt(a, b)];
         acc[a] = m_alpha * t;
       }
       for (long k = m_offsets[i]; k < m_offsets[i + 1]; ++k) {
         const double* sk = sigma + S * m_indices[k];
         const double* pk = m_g.data() + Dim * k;
         for (int a = 0; a < Dim; ++a) {
-          double t = pk[0] * sk[voigt<Dim>(a, 0)];
-          for (int b = 1; b < Dim; ++b) t += pk[b] * sk[voigt<Dim>(a, b)];
+          double t = pk[0] * sk[voigt(a, 0)];
+          for (int b = 1; b < Dim; ++b) t += pk[b] * sk[voigt(a, b)];
           acc[a] += t;
         }
       }
@@ -616,153 +625,12 @@ void MatrixFreeLinearisation<Dim>::build_by_offset(const Discretisation<Dim>& d,
     for (int a = 0; a < Dim; ++a)
       for (int c = 0; c < Dim; ++c) m_ob[Dim * Dim * o + Dim * a + c] = b(a, c);
   }
-  m_u.assign(Dim * m_grid, 0.0);  // zero off the free box, for good: apply writes only the free sites
-  m_sgrid.assign(kSymmetric * m_grid, 0.0);
-}
-
-namespace {
-
-/// Line segments of the lattice loops: short enough that the per-line accumulators stay in the L1 cache.
-constexpr int kChunk = 128;
-
-/// The grid index of the first site of line `line` of a box whose lines (along x) start at grid coordinate `lo` on
-/// every axis and number `lines_of[a]` per axis a >= 1.
-template <int Dim>
-long line_start(long line, const std::array<int, Dim>& lines_of, int lo, const std::array<long, Dim>& stride) {
-  long g = lo;
-  for (int a = 1; a < Dim; ++a) {
-    g += (lo + line % lines_of[a]) * stride[a];
-    line /= lines_of[a];
-  }
-  return g;
-}
-
-}  // namespace
-
-template <int Dim>
-void MatrixFreeLinearisation<Dim>::apply_by_offset(double c0, double c1, const double* xp, double* yp) const {
-  constexpr int S = kSymmetric;
-  const bool with_a0 = c0 != 0.0, with_a1 = c1 != 0.0 && m_a1_factor != 0.0;
-  const int r = m_reach;
-  const long grid = m_grid, half = static_cast<long>(m_shift.size());
-  const long* shift = m_shift.data();
-  const double* og = m_og.data();
-  const double* ob = m_ob.data();
-  double* u = m_u.data();
-  double* sg = m_sgrid.data();
-  const double lam = m_lambda, mu = m_mu, a0_scale = -c0 * m_inv_rho;
-  std::array<int, Dim> free_lines = m_box, stress_lines = m_box;
-  long lines_free = 1, lines_stress = 1;
-  for (int a = 1; a < Dim; ++a) {
-    stress_lines[a] += 2 * r;
-    lines_free *= free_lines[a];
-    lines_stress *= stress_lines[a];
-  }
-  const int n0 = m_box[0];
-
-  // x into the padded grids (the free box starts at grid coordinate 2 r; the rest stays zero).
-#pragma omp parallel for schedule(static) num_threads(threads_for(lines_free* n0))
-  for (long line = 0; line < lines_free; ++line) {
-    const long g = line_start<Dim>(line, free_lines, 2 * r, m_stride);
-    const double* xl = xp + Dim * n0 * line;
-    for (int c = 0; c < Dim; ++c)
-      for (int i = 0; i < n0; ++i) u[c * grid + g + i] = xl[Dim * i + c];
-  }
-
-  if (with_a0) {
-    // Steps 1-2 on the free box padded by r: (grad x)_j^{cd} = sum_{D+} G^d(o) (x^c_{j+o} - x^c_{j-o}), then sigma_j.
-    // Whole lines per thread, each summed in offset order: the same bits for any thread count.
-    const int len = n0 + 2 * r;
-#pragma omp parallel for schedule(static) num_threads(threads_for(lines_stress* len))
-    for (long line = 0; line < lines_stress; ++line) {
-      const long g0 = line_start<Dim>(line, stress_lines, r, m_stride);
-      for (int x0 = 0; x0 < len; x0 += kChunk) {
-        const int m = std::min(kChunk, len - x0);
-        const long g = g0 + x0;
-        double gr[Dim * Dim][kChunk] = {};  // gr[Dim c + d]: component c, derivative d
-        for (long o = 0; o < half; ++o) {
-          const double* go = og + Dim * o;
-          const double* up = u + g + shift[o];
-          const double* um = u + g - shift[o];
-#pragma omp simd
-          for (int i = 0; i < m; ++i)
-            for (int c = 0; c < Dim; ++c) {
-              const double dv = up[c * grid + i] - um[c * grid + i];
-              for (int e = 0; e < Dim; ++e) gr[Dim * c + e][i] += go[e] * dv;
-            }
-        }
-#pragma omp simd
-        for (int i = 0; i < m; ++i) {
-          double tr = gr[0][i];
-          for (int c = 1; c < Dim; ++c) tr += gr[Dim * c + c][i];
-          for (int c = 0; c < Dim; ++c) sg[c * grid + g + i] = lam * tr + 2 * mu * gr[Dim * c + c][i];
-          for (int c = 0; c < Dim; ++c)
-            for (int e = c + 1; e < Dim; ++e)
-              sg[voigt<Dim>(c, e) * grid + g + i] = mu * (gr[Dim * c + e][i] + gr[Dim * e + c][i]);
-        }
-      }
-    }
-  }
-
-  // Step 3 and A1 on the free box: y = -(c0/rho) sum_{D+} G^b(o) (sigma^{ab}_{i+o} - sigma^{ab}_{i-o})
-  //                                    + c1 (B(0) x_i + sum_{D+} B(o) (x_{i+o} + x_{i-o})).
-  const Stress b0 = m_b0;
-#pragma omp parallel for schedule(static) num_threads(threads_for(lines_free* n0))
-  for (long line = 0; line < lines_free; ++line) {
-    const long g0 = line_start<Dim>(line, free_lines, 2 * r, m_stride);
-    double* yl = yp + Dim * n0 * line;
-    for (int x0 = 0; x0 < n0; x0 += kChunk) {
-      const int m = std::min(kChunk, n0 - x0);
-      const long g = g0 + x0;
-      double div[Dim][kChunk] = {}, a1[Dim][kChunk] = {};
-      if (with_a0)
-        for (long o = 0; o < half; ++o) {
-          const double* go = og + Dim * o;
-          const double* sp = sg + g + shift[o];
-          const double* sm = sg + g - shift[o];
-#pragma omp simd
-          for (int i = 0; i < m; ++i) {
-            double ds[S];
-            for (int k = 0; k < S; ++k) ds[k] = sp[k * grid + i] - sm[k * grid + i];
-            for (int a = 0; a < Dim; ++a) {
-              double t = go[0] * ds[voigt<Dim>(a, 0)];
-              for (int b = 1; b < Dim; ++b) t += go[b] * ds[voigt<Dim>(a, b)];
-              div[a][i] += t;
-            }
-          }
-        }
-      if (with_a1) {
-#pragma omp simd
-        for (int i = 0; i < m; ++i)
-          for (int a = 0; a < Dim; ++a) {
-            double t = b0(a, 0) * u[g + i];
-            for (int c = 1; c < Dim; ++c) t += b0(a, c) * u[c * grid + g + i];
-            a1[a][i] = t;
-          }
-        for (long o = 0; o < half; ++o) {
-          const double* bo = ob + Dim * Dim * o;
-          const double* up = u + g + shift[o];
-          const double* um = u + g - shift[o];
-#pragma omp simd
-          for (int i = 0; i < m; ++i) {
-            double v[Dim];
-            for (int c = 0; c < Dim; ++c) v[c] = up[c * grid + i] + um[c * grid + i];
-            for (int a = 0; a < Dim; ++a) {
-              double t = bo[Dim * a] * v[0];
-              for (int c = 1; c < Dim; ++c) t += bo[Dim * a + c] * v[c];
-              a1[a][i] += t;
-            }
-          }
-        }
-      }
-      for (int i = 0; i < m; ++i)
-        for (int a = 0; a < Dim; ++a) {
-          double out = 0;
-          if (with_a0) out = a0_scale * div[a][i];
-          if (with_a1) out += c1 * a1[a][i];
-          yl[Dim * (x0 + i) + a] = out;
-        }
-    }
+  // Zero off the free box, for good: apply writes only the free sites. Huge pages (tall_block_algebra.hpp) asked
+  // before the first write: the stencil sweeps read 2 |D+| streams per grid, rows apart.
+  for (auto [grid, size] : {std::pair{&m_u, Dim * m_grid}, std::pair{&m_sgrid, kSymmetric * m_grid}}) {
+    grid->reserve(size);
+    tall::advise_huge_pages(grid->data(), sizeof(double) * size);
+    grid->assign(size, 0.0);
   }
 }
 

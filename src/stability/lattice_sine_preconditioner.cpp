@@ -5,10 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <numbers>
 #include <stdexcept>
 #include <string>
 
+#include "../linalg/tall_block_algebra.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/threads.hpp"
 
@@ -20,6 +23,16 @@ namespace sphstab {
 template <int Dim>
 struct LatticeSinePreconditioner<Dim>::Plan {
   fftw_plan plan = nullptr;
+  /// apply's per-thread buffers, kept between calls (a new z per call, 16 MB at n = 1000, cost 4096 page faults
+  /// each time); one apply at a time uses them (a concurrent call on the same object allocates its own).
+  struct Free {
+    void operator()(void* p) const { fftw_free(p); }
+  };
+  struct Buffers {  ///< a thread's: the complex n^Dim field z and the kBatch extended lines e of sine_transform_axis
+    std::unique_ptr<fftw_complex[], Free> z, e;
+  };
+  std::mutex mutex;
+  std::vector<Buffers> buffers;
   ~Plan() {
     if (plan) fftw_destroy_plan(plan);
   }
@@ -258,29 +271,49 @@ void LatticeSinePreconditioner<Dim>::apply(const Eigen::Ref<const Eigen::MatrixX
   const int threads = std::max(1, std::min(max_threads(), pairs));
   const fftw_plan plan = m_plan->plan;
   const double* scaled = m_scaled.data();
+  std::unique_lock<std::mutex> lock(m_plan->mutex, std::try_to_lock);
+  std::vector<typename Plan::Buffers> own;
+  std::vector<typename Plan::Buffers>& buffers = lock.owns_lock() ? m_plan->buffers : own;
+  while (static_cast<int>(buffers.size()) < threads) {
+    typename Plan::Buffers b;
+    b.z.reset(static_cast<fftw_complex*>(fftw_malloc(sizeof(fftw_complex) * nn)));
+    b.e.reset(static_cast<fftw_complex*>(fftw_malloc(sizeof(fftw_complex) * 2 * (m_n + 1L) * kBatch)));
+    if (!b.z || !b.e) throw std::bad_alloc();
+    tall::advise_huge_pages(b.z.get(), sizeof(fftw_complex) * nn);  // before the first write
+    buffers.push_back(std::move(b));
+  }
 #pragma omp parallel num_threads(threads)
   {
-    FftwBuffer<fftw_complex> z(nn), e(2 * (m_n + 1L) * kBatch);
+    fftw_complex* z = buffers[thread_index()].z.get();
+    fftw_complex* e = buffers[thread_index()].e.get();
 #pragma omp for schedule(static)
     for (int p = 0; p < pairs; ++p) {
       const int f0 = 2 * p, f1 = 2 * p + 1;
       const int v0 = f0 / Dim, c0 = f0 % Dim, v1 = f1 / Dim, c1 = f1 % Dim;
       const bool two = f1 < fields;
       const double* x0 = x.col(v0).data() + c0;
-      const double* x1 = two ? x.col(v1).data() + c1 : nullptr;
-      for (long q = 0; q < nn; ++q) z.p[q][0] = x0[Dim * q];
-      for (long q = 0; q < nn; ++q) z.p[q][1] = two ? x1[Dim * q] : 0.0;
-      for (int a = 0; a < Dim; ++a) sine_transform_axis(z.p, m_n, Dim, a, e.p, plan);
+      const double* x1 = two ? x.col(v1).data() + c1 : x0;
+      for (long q = 0; q < nn; ++q) {
+        z[q][0] = x0[Dim * q];
+        z[q][1] = two ? x1[Dim * q] : 0.0;
+      }
+      for (int a = 0; a < Dim; ++a) sine_transform_axis(z, m_n, Dim, a, e, plan);
       const double* s0 = scaled + c0 * nn;
-      const double* s1 = scaled + c1 * nn;
-      for (long q = 0; q < nn; ++q) z.p[q][0] *= s0[q];
-      for (long q = 0; q < nn; ++q) z.p[q][1] = two ? z.p[q][1] * s1[q] : 0.0;
-      for (int a = 0; a < Dim; ++a) sine_transform_axis(z.p, m_n, Dim, a, e.p, plan);
+      const double* s1 = scaled + (two ? c1 : c0) * nn;
+      for (long q = 0; q < nn; ++q) {
+        z[q][0] *= s0[q];
+        z[q][1] = two ? z[q][1] * s1[q] : 0.0;
+      }
+      for (int a = 0; a < Dim; ++a) sine_transform_axis(z, m_n, Dim, a, e, plan);
       double* y0 = y.col(v0).data() + c0;
-      for (long q = 0; q < nn; ++q) y0[Dim * q] = z.p[q][0];
-      if (two) {
-        double* y1 = y.col(v1).data() + c1;
-        for (long q = 0; q < nn; ++q) y1[Dim * q] = z.p[q][1];
+      if (!two) {
+        for (long q = 0; q < nn; ++q) y0[Dim * q] = z[q][0];
+        continue;
+      }
+      double* y1 = y.col(v1).data() + c1;
+      for (long q = 0; q < nn; ++q) {
+        y0[Dim * q] = z[q][0];
+        y1[Dim * q] = z[q][1];
       }
     }
   }

@@ -11,6 +11,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "../linalg/tall_block_algebra.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/threads.hpp"
 #include "sphstab/jacobian/matrix_free_operator.hpp"
@@ -229,115 +230,10 @@ MatrixFreeCriticalLoad lobpcg(const MatrixFreeLinearisation<Dim>& lin, double sg
   return r;
 }
 
-// Dense block algebra of BlockLobpcg on tall blocks (dofs x <= 3b), threaded over fixed row chunks: the chunk
-// boundaries do not depend on the thread count, and partial Gram matrices are summed in chunk order, so the result is
-// the same bits for any thread count (core/threads.hpp).
-constexpr Eigen::Index kRowChunk = 4096;
-using ConstCols = Eigen::Ref<const Eigen::MatrixXd>;
-using Cols = Eigen::Ref<Eigen::MatrixXd>;
-
-template <class F>
-void for_row_chunks(Eigen::Index rows, F&& f) {
-  const long chunks = static_cast<long>((rows + kRowChunk - 1) / kRowChunk);
-  const int threads = static_cast<int>(std::max<long>(1, std::min<long>(max_threads(), chunks)));
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (long c = 0; c < chunks; ++c) {
-    const Eigen::Index r0 = c * kRowChunk;
-    f(c, r0, std::min(kRowChunk, rows - r0));
-  }
-}
-
-/// out = a b (Subtract: out -= a b), one column of b at a time. On these chunks (4096 x up to 12 times up to 12 x 8,
-/// or their transposes) Eigen's matrix-vector kernel is 20-30 % faster than its matrix-matrix kernel, which first
-/// copies (packs) the chunk: measured on 2 M-row blocks (n = 1000) without -march, one thread.
-template <bool Subtract = false, class Out, class A, class B>
-void times_by_columns(Out&& out, const A& a, const B& b) {
-  for (Eigen::Index j = 0; j < b.cols(); ++j) {
-    if constexpr (Subtract)
-      out.col(j).noalias() -= a * b.col(j);
-    else
-      out.col(j).noalias() = a * b.col(j);
-  }
-}
-
-/// a^T b.
-Eigen::MatrixXd gram(const ConstCols& a, const ConstCols& b) {
-  const long chunks = static_cast<long>((a.rows() + kRowChunk - 1) / kRowChunk);
-  std::vector<Eigen::MatrixXd> part(chunks);
-  for_row_chunks(a.rows(), [&](long c, Eigen::Index r0, Eigen::Index len) {
-    part[c].resize(a.cols(), b.cols());
-    times_by_columns(part[c], a.middleRows(r0, len).transpose(), b.middleRows(r0, len));
-  });
-  Eigen::MatrixXd g = Eigen::MatrixXd::Zero(a.cols(), b.cols());
-  for (const Eigen::MatrixXd& p : part) g += p;
-  return g;
-}
-
-/// y -= z c.
-void subtract_product(Cols y, const ConstCols& z, const Eigen::MatrixXd& c) {
-  for_row_chunks(y.rows(), [&](long, Eigen::Index r0, Eigen::Index len) {
-    times_by_columns<true>(y.middleRows(r0, len), z.middleRows(r0, len), c);
-  });
-}
-
-/// Columns [out0, out0 + c.cols()) of q <- columns [c0, c0 + c.rows()) of q times c, chunk by chunk through a
-/// chunk-sized per-thread buffer (each chunk reads its rows before writing them, so the ranges may overlap; no
-/// allocation per chunk). With `tail` (rows nt x w, nt < c.rows()), w more columns follow: the last nt of those
-/// input columns times tail (a product whose leading rows would be zero, without their flops).
-void transform_columns(Eigen::MatrixXd& q, Eigen::Index c0, const Eigen::MatrixXd& c, Eigen::Index out0,
-                       const Eigen::MatrixXd& tail = Eigen::MatrixXd()) {
-  const Eigen::Index w = c.cols() + tail.cols(), t0 = c0 + c.rows() - tail.rows();
-  for_row_chunks(q.rows(), [&](long, Eigen::Index r0, Eigen::Index len) {
-    thread_local std::vector<double> buffer;
-    if (buffer.size() < static_cast<std::size_t>(len * w)) buffer.resize(len * w);
-    Eigen::Map<Eigen::MatrixXd> t(buffer.data(), len, w);
-    times_by_columns(t.leftCols(c.cols()), q.block(r0, c0, len, c.rows()), c);
-    if (tail.cols() > 0) times_by_columns(t.rightCols(tail.cols()), q.block(r0, t0, len, tail.rows()), tail);
-    q.block(r0, out0, len, w) = t;
-  });
-}
-
-/// The Rayleigh-Ritz Gram matrices of K and L: g = v^T kv and h = v^T lv, symmetrised, for v = [X | P | W] with
-/// column blocks of the given widths. Only the blocks on and right of the diagonal are computed, in one pass over
-/// the rows (the lower blocks are their transposes; each diagonal block is averaged with its transpose): 2/3 of the
-/// flops of the full products for three blocks.
-void ritz_grams(const ConstCols& v, const ConstCols& kv, const ConstCols& lv, const std::vector<int>& widths,
-                Eigen::MatrixXd& g, Eigen::MatrixXd& h) {
-  const Eigen::Index m = v.cols();
-  const long chunks = static_cast<long>((v.rows() + kRowChunk - 1) / kRowChunk);
-  std::vector<Eigen::MatrixXd> gpart(chunks), hpart(chunks);
-  for_row_chunks(v.rows(), [&](long c, Eigen::Index r0, Eigen::Index len) {
-    gpart[c].setZero(m, m);
-    hpart[c].setZero(m, m);
-    Eigen::Index b0 = 0;
-    for (int bw : widths) {
-      const auto vb = v.block(r0, b0, len, bw).transpose();
-      times_by_columns(gpart[c].block(b0, b0, bw, m - b0), vb, kv.block(r0, b0, len, m - b0));
-      times_by_columns(hpart[c].block(b0, b0, bw, m - b0), vb, lv.block(r0, b0, len, m - b0));
-      b0 += bw;
-    }
-  });
-  g.setZero(m, m);
-  h.setZero(m, m);
-  for (long c = 0; c < chunks; ++c) {
-    g += gpart[c];
-    h += hpart[c];
-  }
-  Eigen::Index b0 = 0;
-  for (int bw : widths) {
-    for (Eigen::MatrixXd* a : {&g, &h}) {
-      a->block(b0, b0, bw, bw) = 0.5 * (a->block(b0, b0, bw, bw) + a->block(b0, b0, bw, bw).transpose()).eval();
-      a->block(b0 + bw, b0, m - b0 - bw, bw) = a->block(b0, b0 + bw, bw, m - b0 - bw).transpose();
-    }
-    b0 += bw;
-  }
-}
-
-/// dst = src.
-void copy(const ConstCols& src, Cols dst) {
-  for_row_chunks(src.rows(),
-                 [&](long, Eigen::Index r0, Eigen::Index len) { dst.middleRows(r0, len) = src.middleRows(r0, len); });
-}
+// Dense block algebra of BlockLobpcg on tall blocks: linalg/tall_block_algebra.hpp (the same bits for any thread
+// count and any x86-64 machine).
+using tall::gram;
+using tall::transform_columns;
 
 /// Block LOBPCG for the largest eigenvalues of L x = lambda K x in the orthogonal-basis form of
 /// [HetmaniukLehoucq2006] (port of solvers.lobpcg of the Python prototype,
@@ -355,6 +251,8 @@ class BlockLobpcg {
     m_k.resize(n, 3 * m_b);
     m_l.resize(n, 3 * m_b);
     m_a.resize(n, m_b);
+    for (const Eigen::MatrixXd* q : {&m_v, &m_k, &m_l, &m_a})  // before the first write (tall_block_algebra.hpp)
+      tall::advise_huge_pages(q->data(), sizeof(double) * q->size());
   }
 
   /// Runs from the start block x0 (dofs x b); fills the result.
@@ -370,10 +268,7 @@ class BlockLobpcg {
     for (long it = 0;; ++it) {
       // Residuals R = L X - K X diag(theta) (in m_a).
       auto res = m_a.leftCols(nx);
-      for_row_chunks(res.rows(), [&](long, Eigen::Index r0, Eigen::Index len) {
-        res.middleRows(r0, len) =
-            m_l.leftCols(nx).middleRows(r0, len) - m_k.leftCols(nx).middleRows(r0, len) * theta.asDiagonal();
-      });
+      tall::residuals(m_l.leftCols(nx), m_k.leftCols(nx), theta, res);
       m_r.residual = res.col(0).norm() / (std::abs(theta[0]) * m_k.col(0).norm());
       m_r.lambda_max = theta[0];
       if (m_r.residual <= m_o.residual_tol) {
@@ -394,11 +289,13 @@ class BlockLobpcg {
         m_r.preconditioner_applications += nx;
         m_r.preconditioner_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       } else {
-        copy(res, m_v.middleCols(wpos, nx));
+        tall::copy(res, m_v.middleCols(wpos, nx));
       }
       products(wpos, nx);
-      kproject(wpos, nx, 0, nx + np);  // X and P are K-orthonormal together: one projection against both
-      const int nw = korth(wpos, nx);
+      // X and P are K-orthonormal together: one projection against both; then W's K-orthonormalisation and the
+      // Rayleigh-Ritz Gram matrices on span{X, P, W} in one pass.
+      Eigen::MatrixXd cw;
+      const int nw = project_korth(wpos, nx, 0, nx + np, nullptr, cw);
       if (nw < 0) return;
       const int m = nx + np + nw;
       // Rayleigh-Ritz on span{X, P, W}: H c = theta G c, largest first.
@@ -406,7 +303,10 @@ class BlockLobpcg {
       std::vector<int> widths = {nx};
       if (np > 0) widths.push_back(np);
       if (nw > 0) widths.push_back(nw);
-      ritz_grams(m_v.leftCols(m), m_k.leftCols(m), m_l.leftCols(m), widths, g, h);
+      tall::RowPass pass;
+      if (nw > 0)
+        for (Eigen::MatrixXd* q : {&m_v, &m_k, &m_l}) pass.transform(*q, wpos, cw, wpos);
+      pass.ritz_grams(m_v.leftCols(m), m_k.leftCols(m), m_l.leftCols(m), widths, g, h).run();
       Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> ges(h, g);
       if (ges.info() != Eigen::Success)
         return fail(Status::NumericalIssue,
@@ -416,17 +316,24 @@ class BlockLobpcg {
       const int bn = std::min(b, m);
       const Eigen::MatrixXd vx = ges.eigenvectors().rowwise().reverse().leftCols(bn);
       const Eigen::VectorXd w = ges.eigenvalues().reverse();
-      // X <- Q Vx, P <- Q[P, W] Vx[P, W] (the part of the step without the old X), in one pass per operator.
+      // X <- Q Vx, P <- Q[P, W] Vx[P, W] (the part of the step without the old X), in one pass over the three
+      // operators, with the first projection coefficients of the new P against the new X.
       const Eigen::MatrixXd vpw = m > nx ? Eigen::MatrixXd(vx.bottomRows(m - nx)) : Eigen::MatrixXd();
-      for (Eigen::MatrixXd* q : {&m_v, &m_k, &m_l}) transform_columns(*q, 0, vx, 0, vpw);
       const bool have_p = m > nx;
+      Eigen::MatrixXd c1;
+      for (Eigen::MatrixXd* q : {&m_v, &m_k, &m_l}) pass.transform(*q, 0, vx, 0, vpw);
+      if (have_p) pass.gram(m_k.leftCols(bn), m_v.middleCols(bn, bn), c1);
+      pass.run();
       nx = bn;
       theta = w.head(nx);
       np = 0;
       if (have_p) {
-        kproject(nx, bn, 0, nx);
-        np = korth(nx, bn);
+        Eigen::MatrixXd cp;
+        np = project_korth(nx, bn, 0, nx, &c1, cp);
         if (np < 0) return;
+        if (np > 0)
+          for (Eigen::MatrixXd* q : {&m_v, &m_k, &m_l}) pass.transform(*q, nx, cp, nx);
+        pass.run();
       }
       m_r.iterations = it + 1;
       if (m_o.refresh_every > 0 && (it + 1) % m_o.refresh_every == 0) {  // against drift of K X, L X
@@ -454,33 +361,54 @@ class BlockLobpcg {
   /// K and L products of columns [c0, c0 + m) of Q.
   void products(int c0, int m) {
     const auto t0 = std::chrono::steady_clock::now();
-    for (int j = c0; j < c0 + m; ++j) {
-      m_lin.apply_A0(m_v.col(j), m_k.col(j));
-      m_lin.apply_combination(0.0, -m_sgn, m_v.col(j), m_l.col(j));
-    }
+    for (int j = c0; j < c0 + m; ++j) m_lin.apply_A0_and_A1(-m_sgn, m_v.col(j), m_k.col(j), m_l.col(j));
     m_r.a0_products += m;
     m_r.a1_products += m;
     m_r.product_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
 
-  /// Y <- Y - Z (Z^T K Y), twice, for K-orthonormal Z = columns [z0, z0 + mz), Y = [y0, y0 + my). The second pass
-  /// needs only the projected Y itself, so K Y and L Y take the two passes' coefficients in one update.
-  void kproject(int y0, int my, int z0, int mz) {
-    Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(mz, my);
-    for (int pass = 0; pass < 2; ++pass) {
-      const Eigen::MatrixXd c = gram(m_k.middleCols(z0, mz), m_v.middleCols(y0, my));
-      subtract_product(m_v.middleCols(y0, my), m_v.middleCols(z0, mz), c);
-      sum += c;
+  /// Y <- Y - Z (Z^T K Y), twice, for K-orthonormal Z = columns [z0, z0 + mz), Y = [y0, y0 + my), then the
+  /// coefficients c of Y's K-orthonormalisation (korth_coefficients; Y <- Y c is left to the caller, to fuse it
+  /// with the caller's next pass). Three passes over the rows (tall::RowPass): c1 = Z^T K Y (unless given, from the
+  /// caller's previous pass); Y -= Z c1 with c2 = Z^T K Y of the updated Y; Y -= Z c2, K Y -= K Z (c1 + c2) and
+  /// L Y -= L Z (c1 + c2) (the second projection needs only the projected Y itself, so K Y and L Y take both
+  /// coefficients in one update) with the Gram matrix Y^T K Y. Returns the new width of Y, or -1 (status set).
+  int project_korth(int y0, int my, int z0, int mz, const Eigen::MatrixXd* c1, Eigen::MatrixXd& c) {
+    const auto v = [&](Eigen::MatrixXd& q, int c0, int n) { return q.middleCols(c0, n); };
+    Eigen::MatrixXd first, second, g;
+    if (!c1) {
+      tall::RowPass().gram(v(m_k, z0, mz), v(m_v, y0, my), first).run();
+      c1 = &first;
     }
-    for (Eigen::MatrixXd* q : {&m_k, &m_l}) subtract_product(q->middleCols(y0, my), q->middleCols(z0, mz), sum);
+    tall::RowPass().subtract(v(m_v, y0, my), v(m_v, z0, mz), *c1).gram(v(m_k, z0, mz), v(m_v, y0, my), second).run();
+    const Eigen::MatrixXd sum = (Eigen::MatrixXd::Zero(mz, my) + *c1) + second;
+    tall::RowPass()
+        .subtract(v(m_v, y0, my), v(m_v, z0, mz), second)
+        .subtract(v(m_k, y0, my), v(m_k, z0, mz), sum)
+        .subtract(v(m_l, y0, my), v(m_l, z0, mz), sum)
+        .gram(v(m_v, y0, my), v(m_k, y0, my), g)
+        .run();
+    return korth_coefficients(g, c);
   }
 
-  /// K-orthonormalises columns [c0, c0 + m) in place (the prototype's _korth): eigen-decomposition of the
-  /// diagonally scaled Gram matrix, directions below 1e-12 of the largest dropped. Returns the new width, or -1
-  /// (status set) when the Gram matrix shows K is not positive definite.
+  /// K-orthonormalises columns [c0, c0 + m) in place (the prototype's _korth). Returns the new width, or -1.
   int korth(int c0, int m) {
     if (m == 0) return 0;
-    Eigen::MatrixXd g = gram(m_v.middleCols(c0, m), m_k.middleCols(c0, m));
+    Eigen::MatrixXd c;
+    const int mk = korth_coefficients(gram(m_v.middleCols(c0, m), m_k.middleCols(c0, m)), c);
+    if (mk > 0)
+      for (Eigen::MatrixXd* q : {&m_v, &m_k, &m_l}) transform_columns(*q, c0, c, c0);
+    return mk;
+  }
+
+  /// The coefficients c (m x mk) that K-orthonormalise a block Y of m columns with K Gram matrix g = Y^T K Y: Y c
+  /// (the prototype's _korth): eigen-decomposition of the diagonally scaled Gram matrix, directions below 1e-12 of
+  /// the largest dropped. Returns mk (0: no K-positive direction, c empty), or -1 (status set) when the Gram matrix
+  /// shows K is not positive definite.
+  int korth_coefficients(Eigen::MatrixXd g, Eigen::MatrixXd& c) {
+    const Eigen::Index m = g.rows();
+    c.resize(m, 0);
+    if (m == 0) return 0;
     g = 0.5 * (g + g.transpose()).eval();
     Eigen::VectorXd d = g.diagonal().cwiseAbs().cwiseSqrt();
     for (Eigen::Index i = 0; i < d.size(); ++i)
@@ -499,10 +427,9 @@ class BlockLobpcg {
     for (int i = 0; i < m; ++i)
       if (w[i] > 1e-12 * wmax) keep.push_back(i);
     const int mk = static_cast<int>(keep.size());
-    Eigen::MatrixXd c(m, mk);
+    c.resize(m, mk);
     for (int j = 0; j < mk; ++j) c.col(j) = es.eigenvectors().col(keep[j]) / std::sqrt(w[keep[j]]);
     c = d.cwiseInverse().asDiagonal() * c;
-    for (Eigen::MatrixXd* q : {&m_v, &m_k, &m_l}) transform_columns(*q, c0, c, c0);
     return mk;
   }
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
+#include <cstring>
 #include <iostream>
 #include <random>
 #include <stdexcept>
@@ -205,6 +206,49 @@ void expect_same_critical_strain(int n) {
 TEST(MatrixFreeStorage, SameCriticalStrainFromBothStorages) {
   expect_same_critical_strain<2>(24);
   expect_same_critical_strain<3>(10);
+}
+
+/// apply_A0_and_A1 (the stiffness and load products of one vector in one call, as the block LOBPCG of
+/// matrix_free_critical_load takes them) against its two separate calls: the same bits, every form, one thread or two.
+template <int Dim>
+void expect_fused_products_same_bits(const Discretisation<Dim>& d, MatrixFreeStorage storage) {
+  for (MomentumForm form : all_momentum_forms())
+    for (PreStrainKind kind : {PreStrainKind::Isotropic, PreStrainKind::UniaxialX}) {
+      const std::string what = momentum_form_name(form) + " " + prestrain_kind_name(kind);
+      const MatrixFreeLinearisation<Dim> lin(d, kMaterial, form, kind, storage);
+      ASSERT_EQ(lin.storage(), storage);
+      const Eigen::VectorXd x = random_vector(lin.dofs(), 11);
+      for (double c1 : {-1.0, 0.5, 0.0}) {
+        Eigen::VectorXd k(lin.dofs()), l(lin.dofs()), k_ref(lin.dofs()), l_ref(lin.dofs());
+        lin.apply_A0(x, k_ref);
+        lin.apply_combination(0.0, c1, x, l_ref);
+        for (int threads : {1, 2}) {
+          set_threads(threads);
+          k.setConstant(7.0);
+          l.setConstant(7.0);
+          lin.apply_A0_and_A1(c1, x, k, l);
+          // Bitwise, signed zeros included (== would take -0 for +0).
+          EXPECT_EQ(std::memcmp(k.data(), k_ref.data(), sizeof(double) * k.size()), 0) << what << " c1 " << c1;
+          EXPECT_EQ(std::memcmp(l.data(), l_ref.data(), sizeof(double) * l.size()), 0) << what << " c1 " << c1;
+        }
+        set_threads(1);
+      }
+    }
+}
+
+TEST(MatrixFreeStorage, FusedProductsSameBitsAsTwoCalls) {
+  const auto d2 = lattice<2>(14, KernelType::CubicSpline, 1.3);
+  const auto d3 = lattice<3>(7, KernelType::CubicSpline, 1.3);
+  for (MatrixFreeStorage storage : {MatrixFreeStorage::ByOffset, MatrixFreeStorage::PerPair}) {
+    expect_fused_products_same_bits(*d2, storage);
+    expect_fused_products_same_bits(*d3, storage);
+  }
+  const MatrixFreeLinearisation<2> lin(*d2, kMaterial, MomentumForm::Conservative, PreStrainKind::UniaxialX);
+  Eigen::VectorXd x = Eigen::VectorXd::Ones(lin.dofs()), y(lin.dofs()), z(lin.dofs()), small(3);
+  EXPECT_THROW(lin.apply_A0_and_A1(1.0, x, x, z), std::invalid_argument);
+  EXPECT_THROW(lin.apply_A0_and_A1(1.0, x, y, y), std::invalid_argument);
+  EXPECT_THROW(lin.apply_A0_and_A1(1.0, x, small, z), std::invalid_argument);
+  EXPECT_NO_THROW(lin.apply_A0_and_A1(1.0, x, y, z));
 }
 
 }  // namespace matrix_free_storage_test

@@ -67,6 +67,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sphstab/forms/discretisation.hpp"
@@ -147,6 +148,12 @@ class MatrixFreeLinearisation {
   /// y = (c0 A0 + c1 A1) x; a zero coefficient skips its operator. Sizes as apply_A0.
   void apply_combination(double c0, double c1, const Eigen::Ref<const Eigen::VectorXd>& x,
                          Eigen::Ref<Eigen::VectorXd> y) const;
+  /// y0 = A0 x and y1 = c1 A1 x, the same bits as apply_A0(x, y0) and apply_combination(0, c1, x, y1), in one call:
+  /// with ByOffset storage x goes into the padded grid once and step 3 sweeps the free box once for both (the
+  /// stiffness and load products of a block eigensolver's basis vector); PerPair storage makes the two calls. y0 and y1
+  /// must not share storage with x or each other. Sizes as apply_A0.
+  void apply_A0_and_A1(double c1, const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y0,
+                       Eigen::Ref<Eigen::VectorXd> y1) const;
 
   /// Estimated bytes of a MatrixFreeLinearisation of `discretisation` with `storage` (Auto resolved as the constructor
   /// does; exact up to vector capacity slack), the figure require_memory() is asked for before construction.
@@ -160,7 +167,15 @@ class MatrixFreeLinearisation {
   void build(const Discretisation<Dim>& d, const Operators<Dim>* ops, const ElasticMaterial& material,
              MomentumForm form, PreStrainKind kind, MatrixFreeStorage storage);
   void build_by_offset(const Discretisation<Dim>& d, const Lattice& lattice);
-  void apply_by_offset(double c0, double c1, const double* x, double* y) const;
+  /// y = (c0 A0 + c1 A1) x on the lattice grids (matrix_free_by_offset_product.cpp); with y1, y = c0 A0 x and
+  /// y1 = c1 A1 x instead.
+  void apply_by_offset(double c0, double c1, const double* x, double* y, double* y1 = nullptr) const;
+  /// Index of (a, b) in the stress buffer: the diagonal first, then xy[, xz, yz].
+  static constexpr int voigt(int a, int b) {
+    if (a == b) return a;
+    if (a > b) std::swap(a, b);
+    return Dim == 2 ? 2 : (a == 0 ? 2 + b : 5);
+  }
   void check_vectors(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<Eigen::VectorXd>& y,
                      const char* who) const;
 

@@ -31,7 +31,10 @@
 ///     lattice, same case): 39-44 steps at n = 8 - 100; 100^3 free particles (3 x 10^6 DOFs) on 2 threads in
 ///     results/critical-strain-3d; agreement with a dense reference 1e-13 at n = 8 and 11.
 ///     Threads (core/threads.hpp): operator rows, the preconditioner's transforms and the dense block algebra over
-///     fixed row chunks: the same bits for any thread count.
+///     fixed row chunks: the same bits for any thread count. The dense block algebra (src/linalg/tall_block_algebra)
+///     runs AVX2 or baseline SIMD kernels chosen at run time, with the same bits (no FMA); the step count of the small
+///     3D cases moves by a few steps with any change of summation order (n = 8: 39 -> 44, n = 11: 72 -> 78 when the
+///     Gram sums went from Eigen's kernels to these), e_crit by <= 3e-15 relative.
 ///   - LanczosCg: Spectra's SymGEigsSolver in regular-inverse mode (Lanczos on K^{-1} L in the K inner product),
 ///     each K^{-1} v by unpreconditioned conjugate gradients to cg_rtol. A0 is nearly singular on the zone-boundary
 ///     modes: ~3 n^2 CG steps per solve (790 at n = 16, 3200 at n = 32) times 60-280 solves: 8x the A0 products of
