@@ -68,9 +68,9 @@ void add_rate_form_options(CLI::App& cmd, RateFormArgs& a, bool lists) {
   cmd.add_option("--counting", a.counting,
                  "n_i of the cij/ssph means: actual | boundary-level (Powell Fig. 4.3) (default " + a.counting + ")");
   cmd.add_option("--pair-loop", a.pair_loop,
-                 "auto (pairs where they apply, else rows) | rows (every pair from both sides; the same bits on any "
-                 "thread count) | pairs (each pair once, one thread, rates equal to rounding, about twice as fast: "
-                 "results/gms-speed; plain gradient, symmetric or antisymmetric momentum) (default " +
+                 "auto (pairs where they apply, else rows) | rows (every pair from both sides) | pairs (each pair "
+                 "once, rates equal to rows' to rounding, about twice as fast: results/gms-speed; plain gradient, "
+                 "symmetric or antisymmetric momentum); both the same bits on any thread count (default " +
                      a.pair_loop + ")");
 }
 

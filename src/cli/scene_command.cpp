@@ -229,7 +229,7 @@ void register_scene_command(CLI::App& app) {
   cmd->add_option("--record-every", a->record_every, "a row every k steps, and the last (default 100)");
   cmd->add_option("--pair-loop", a->pair_loop,
                   "auto = pairs (each pair once, about twice as fast; results/gms-speed) | rows (every pair from both "
-                  "sides, threaded) (default auto)");
+                  "sides) (default auto; both threaded, the same bits on any thread count)");
   cmd->add_option("--integrator", a->integrator,
                   "auto = the scene's (plate, rings: pc1, one rate evaluation per step, results/gms-pc1; slab: pc; "
                   "impacts: leapfrog) | pc (GMS's predictor-corrector, two rate evaluations per step) | pc1 | leapfrog");

@@ -118,8 +118,9 @@ enum class PairLoop {
   /// Each pair once (j > i), its terms added to both particles: the pair terms are symmetric in i and j, so the two
   /// momentum contributions are equal and opposite up to the masses and the two velocity-gradient contributions share
   /// one outer product. Pairs of the list beyond the kernel support are skipped before any kernel work. About half
-  /// Rows' arithmetic; the sums run in another order, so the rates agree with Rows to rounding, not bitwise. Runs on
-  /// one thread. Real states only: the complex rate (Jacobians) and a partitioned scheme (set_row_partition) use Rows.
+  /// Rows' arithmetic; the sums run in another order, so the rates agree with Rows to rounding, not bitwise. Threaded
+  /// by chunks of particles with a halo, the same bits for any thread count (docs/architecture.md). Real states only:
+  /// the complex rate (Jacobians) and a partitioned scheme (set_row_partition) use Rows.
   Pairs
 };
 

@@ -24,20 +24,20 @@ namespace sphstab {
 
 namespace rate_form_detail {
 
-/// PairLoop::Pairs: each pair once (pair_loop.hpp), then each particle's rates from its sums.
+/// PairLoop::Pairs: each pair once (pair_loop.hpp), then each particle's rates from its sums. `deferred`: e has not
+/// unpacked the state (the pair loop's region does, particle by particle).
 template <int Dim>
-void run_pairs(Evaluation<Dim, double>& e) {
+void run_pairs(Evaluation<Dim, double>& e, bool deferred) {
   auto& ws = e.ws;
   const int n = e.n;
   const RateFormOptions& o = e.o;
-  if (e.bulk) e.bulk_pressure(nullptr);
-  e.stresses();
+  if (e.bulk) e.bulk_pressure(nullptr);  // every q before the stresses
+  e.size_stresses();
   e.dydt.resize(e.scheme.size());
   ws.acc.resize(n);
   ws.L.resize(n);
   ws.drho.resize(n);
   ws.xsph_moves.resize(n);
-  for (int i = 0; i < n; ++i) ws.xsph_moves[i] = e.x_off[i] >= 0 && !e.is_driven(i);
   const double support = e.kernel.support_radius(e.h);
   PairLoopArrays<Dim> A{.n = n,
                         .offsets = e.nl.offsets.data(),
@@ -66,18 +66,28 @@ void run_pairs(Evaluation<Dim, double>& e) {
   for (int a = 0; a < Dim; ++a) A.box[a] = e.p.box_hi[a] - e.p.box_lo[a];
   if (!ws.pair_loop) ws.pair_loop = std::make_shared<PairLoopScratch<Dim>>();
   auto& scratch = *static_cast<PairLoopScratch<Dim>*>(ws.pair_loop.get());
+  // In the pair loop's parallel region (one region from the stresses to the rates; a refused artificial stress is
+  // rethrown after it): each particle's stresses and whether it moves with XSPH before the sweeps, each chunk's rates
+  // once its sums are complete.
+  const auto prepare = [&](int i) {
+    if (deferred) e.unpack(i);
+    e.stress(i);
+    ws.xsph_moves[i] = e.x_off[i] >= 0 && !e.is_driven(i);
+  };
+  const auto done = [&](int a, int b) {
+    for (int i = a; i < b; ++i)
+      if (e.summed(i)) e.finish(i, e.x_off[i] >= 0, ws.L[i], ws.drho[i], ws.acc[i]);
+  };
   with_kernel_functions(e.kernel, e.h, [&](const auto& kf) {
     with_term_tags(o.viscosity, o.artificial_stress > 0, [&](auto viscosity_tag, auto stress_tag) {
       constexpr ViscositySwitch kV = decltype(viscosity_tag)::value;
       constexpr bool kS = decltype(stress_tag)::value;
       if (o.xsph > 0)
-        pair_loop<Dim, kV, kS, true>(A, kf, e.pair_factor, scratch);
+        pair_loop<Dim, kV, kS, true>(A, kf, e.pair_factor, scratch, e.threads, 0, prepare, done);
       else
-        pair_loop<Dim, kV, kS, false>(A, kf, e.pair_factor, scratch);
+        pair_loop<Dim, kV, kS, false>(A, kf, e.pair_factor, scratch, e.threads, 0, prepare, done);
     });
   });
-  for (int i = 0; i < n; ++i)
-    if (e.summed(i)) e.finish(i, e.x_off[i] >= 0, ws.L[i], ws.drho[i], ws.acc[i]);
 }
 
 }  // namespace rate_form_detail
@@ -86,9 +96,12 @@ template <int Dim>
 template <class Scalar>
 void RateFormScheme<Dim>::evaluate(const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& y,
                                    Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& dydt) const {
-  rate_form_detail::Evaluation<Dim, Scalar> e(*this, y, dydt);
+  // The pair loop unpacks the state in its own region, unless the bulk viscosity needs every velocity first.
+  const bool pairs = std::is_same_v<Scalar, double> && m_options.pair_loop == PairLoop::Pairs && !m_exchange;
+  const bool bulk = m_options.bulk_viscosity_quadratic > 0 || m_options.bulk_viscosity_linear > 0;
+  rate_form_detail::Evaluation<Dim, Scalar> e(*this, y, dydt, !pairs || bulk);
   if constexpr (std::is_same_v<Scalar, double>) {
-    if (m_options.pair_loop == PairLoop::Pairs && !e.partial) return rate_form_detail::run_pairs(e);
+    if (pairs) return rate_form_detail::run_pairs(e, !bulk);
   }
   if (m_options.gradient == RateFormGradient::Plain && !rate_form_detail::uses_local_means(m_options.momentum)) {
     if (e.bulk) e.bulk_pressure(nullptr);

@@ -6,7 +6,7 @@
 /// corrected_rows.hpp, pair_loop.hpp) sum the pairs. The terms themselves are one file each beside this one.
 ///
 /// Every loop runs the same operations in the same order for any thread count: threads own whole rows and sum them in
-/// the serial order (core/threads.hpp).
+/// the serial order (core/threads.hpp); the pair loop's threads own whole chunks of particles (pair_loop.hpp).
 #include <Eigen/Core>
 #include <array>
 #include <limits>
@@ -60,8 +60,9 @@ struct Evaluation {
   using Workspace = typename Scheme::template Workspace<Scalar>;
 
   /// Unpacks y (fixed particles at their initial positions at rest; frozen ones at the initial rho and S) and the
-  /// volumes V_i = m_i / rho_i.
-  Evaluation(const Scheme& scheme, const Vector& y, Vector& dydt);
+  /// volumes V_i = m_i / rho_i; with unpack_rows = false the caller unpacks each particle (unpack(i)) in its own
+  /// parallel region (the pair loop: one region less per evaluation).
+  Evaluation(const Scheme& scheme, const Vector& y, Vector& dydt, bool unpack_rows = true);
 
   const Scheme& scheme;
   const Discretisation<Dim>& d;
@@ -89,6 +90,7 @@ struct Evaluation {
   const std::vector<bool>& excluded;
 
   Workspace& ws;
+  const Vector& y;
   Vector& dydt;
   Separation<Dim, Scalar> separation;
   PairFactor pair_factor;
@@ -97,12 +99,22 @@ struct Evaluation {
   /// Whether particle i has rates (free, or fixed with evolving rho and S).
   bool summed(int i) const { return x_off[i] >= 0 || rho_off[i] >= 0; }
 
+  /// x, v, rho, S and V of particle i from y (the constructor's arrays are sized).
+  void unpack(int i);
   /// MCM's bulk viscosity q_i (bulk_viscosity.hpp) from d_i = sum_j (v_j - v_i) . Ghat_ij with the corrected gradient
   /// when one is given (gh, V_j included), else the plain V_j grad W_ij computed here; the self pair adds nothing.
   void bulk_pressure(const std::vector<Vec>* corrected);
   /// sigma = S - (p + q) I, sigma / rho^2 and the artificial stress R of every particle. An artificial stress refused
   /// at rho <= 0 is rethrown after the parallel loop (a run's result, not an abort in the region).
   void stresses();
+  /// stresses() of particle i alone (for a loop's own parallel region: size_stresses() first). Throws
+  /// std::invalid_argument for an artificial stress refused at rho <= 0.
+  void stress(int i);
+  void size_stresses() {
+    ws.sigma.resize(n);
+    ws.sigma_rho2.resize(n);
+    ws.R.resize(n);
+  }
   /// Writes every rate of particle i from its velocity gradient L, summed density rate and acceleration.
   void finish(int i, bool free, const Mat& L, Scalar drho, const Vec& acc);
 
@@ -111,7 +123,7 @@ struct Evaluation {
 };
 
 template <int Dim, class Scalar>
-Evaluation<Dim, Scalar>::Evaluation(const Scheme& s, const Vector& y, Vector& out)
+Evaluation<Dim, Scalar>::Evaluation(const Scheme& s, const Vector& state, Vector& out, bool unpack_rows)
     : scheme(s),
       d(*s.m_disc),
       p(d.particles),
@@ -141,45 +153,47 @@ Evaluation<Dim, Scalar>::Evaluation(const Scheme& s, const Vector& y, Vector& ou
       in_support(s.m_in_support),
       excluded(s.m_excluded),
       ws(workspace(s)),
+      y(state),
       dydt(out),
       pair_factor(s.m_w_dp, s.m_options.artificial_stress_exponent) {
   if (y.size() != s.m_size)
     throw std::invalid_argument("RateFormScheme::rate: state has " + std::to_string(y.size()) + " entries, expected " +
                                 std::to_string(s.m_size));
-  std::vector<Vec>&x = ws.x, &v = ws.v;
   ws.x.resize(n);
   ws.v.resize(n);
   ws.vhat.resize(n);
   ws.rho.resize(n);
   ws.S.resize(n);
-  const Eigen::VectorXd& deviator = s.m_deviator;
-  const double density = s.m_density;
+  ws.vol.resize(n);
+  if (unpack_rows) {
 #pragma omp parallel for schedule(static) num_threads(threads)
-  for (int i = 0; i < n; ++i) {
-    if (x_off[i] >= 0) {
-      x[i] = y.template segment<Dim>(x_off[i]);
-      v[i] = y.template segment<Dim>(x_off[i] + Dim);
-    } else {
-      x[i] = p.x.row(i).transpose().template cast<Scalar>();
-      v[i].setZero();
-    }
-    if (rho_off[i] >= 0) {
-      ws.rho[i] = y[rho_off[i]];
-      ws.S[i] = y.template segment<kStress>(rho_off[i] + 1);
-    } else {
-      ws.rho[i] = Scalar(density);
-      ws.S[i] = deviator.template cast<Scalar>();
-    }
+    for (int i = 0; i < n; ++i) unpack(i);
   }
-  separation.xs = x.data();
+  separation.xs = ws.x.data();
   for (int a = 0; a < Dim; ++a) {
     const double L = p.box_hi[a] - p.box_lo[a];
     separation.box[a] = Scalar(L);
     separation.half_box[a] = p.periodic[a] ? 0.5 * L : std::numeric_limits<double>::infinity();
   }
-  ws.vol.resize(n);
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (int i = 0; i < n; ++i) ws.vol[i] = mass[i] / ws.rho[i];
+}
+
+template <int Dim, class Scalar>
+void Evaluation<Dim, Scalar>::unpack(int i) {
+  if (x_off[i] >= 0) {
+    ws.x[i] = y.template segment<Dim>(x_off[i]);
+    ws.v[i] = y.template segment<Dim>(x_off[i] + Dim);
+  } else {
+    ws.x[i] = p.x.row(i).transpose().template cast<Scalar>();
+    ws.v[i].setZero();
+  }
+  if (rho_off[i] >= 0) {
+    ws.rho[i] = y[rho_off[i]];
+    ws.S[i] = y.template segment<kStress>(rho_off[i] + 1);
+  } else {
+    ws.rho[i] = Scalar(scheme.m_density);
+    ws.S[i] = scheme.m_deviator.template cast<Scalar>();
+  }
+  ws.vol[i] = mass[i] / ws.rho[i];
 }
 
 template <int Dim, class Scalar>
@@ -213,23 +227,23 @@ void Evaluation<Dim, Scalar>::bulk_pressure(const std::vector<Vec>* corrected) {
 
 template <int Dim, class Scalar>
 void Evaluation<Dim, Scalar>::stresses() {
-  ws.sigma.resize(n);
-  ws.sigma_rho2.resize(n);
-  ws.R.resize(n);
+  size_stresses();
   FirstException first_error;
 #pragma omp parallel for schedule(static) num_threads(threads)
-  for (int i = 0; i < n; ++i)
-    first_error.run([&] {
-      const Scalar rho = ws.rho[i];
-      const Scalar pressure = eos_pressure(K, rho, rho0) + (bulk ? ws.bulk_q[i] : Scalar(0));
-      ws.sigma[i] = cauchy_stress<Dim, Scalar>(ws.S[i], pressure);
-      ws.sigma_rho2[i] = ws.sigma[i] / (rho * rho);
-      if (o.artificial_stress > 0)
-        ws.R[i] = particle_artificial_stress<Dim, Scalar>(ws.sigma[i], rho, o.artificial_stress);
-      else
-        ws.R[i].setZero();
-    });
+  for (int i = 0; i < n; ++i) first_error.run([&] { stress(i); });
   first_error.rethrow();
+}
+
+template <int Dim, class Scalar>
+void Evaluation<Dim, Scalar>::stress(int i) {
+  const Scalar rho = ws.rho[i];
+  const Scalar pressure = eos_pressure(K, rho, rho0) + (bulk ? ws.bulk_q[i] : Scalar(0));
+  ws.sigma[i] = cauchy_stress<Dim, Scalar>(ws.S[i], pressure);
+  ws.sigma_rho2[i] = ws.sigma[i] / (rho * rho);
+  if (o.artificial_stress > 0)
+    ws.R[i] = particle_artificial_stress<Dim, Scalar>(ws.sigma[i], rho, o.artificial_stress);
+  else
+    ws.R[i].setZero();
 }
 
 template <int Dim, class Scalar>
