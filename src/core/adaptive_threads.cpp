@@ -40,15 +40,24 @@ void AdaptiveThreads::before_step() {
 }
 
 void AdaptiveThreads::after_step() {
-  m_block_seconds += m_clock() - m_step_start;
+  const double seconds = m_clock() - m_step_start;
   ++m_steps[m_current];
-  if (most() <= 1 || ++m_in_block < m_block_steps) return;
-  // The block is complete: a block too short to measure doubles the next ones and is still taken (the first blocks
-  // of a run are short by design: a run of a few steps should not wait to choose).
-  if (m_block_seconds < kMinBlockSeconds) m_block_steps *= 2;
+  // The run's first step is not a measurement: it pays for first touches (workspaces, page faults, waking threads).
+  if (most() <= 1 || m_steps[0] + m_steps[1] == 1) return;
+  m_block_seconds += seconds;
+  if (++m_in_block < m_block_steps) return;
+  // A block too short to measure goes on with the same count, and so do the blocks after it (a block is one
+  // measurement: a few scheduler time slices at least).
+  if (m_block_seconds < kMinBlockSeconds) {
+    m_block_steps *= 2;
+    return;
+  }
   m_per_step[m_current] = m_block_seconds / static_cast<double>(m_in_block);
   if (m_per_step[1 - m_current] < 0) return start_block(1 - m_current);  // measure the other count first
-  const int best = m_per_step[0] <= m_per_step[1] ? 0 : 1;
+  // The other count must be kMargin faster to replace the chosen one: timings of a shared machine are noisy, and
+  // each change costs blocks of measuring.
+  const int other = 1 - m_best;
+  const int best = m_per_step[other] < (1 - kMargin) * m_per_step[m_best] ? other : m_best;
   if (m_probe) {  // a probe block: the choice is confirmed (probe less often) or changed (probe soon)
     m_interval = best == m_best ? std::min(2 * m_interval, kMaxInterval) : kFirstInterval;
     m_until_probe = m_interval;

@@ -11,18 +11,14 @@
 #include <vector>
 
 #include "sphstab/core/threads.hpp"
+#include "sphstab/numerics/random_vector.hpp"
 
 namespace sphstab {
 namespace tall_block_algebra_test {
 
 /// rows x cols uniform in [-1, 1]: 9003 rows are 3 chunks (the last partial) and 3 rows beyond a multiple of 4.
 Eigen::MatrixXd random_block(Eigen::Index rows, Eigen::Index cols, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Eigen::MatrixXd m(rows, cols);
-  for (Eigen::Index j = 0; j < cols; ++j)
-    for (Eigen::Index i = 0; i < rows; ++i) m(i, j) = u(rng);
-  return m;
+  return random_vector(static_cast<int>(rows * cols), 1.0, seed).reshaped(rows, cols);
 }
 
 constexpr Eigen::Index kRows = 2 * tall::kRowChunk + 811;

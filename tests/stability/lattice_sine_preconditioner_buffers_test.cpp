@@ -12,6 +12,7 @@
 #include "sphstab/particles/lattice_presets.hpp"
 #include "sphstab/stability/lattice_sine_preconditioner.hpp"
 #include "sphstab/stability/lattice_stencil.hpp"
+#include "sphstab/numerics/random_vector.hpp"
 
 namespace sphstab {
 namespace lattice_sine_preconditioner_buffers_test {
@@ -19,12 +20,7 @@ namespace lattice_sine_preconditioner_buffers_test {
 const ElasticMaterial kMaterial = ElasticMaterial::from_lame(1.2115384615384615, 0.8076923076923077, 7.8);
 
 Eigen::MatrixXd random_block(Eigen::Index rows, Eigen::Index cols, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Eigen::MatrixXd m(rows, cols);
-  for (Eigen::Index j = 0; j < cols; ++j)
-    for (Eigen::Index i = 0; i < rows; ++i) m(i, j) = u(rng);
-  return m;
+  return random_vector(static_cast<int>(rows * cols), 1.0, seed).reshaped(rows, cols);
 }
 
 TEST(LatticeSinePreconditionerBuffers, ReusedBuffersGiveTheSameBits) {

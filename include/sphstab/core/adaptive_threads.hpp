@@ -9,10 +9,11 @@
 /// not the waiting. Because sphstab's threaded loops give the same bits for any thread count (core/threads.hpp), the
 /// count can change between steps without changing the result; so the run measures both counts and uses the faster.
 ///
-/// How: steps are taken in blocks of one count, each block at least kMinBlockSeconds of stepping (the block length
-/// in steps doubles until it is). The first two blocks measure both counts; then the faster count runs, and one block
-/// of the other is measured after `interval` blocks of it: 4 after a change of choice, doubling up to 64 while the
-/// choice holds. Worst case, when the other count is k times slower: one block in interval + 1 at k times the cost
+/// How: steps are taken in blocks of one count, each block at least kMinBlockSeconds of stepping (a shorter block
+/// goes on, its length in steps doubling, until it is; the run's first step, which pays for first touches, is not timed). The first two
+/// blocks measure both counts; then the faster count runs (the other must be kMargin faster to replace the chosen
+/// one, `most` at first), and one block of the other is measured after `interval` blocks of it: 4 after a change of
+/// choice, doubling up to 64 while the choice holds. Worst case, when the other count is k times slower: one block in interval + 1 at k times the cost
 /// (e.g. 2x slower: 1/65 = 1.5 % extra once settled).
 /// \code{.cpp}
 /// AdaptiveThreads threads;               // max_threads() now; nothing to choose with one
@@ -32,6 +33,8 @@ class AdaptiveThreads {
   /// Shortest block of steps that counts as a measurement: several scheduler time slices (~4 ms each).
   static constexpr double kMinBlockSeconds = 0.05;
   static constexpr long kFirstInterval = 4, kMaxInterval = 64;
+  /// How much faster (relative) the other count must measure to replace the chosen one.
+  static constexpr double kMargin = 0.03;
 
   /// Chooses between `most` threads and one (most <= 1: nothing to choose, every step on one thread). `clock`:
   /// seconds, monotonic (default: std::chrono::steady_clock). Throws std::invalid_argument for most < 1.

@@ -77,9 +77,9 @@ int threads_for(long rows);
 /// slice it needs: issue 35 measured `sphstab --threads 2 scene rings` three times slower than one thread beside one
 /// CPU-bound process, and 1.15x slower with OMP_WAIT_POLICY=passive. libgomp reads OMP_WAIT_POLICY and GOMP_SPINCOUNT
 /// once, when it is loaded, before main() runs; so the only way a program sets them is to set the variable and
-/// execute itself again. The policy is passive, a waiting thread sleeps at once: on this 2-core host it was the fastest
-/// of the spins tried with two threads, idle and busy (results/threads-speed compares it with a short spin and with
-/// libgomp's default in every report run).
+/// execute itself again. The policy is passive, a waiting thread sleeps at once: beside a CPU-bound process it is the
+/// spin that costs least, while on an idle machine a spin is a few per cent faster (results/threads-speed measures
+/// passive, a short spin and libgomp's default in every report run); a shared machine is the case to protect.
 inline constexpr const char* kProgramWaitPolicy = "passive";
 
 /// Call first in main(). If the environment sets neither OMP_WAIT_POLICY nor GOMP_SPINCOUNT (the user's choice is
