@@ -2,9 +2,14 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
+#include <fstream>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
+
+#include <unistd.h>
 
 #include "sphstab/core/threads.hpp"
 
@@ -14,12 +19,32 @@ namespace {
 double adaptive_threads_clock() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
+double unknown_others() { return std::numeric_limits<double>::quiet_NaN(); }
 }  // namespace
 
-AdaptiveThreads::AdaptiveThreads(int most, std::function<double()> clock)
-    : m_clock(clock ? std::move(clock) : std::function<double()>(adaptive_threads_clock)), m_saved(max_threads()) {
+double others_cpu_seconds() {
+  std::ifstream f("/proc/stat");
+  std::string cpu;
+  unsigned long long user = 0, nice = 0, system = 0, idle = 0, iowait = 0, irq = 0, softirq = 0, steal = 0;
+  f >> cpu >> user >> nice >> system >> idle >> iowait >> irq >> softirq >> steal;
+  timespec own{};
+  if (!f || cpu != "cpu" || clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &own) != 0)
+    return std::numeric_limits<double>::quiet_NaN();
+  const double busy = static_cast<double>(user + nice + system + irq + softirq + steal) /
+                      static_cast<double>(sysconf(_SC_CLK_TCK));
+  return busy - (static_cast<double>(own.tv_sec) + 1e-9 * static_cast<double>(own.tv_nsec));
+}
+
+AdaptiveThreads::AdaptiveThreads(int most, std::function<double()> clock, std::function<double()> others)
+    : m_saved(max_threads()) {
   if (most < 1) throw std::invalid_argument("AdaptiveThreads: thread count must be >= 1, got " + std::to_string(most));
   m_counts = {most, 1};
+  // Real time and /proc/stat belong together; a given clock with the real others' CPU would compare two time lines.
+  if (others) m_others = std::move(others);
+  else m_others = clock ? unknown_others : others_cpu_seconds;
+  m_clock = clock ? std::move(clock) : std::function<double()>(adaptive_threads_clock);
+  m_others_start = m_others();
+  m_others_clock = m_clock();
 }
 
 AdaptiveThreads::AdaptiveThreads() : AdaptiveThreads(max_threads()) {}
@@ -66,8 +91,18 @@ void AdaptiveThreads::after_step() {
     m_interval = kFirstInterval;
     m_until_probe = m_interval;
   } else if (--m_until_probe <= 0) {
-    m_probe = true;
-    return start_block(1 - best);
+    // A probe of one thread is for another process's arrival: skipped while the others used < kBusyCores since the
+    // last one (NaN, unknown: taken).
+    const double now = m_clock(), others = m_others();
+    const bool idle = best == 0 && (others - m_others_start) < kBusyCores * (now - m_others_clock);
+    m_others_start = others, m_others_clock = now;
+    if (!idle) {
+      m_probe = true;
+      return start_block(1 - best);
+    }
+    ++m_skipped;
+    m_interval = std::min(2 * m_interval, kMaxInterval);
+    m_until_probe = m_interval;
   }
   m_best = best;
   start_block(best);

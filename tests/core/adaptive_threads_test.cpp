@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <functional>
+#include <limits>
 #include <stdexcept>
 
 #include "sphstab/core/threads.hpp"
@@ -59,6 +61,55 @@ TEST(AdaptiveThreads, FollowsALoadThatChangesDuringTheRun) {
   EXPECT_EQ(a.current(), 1);
   EXPECT_GT(a.steps_with_one() - one_before, 4700);  // switched within the first blocks of the new load
   EXPECT_LT(second, 1.1 * 5000 * 0.01) << clock_second;
+}
+
+TEST(AdaptiveThreads, OnAnIdleMachineOnlyTheFirstMeasurementOfOneThreadIsPaid) {
+  const ThreadCountGuard guard(1);
+  const auto cost = [](int t, long) { return t == 2 ? 0.006 : 0.01; };  // two threads 1.7x faster
+  // The same run with the others' CPU unknown (every probe taken), idle (0 cores), and busy (one core).
+  long one[3] = {}, skipped[3] = {};
+  for (int k = 0; k < 3; ++k) {
+    double clock = 0;
+    const std::function<double()> others[3] = {
+        [] { return std::numeric_limits<double>::quiet_NaN(); }, [] { return 0.0; }, [&] { return clock; }};
+    AdaptiveThreads a(2, [&] { return clock; }, others[k]);
+    simulate(a, clock, 20000, cost);
+    EXPECT_EQ(a.current(), 2) << k;
+    one[k] = a.steps_with_one(), skipped[k] = a.probes_skipped();
+  }
+  EXPECT_EQ(skipped[0], 0);
+  EXPECT_EQ(skipped[2], 0);
+  EXPECT_EQ(one[2], one[0]);  // a busy machine is probed as an unknown one
+  EXPECT_GE(skipped[1], 5);   // 20000 steps: 4, 8, 16, 32, 64, 64, ... blocks between due probes
+  // Idle: the first block of one thread only, against every probe's blocks otherwise. Its length: the first block
+  // (two threads, after the untimed first step) doubles from 1 step while it lasts < 0.05 s: 8 steps are 0.048 s, so
+  // 16; the one-thread block has the same length.
+  EXPECT_EQ(one[1], 16);
+  EXPECT_GT(one[0], one[1] + 5 * 16);
+}
+
+TEST(AdaptiveThreads, AnIdleReadingDoesNotHideAContendedMachine) {
+  // The others' CPU says idle throughout (e.g. a contending virtual machine without steal time), yet two threads
+  // turn three times slower: the chosen count's blocks are compared with one thread's last measurement and the
+  // chooser switches within blocks, as without the reading.
+  const ThreadCountGuard guard(1);
+  double clock = 0;
+  AdaptiveThreads a(2, [&] { return clock; }, [] { return 0.0; });
+  const auto cost = [](int t, long n) { return t == 1 ? 0.01 : (n < 5000 ? 0.005 : 0.03); };
+  simulate(a, clock, 10000, cost);
+  EXPECT_EQ(a.current(), 1);
+  EXPECT_GT(a.probes_skipped(), 0);
+  EXPECT_GT(a.steps_with_one(), 4700);
+}
+
+TEST(AdaptiveThreads, OthersCpuSecondsIsReadable) {
+  // Linux: /proc/stat is there and the others' CPU seconds never decrease by more than a tick of rounding.
+  const double a = others_cpu_seconds();
+  ASSERT_TRUE(std::isfinite(a));
+  volatile double x = 0;
+  for (int i = 0; i < 20000000; ++i) x = x + 1e-9 * i;  // ~20 ms of this process's CPU
+  const double b = others_cpu_seconds();
+  EXPECT_GT(b, a - 0.05);
 }
 
 TEST(AdaptiveThreads, OneThreadIsNothingToChoose) {

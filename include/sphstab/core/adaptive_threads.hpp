@@ -14,7 +14,11 @@
 /// blocks measure both counts; then the faster count runs (the other must be kMargin faster to replace the chosen
 /// one, `most` at first), and one block of the other is measured after `interval` blocks of it: 4 after a change of
 /// choice, doubling up to 64 while the choice holds. Worst case, when the other count is k times slower: one block in interval + 1 at k times the cost
-/// (e.g. 2x slower: 1/65 = 1.5 % extra once settled).
+/// (e.g. 2x slower: 1/65 = 1.5 % extra once settled). A probe of one thread while `most` is chosen is skipped (and
+/// counts as a confirmation) when the other processes used less than kBusyCores of the machine since the last probe
+/// (/proc/stat): on an idle machine only the first measurement of one thread is paid (results/threads-speed measured
+/// the probes' cost at 0.1-0.15 of the idle speed-up in runs of 2-3 s); a slower `most` block than the last
+/// one-thread measurement still switches at once.
 /// \code{.cpp}
 /// AdaptiveThreads threads;               // max_threads() now; nothing to choose with one
 /// while (more()) {
@@ -35,10 +39,14 @@ class AdaptiveThreads {
   static constexpr long kFirstInterval = 4, kMaxInterval = 64;
   /// How much faster (relative) the other count must measure to replace the chosen one.
   static constexpr double kMargin = 0.03;
+  /// Below this many cores used by other processes (averaged since the last probe) the machine counts as idle.
+  static constexpr double kBusyCores = 0.3;
 
   /// Chooses between `most` threads and one (most <= 1: nothing to choose, every step on one thread). `clock`:
-  /// seconds, monotonic (default: std::chrono::steady_clock). Throws std::invalid_argument for most < 1.
-  explicit AdaptiveThreads(int most, std::function<double()> clock = {});
+  /// seconds, monotonic (default: std::chrono::steady_clock). `others`: CPU seconds used by other processes since
+  /// any fixed origin, NaN when unknown (default: others_cpu_seconds() with the default clock; with a given clock,
+  /// unknown, so that every probe is taken). Throws std::invalid_argument for most < 1.
+  explicit AdaptiveThreads(int most, std::function<double()> clock = {}, std::function<double()> others = {});
   /// max_threads() as found.
   AdaptiveThreads();
   ~AdaptiveThreads();  ///< restores the thread count found at construction
@@ -57,6 +65,8 @@ class AdaptiveThreads {
   /// Steps taken with `most` threads and with one.
   long steps_with_most() const { return m_steps[0]; }
   long steps_with_one() const { return most() == 1 ? m_steps[0] : m_steps[1]; }
+  /// Probes of one thread skipped because the machine was idle.
+  long probes_skipped() const { return m_skipped; }
 
  private:
   void start_block(int which);
@@ -73,6 +83,13 @@ class AdaptiveThreads {
   std::array<double, 2> m_per_step{-1, -1};  // latest seconds per step of each count (< 0: not measured)
   long m_interval = kFirstInterval, m_until_probe = kFirstInterval;
   std::array<long, 2> m_steps{0, 0};
+  std::function<double()> m_others;
+  double m_others_start = 0, m_others_clock = 0;  // others' CPU seconds and the clock at the last probe
+  long m_skipped = 0;
 };
+
+/// CPU seconds used since boot by every process but this one (/proc/stat's busy time, steal included, less this
+/// process's CPU time); NaN where /proc/stat cannot be read.
+double others_cpu_seconds();
 
 }  // namespace sphstab
