@@ -1,4 +1,6 @@
 """Headline claims of gms-rings (results/gms-rings/), run by tests/scripts/claims_test.py."""
+import math
+
 from claims import approx, check, one, select
 
 VARIANTS = {"": "", "pairs_": "_pairs", "fast_": "_fast", "halfdt_": "_halfdt"}  # summary prefix -> tag suffix
@@ -83,3 +85,39 @@ def claim_loop_speed_order(r):
         check(fast < pairs < rows, f"runs.csv {units} eps {eps}: us_cpu rows {rows}, pairs {pairs}, fast {fast}")
         out.append(f"{rows / fast:.2g}x")
     return "rows/fast " + ", ".join(out)
+
+
+def claim_frozen_spectra(r):
+    """The linearised spectra along the epsilon = 0 collision (frozen_spectrum.csv), as the summary reads them: taken
+    in the four mirror classes (invariance residuals <= 1e-10, the peak named in the quadrant x, y >= 0; no mode named
+    for a state without an unstable eigenvalue); the start is stable; at contact unstable modes without viscosity under epsilon = 0 and 0.3, fewer and slower with it on; on
+    the rebound the epsilon = 0 growth rate rises from state to state; epsilon = 0.3 lowers the last state's largest
+    growth rate (the summary's ratio) yet has more unstable eigenvalues than epsilon = 0 there."""
+    rows = r.csv("frozen_spectrum.csv")
+    for x in rows:
+        check(x["symmetry_residual"] <= 1e-10, f"{x.where()}: invariance residual {x['symmetry_residual']}")
+        if x["unstable_eigenvalues"] > 0:
+            check(x["mode_class_x"] in (1, -1) and x["mode_class_y"] in (1, -1), f"{x.where()}: mode class")
+            check(x["mode_peak_x"] >= -1e-9 and x["mode_peak_y"] >= -1e-9, f"{x.where()}: peak outside x, y >= 0")
+        else:  # no unstable eigenvalue: no mode to name
+            check(math.isnan(x["mode_class_x"]) and math.isnan(x["mode_peak_x"]), f"{x.where()}: a stable mode named")
+    for x in select(rows, state="start"):
+        check(x["unstable_eigenvalues"] == 0, f"{x.where()}: the start has unstable eigenvalues")
+    first = min(x["t"] for x in rows if x["state"] != "start")
+    for eps in (0, 0.3):
+        off, on = one(rows, t=first, eps=eps, viscosity=0), one(rows, t=first, eps=eps, viscosity=1)
+        check(off["unstable_eigenvalues"] > 0, f"{off.where()}: no unstable mode at contact")
+        check(on["unstable_eigenvalues"] < off["unstable_eigenvalues"] and on["growth_rate"] < off["growth_rate"],
+              f"{on.where()}: the viscosity does not reduce the unstable modes")
+    eps0 = sorted((x for x in rows if x["state"] != "start" and x["eps"] == 0 and x["viscosity"] == 0),
+                  key=lambda x: x["t"])
+    for a, b in zip(eps0, eps0[1:]):
+        check(b["growth_rate"] > a["growth_rate"], f"{b.where()}: epsilon = 0 growth does not rise")
+    last = eps0[-1]
+    l03 = one(rows, t=last["t"], eps=0.3, viscosity=0)
+    ratio = l03["growth_rate"] / last["growth_rate"]
+    check(ratio < 1, f"{l03.where()}: epsilon = 0.3 does not lower the growth rate")
+    approx(r.num("frozen_last_eps03_over_eps0"), ratio, "summary frozen_last_eps03_over_eps0", abs_=0.0051)
+    check(l03["unstable_eigenvalues"] > last["unstable_eigenvalues"], f"{l03.where()}: fewer unstable with 0.3")
+    return (f"{len(rows)} spectra in 4 classes; last state epsilon = 0.3 / 0: {ratio:.2f}; unstable "
+            f"{last['unstable_eigenvalues']} -> {l03['unstable_eigenvalues']}")
