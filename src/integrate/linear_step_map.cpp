@@ -52,12 +52,16 @@ void check(const Eigen::MatrixXd& J, const StateLayout& s, double dt, const std:
     throw std::invalid_argument(who + ": dt must be finite and > 0 (got " + format_number(dt) + ")");
 }
 
-/// The matrices of the notation (linear_step_map.hpp): P (projector on positions), S (velocity slot -> position
-/// slot), V (nv x n velocity selection), X (position selection).
+/// The matrices of the notation (linear_step_map.hpp) of a map's layout, once J, the layout and dt are checked (errors
+/// name `who`): P (projector on positions), S (velocity slot -> position slot), V (nv x n velocity selection), X
+/// (position selection) and I; n the size of y.
 struct Slots {
-  Eigen::MatrixXd P, S, V, X;
-  explicit Slots(const StateLayout& s) {
-    const Eigen::Index n = s.size, nv = static_cast<Eigen::Index>(s.velocity.size());
+  Eigen::Index n = 0;
+  Eigen::MatrixXd P, S, V, X, I;
+  Slots(const Eigen::MatrixXd& J, const StateLayout& s, double dt, const std::string& who) {
+    check(J, s, dt, who);
+    n = s.size;
+    const Eigen::Index nv = static_cast<Eigen::Index>(s.velocity.size());
     P = Eigen::MatrixXd::Zero(n, n), S = Eigen::MatrixXd::Zero(n, n);
     V = Eigen::MatrixXd::Zero(nv, n), X = Eigen::MatrixXd::Zero(nv, n);
     for (Eigen::Index k = 0; k < nv; ++k) {
@@ -66,6 +70,7 @@ struct Slots {
       V(k, s.velocity[k]) = 1;
       X(k, s.position[k]) = 1;
     }
+    I = Eigen::MatrixXd::Identity(n, n);
   }
 };
 
@@ -73,35 +78,32 @@ struct Slots {
 
 Eigen::MatrixXd predictor_corrector_map(const Eigen::MatrixXd& J, const StateLayout& layout, double dt,
                                         PositionUpdate positions) {
-  check(J, layout, dt, "predictor_corrector_map");
-  const Slots m(layout);
-  const Eigen::Index n = layout.size;
-  const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n), Q = I - m.P;
+  const Slots m(J, layout, dt, "predictor_corrector_map");
+  const Eigen::MatrixXd Q = m.I - m.P;
   // GMS (6.14), (6.15): y_p = A y, the positions with dt^2/2 a0 (S J y puts a0 into the position slots).
-  const Eigen::MatrixXd A = I + dt * J + 0.5 * dt * dt * m.S * J;
+  const Eigen::MatrixXd A = m.I + dt * J + 0.5 * dt * dt * m.S * J;
   // GMS (6.16)-(6.18): the corrector dt/2 (f1 - f0) = dt/2 J (A - I) y on everything but the positions.
-  const Eigen::MatrixXd corr = 0.5 * dt * J * (A - I);
+  const Eigen::MatrixXd corr = 0.5 * dt * J * (A - m.I);
   if (positions == PositionUpdate::Gms) return A + Q * corr;  // x = x_p, "not corrected"
   // Trapezoid: x = x0 + dt/2 (f0 + f1) on the positions.
-  return Q * A + Q * corr + m.P * (I + 0.5 * dt * J + 0.5 * dt * J * A);
+  return Q * A + Q * corr + m.P * (m.I + 0.5 * dt * J + 0.5 * dt * J * A);
 }
 
 Eigen::MatrixXd predictor_corrector_reuse_map(const Eigen::MatrixXd& J, const StateLayout& layout, double dt,
                                               PositionUpdate positions) {
-  check(J, layout, dt, "predictor_corrector_reuse_map");
-  const Slots m(layout);
-  const Eigen::Index n = layout.size;
-  const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n), Q = I - m.P;
-  const Eigen::MatrixXd B = dt * I + 0.5 * dt * dt * m.S;  // y_p = y + B g: GMS (6.14), (6.15) with f0 = g
+  const Slots m(J, layout, dt, "predictor_corrector_reuse_map");
+  const Eigen::Index n = m.n;
+  const Eigen::MatrixXd Q = m.I - m.P;
+  const Eigen::MatrixXd B = dt * m.I + 0.5 * dt * dt * m.S;  // y_p = y + B g: GMS (6.14), (6.15) with f0 = g
   // Blocks over (y, g): y_p = [I, B], f1 = J y_p = [J, J B].
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(2 * n, 2 * n);
   const Eigen::MatrixXd JB = J * B;
   // y1 = y_p + dt/2 Q (f1 - g) (+ the trapezoid's position rows).
-  M.topLeftCorner(n, n) = I + 0.5 * dt * Q * J;
-  M.topRightCorner(n, n) = B + 0.5 * dt * Q * (JB - I);
+  M.topLeftCorner(n, n) = m.I + 0.5 * dt * Q * J;
+  M.topRightCorner(n, n) = B + 0.5 * dt * Q * (JB - m.I);
   if (positions == PositionUpdate::Trapezoid) {  // P rows: y + dt/2 (g + f1)
-    M.topLeftCorner(n, n) = Q * M.topLeftCorner(n, n) + m.P * (I + 0.5 * dt * J);
-    M.topRightCorner(n, n) = Q * M.topRightCorner(n, n) + m.P * (0.5 * dt * (I + JB));
+    M.topLeftCorner(n, n) = Q * M.topLeftCorner(n, n) + m.P * (m.I + 0.5 * dt * J);
+    M.topRightCorner(n, n) = Q * M.topRightCorner(n, n) + m.P * (0.5 * dt * (m.I + JB));
   }
   // g1 = f1: the corrector's evaluation is the next step's F^0.
   M.bottomLeftCorner(n, n) = J;
@@ -110,14 +112,12 @@ Eigen::MatrixXd predictor_corrector_reuse_map(const Eigen::MatrixXd& J, const St
 }
 
 Eigen::MatrixXd staggered_leapfrog_map(const Eigen::MatrixXd& J, const StateLayout& layout, double dt) {
-  check(J, layout, dt, "staggered_leapfrog_map");
-  const Slots m(layout);
-  const Eigen::Index n = layout.size, nv = m.V.rows();
-  const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
-  const Eigen::MatrixXd keep = I - m.V.transpose() * m.V;  // I - V^T V: every slot but the velocities
+  const Slots m(J, layout, dt, "staggered_leapfrog_map");
+  const Eigen::Index n = m.n, nv = m.V.rows();
+  const Eigen::MatrixXd keep = m.I - m.V.transpose() * m.V;  // I - V^T V: every slot but the velocities
   // Step 2 (alg. 1.1 "Calculate <D>^{n-1/2}"): y_h over (y, vh, a), the a block is zero.
   //   y_h = keep (I + dt/2 J) y + X^T dt/2 (vh - V y) + V^T vh
-  const Eigen::MatrixXd Hy = keep * (I + 0.5 * dt * J) - 0.5 * dt * m.X.transpose() * m.V;
+  const Eigen::MatrixXd Hy = keep * (m.I + 0.5 * dt * J) - 0.5 * dt * m.X.transpose() * m.V;
   const Eigen::MatrixXd Hv = 0.5 * dt * m.X.transpose() + m.V.transpose();
   // Steps 3, 4: y' = keep (y + dt J y_h) + V^T (vh + dt/2 a)   ("Update density", "Update stress", positions)
   const Eigen::MatrixXd KJ = dt * keep * J;

@@ -53,31 +53,36 @@ void column_polish_in_place(DenseMatrix<Scalar>& a, const std::vector<int>& s) {
   row_polish_in_place(a.transpose(), s);
 }
 
+/// Which steps of algorithm 3.1 a polish takes.
+enum class PolishSteps { Rows, Columns, Both };
+
+// A copy of A polished over the checked subset (errors name `who`): its row step, its column step or both (algorithm
+// 3.1: row means first, then the column means of the new matrix).
+template <class Scalar>
+DenseMatrix<Scalar> polished(const DenseMatrix<Scalar>& A, const std::vector<int>& subset, const char* who,
+                             PolishSteps steps) {
+  const std::vector<int> s = checked_subset(A, subset, who);
+  DenseMatrix<Scalar> out = A;
+  if (steps != PolishSteps::Columns) row_polish_in_place(out, s);
+  if (steps != PolishSteps::Rows) column_polish_in_place(out, s);
+  return out;
+}
+
 }  // namespace
 
 template <class Scalar>
 DenseMatrix<Scalar> row_mean_polish(const DenseMatrix<Scalar>& A, const std::vector<int>& subset) {
-  auto s = checked_subset(A, subset, "row_mean_polish");
-  DenseMatrix<Scalar> out = A;
-  row_polish_in_place(out, s);
-  return out;
+  return polished(A, subset, "row_mean_polish", PolishSteps::Rows);
 }
 
 template <class Scalar>
 DenseMatrix<Scalar> column_mean_polish(const DenseMatrix<Scalar>& A, const std::vector<int>& subset) {
-  auto s = checked_subset(A, subset, "column_mean_polish");
-  DenseMatrix<Scalar> out = A;
-  column_polish_in_place(out, s);
-  return out;
+  return polished(A, subset, "column_mean_polish", PolishSteps::Columns);
 }
 
 template <class Scalar>
 DenseMatrix<Scalar> mean_polish(const DenseMatrix<Scalar>& A, const std::vector<int>& subset) {
-  auto s = checked_subset(A, subset, "mean_polish");
-  DenseMatrix<Scalar> out = A;
-  row_polish_in_place(out, s);  // algorithm 3.1: row means first, then the column means of the new matrix
-  column_polish_in_place(out, s);
-  return out;
+  return polished(A, subset, "mean_polish", PolishSteps::Both);
 }
 
 template <class Scalar>

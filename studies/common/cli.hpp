@@ -5,13 +5,16 @@
 /// CLI11_PARSE parses.
 #include <CLI/CLI.hpp>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <utility>
+#include <vector>
 
 namespace sphstab::study {
 
-/// The app, its --out and its --quick. A driver adds its own options to `app` between the two.
+/// The app, its --out and its --quick. A driver adds its own options to `app` (or by add_quick_option) between the two.
 struct DriverCli {
   CLI::App app;
   std::string out;
@@ -25,8 +28,18 @@ struct DriverCli {
     app.add_option("--out", out, "output directory");
   }
 
-  /// Adds --quick, parses the command line and creates the directory --out. Returns the exit code of the app after
-  /// --help or a command-line error (the message and code of CLI11_PARSE; nothing created), else none.
+  /// Adds a driver's option (CLI11's add_option) whose --quick case has a default of its own: with --quick and without
+  /// the option, parse() sets `value` to `quick_value`.
+  template <class T>
+  CLI::Option* add_quick_option(const std::string& name, T& value, std::type_identity_t<T> quick_value,
+                                const std::string& help) {
+    quick_defaults.emplace_back(name, [&value, quick_value] { value = quick_value; });
+    return app.add_option(name, value, help);
+  }
+
+  /// Adds --quick, parses the command line, sets the --quick defaults of add_quick_option and creates the directory
+  /// --out. Returns the exit code of the app after --help or a command-line error (the message and code of CLI11_PARSE;
+  /// nothing created), else none.
   std::optional<int> parse(int argc, char** argv) {
     app.add_flag("--quick", quick, quick_help);
     try {
@@ -34,9 +47,15 @@ struct DriverCli {
     } catch (const CLI::ParseError& e) {
       return app.exit(e);
     }
+    if (quick)
+      for (const auto& [name, set] : quick_defaults)
+        if (app.count(name) == 0) set();
     std::filesystem::create_directories(out);
     return std::nullopt;
   }
+
+ private:
+  std::vector<std::pair<std::string, std::function<void()>>> quick_defaults;  ///< add_quick_option's
 };
 
 }  // namespace sphstab::study

@@ -32,8 +32,8 @@
 // verdicts.csv.
 //
 // The drivers' shared frame (StudyOptions): the options every study takes (add_options), their check and the output
-// directory (prepare), the run of the study's cases and verdict cases (run_study) and the summary keys (set_run_keys);
-// each driver keeps its cases, its --quick settings and its own summary keys.
+// directory (prepare), the run of the study's cases and verdict cases (run_study) and the summary keys (set_run_keys,
+// set_body_keys); each driver keeps its cases, its --quick settings and its own summary keys.
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
@@ -501,6 +501,16 @@ inline void set_run_keys(Summary& s, std::size_t runs, int completed, const Stud
   s.set("t_end", o.t_end);
   s.set("quick", o.quick ? "yes" : "no");
   s.set("wall_seconds", seconds_since(wall0));
+}
+
+/// The summary keys of a study's snapshot times and of its body's size (length, height of `problem`'s defaults,
+/// problem_defaults); returns those defaults, for the study's own keys.
+inline PowellImpactOptions set_body_keys(Summary& s, ImpactProblem problem, const std::vector<double>& snapshot_times) {
+  const PowellImpactOptions body = problem_defaults({.problem = problem});
+  s.set("snapshot_times", list(snapshot_times));
+  s.set("length", body.length);
+  s.set("height", body.height);
+  return body;
 }
 
 }  // namespace sphstab::study::impact

@@ -66,11 +66,9 @@ int main(int argc, char** argv) {
       "the study's test case: 1D cubic at h/dx 0.8, 1.3, ..., 2.8 with --n1 12; 2D square at h/dx 1.3 with "
       "--n2 3 (unless given), no hexagonal block"};
   int n1 = 30, n2 = 9;
-  cli.app.add_option("--n1", n1, "free particles of the 1D bar")->check(CLI::Range(5, 400));
-  cli.app.add_option("--n2", n2, "free particles per side of the 2D block")->check(CLI::Range(3, 41));
+  cli.add_quick_option("--n1", n1, 12, "free particles of the 1D bar")->check(CLI::Range(5, 400));
+  cli.add_quick_option("--n2", n2, 3, "free particles per side of the 2D block")->check(CLI::Range(3, 41));
   if (const auto exit = cli.parse(argc, argv)) return *exit;
-  if (cli.quick && cli.app.count("--n1") == 0) n1 = 12;
-  if (cli.quick && cli.app.count("--n2") == 0) n2 = 3;
   const auto t0 = study::Clock::now();
   // rho0 = 1, K = 1, mu = 0.3 (GMS units, nu = 0.36): M = 1.4.
   const ElasticMaterial material = ElasticMaterial::from_bulk_shear(1.0, 0.3, 1.0);

@@ -35,11 +35,11 @@ int main(int argc, char** argv) {
       "the study's test case: gms and ncsph at h/dx 1.3, --path-points 16, --grid 9 (unless given); 1D at "
       "h/dx 0.8, 1.9, 3.0"};
   int path_points = 48, grid = 33;
-  cli.app.add_option("--path-points", path_points, "points per segment of Gamma-X-M-Gamma")->check(CLI::Range(4, 2000));
-  cli.app.add_option("--grid", grid, "k points per axis of the growth map over [0, pi]^2")->check(CLI::Range(5, 400));
+  cli.add_quick_option("--path-points", path_points, 16, "points per segment of Gamma-X-M-Gamma")
+      ->check(CLI::Range(4, 2000));
+  cli.add_quick_option("--grid", grid, 9, "k points per axis of the growth map over [0, pi]^2")
+      ->check(CLI::Range(5, 400));
   if (const auto exit = cli.parse(argc, argv)) return *exit;
-  if (cli.quick && cli.app.count("--path-points") == 0) path_points = 16;
-  if (cli.quick && cli.app.count("--grid") == 0) grid = 9;
   const auto t0 = study::Clock::now();
   const double cp = kSteel.p_wave_speed();
 

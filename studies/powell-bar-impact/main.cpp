@@ -55,12 +55,9 @@ int main(int argc, char** argv) try {
          .verdict_times = {0, 20 <= opt.t_end ? 20 : 0.5 * opt.t_end}});
   const auto wall0 = study::Clock::now();
   const int completed = study::impact::run_study(opt, cases, verdict_cases, settings);
-  const PowellImpactOptions bar = problem_defaults({.problem = ImpactProblem::Bar});
   study::Summary s;
   study::impact::set_run_keys(s, cases.size(), completed, opt, speed, settings, wall0);
-  s.set("snapshot_times", study::impact::list(snapshot_times));
-  s.set("length", bar.length);
-  s.set("height", bar.height);
+  const PowellImpactOptions bar = study::impact::set_body_keys(s, ImpactProblem::Bar, snapshot_times);
   s.set("split", bar.split);
   s.write(opt.out);
   return 0;

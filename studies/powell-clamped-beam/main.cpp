@@ -90,12 +90,9 @@ int main(int argc, char** argv) try {
       opt.out, sensitivity_cases, study::impact::run_cases(sensitivity_cases, settings, opt.threads), settings,
       "sensitivity_");
   const double sensitivity_wall = study::seconds_since(sensitivity_wall0);
-  const PowellImpactOptions beam = problem_defaults({.problem = ImpactProblem::Beam});
   study::Summary s;
   study::impact::set_run_keys(s, cases.size(), completed, opt, speed, settings, wall0);
-  s.set("snapshot_times", study::impact::list(snapshot_times));
-  s.set("length", beam.length);
-  s.set("height", beam.height);
+  const PowellImpactOptions beam = study::impact::set_body_keys(s, ImpactProblem::Beam, snapshot_times);
   s.set("section", beam.split * beam.length);
   s.set("clamp", clamp);
   s.set("half_speed", half_speed);
