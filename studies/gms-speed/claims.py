@@ -83,8 +83,9 @@ def claim_skin_sets_only_the_cost(r):
 
 def claim_rate_evaluations_dominate_compute_bound(r):
     """Split (µs per particle, recomputed from the best times): the two rate evaluations are 80-100 % of the
-    fixed-list step in every scene and loop (integration the rest), and the fixed-list step takes 6-16x its bandwidth
-    bound (model bytes over the best triad of the run): the step is compute-bound; the pair loop's evaluation is
+    fixed-list step in every scene and loop (integration the rest), and the fixed-list step takes at least 6x its
+    bandwidth bound (model bytes over the best triad of the run; 6-16x on a machine of 13.8 GB/s, 17-71x on one of
+    36 GB/s): the step is compute-bound; the pair loop's evaluation is
     faster than the row loop's in every scene. benchmark.md's split table is these numbers."""
     best = _best(r)
     bw = max(_get(best, n)["bytes_per_second"] for n in ("Triad", "TriadAgain"))
@@ -102,7 +103,7 @@ def claim_rate_evaluations_dominate_compute_bound(r):
             share.append(2 * rate_us / fix_us)
             bound.append(fix_us / bound_us)
             check(0.80 <= share[-1] <= 1.0, f"{scene} {loop}: 2 evaluations {100 * share[-1]:.3g} % of the step")
-            check(6 <= bound[-1] <= 16, f"{scene} {loop}: fixed-list step {bound[-1]:.3g}x its bound")
+            check(bound[-1] >= 6, f"{scene} {loop}: fixed-list step {bound[-1]:.3g}x its bound")
             row = table[(scene, loop)]
             approx(float(row[4]), 2 * rate_us, f"benchmark.md {scene} {loop} 2 rate evaluations", rel=0.006)
             approx(float(row[6]), fix_us, f"benchmark.md {scene} {loop} fixed-list step", rel=0.006)
