@@ -37,7 +37,7 @@ TEST(AdaptiveThreads, KeepsTheFasterCountAndRarelyMeasuresTheOther) {
     const bool two_faster = two < 1;
     const long slow_steps = two_faster ? a.steps_with_one() : a.steps_with_most();
     EXPECT_EQ(a.steps_with_one() + a.steps_with_most(), 20000);
-    // Probes once settled: one block in 65; blocks of 8 steps (0.05 s at 0.006-0.017 s per step) or fewer.
+    // Probes once settled: one block in 65; blocks of 16 steps or fewer (doubling from 1 until 0.05 s of stepping).
     EXPECT_LT(slow_steps, 20000 / 40) << two;
     const double best = 20000 * one * std::min(two, 1.0);
     EXPECT_LT(total, 1.03 * best) << two;  // within 3 % of always stepping with the faster count
