@@ -15,6 +15,9 @@ import json
 import os
 
 TARGET_US = 0.4  # issue 10: one core, SI rings, per particle-step
+# issue 35: the default configuration of `sphstab scene rings` (problems/gms_scenes.cpp: pair loop, PC1 = one rate
+# evaluation per step, Verlet skin 0.5 dx), one core
+TARGET_DEFAULT_US, DEFAULT_RUN = 0.25, ("pairs", 1, 0.5)
 
 
 def best(bms, name):
@@ -53,7 +56,8 @@ def main():
              "Two pair loops of the same scheme (PairLoop, forms/rate_form.hpp): **rows** visits every pair from both "
              "sides (each particle's sums in neighbour order: the same bits on any thread count); **pairs** visits "
              "each pair once and adds its terms to both particles (the rates agree with rows to rounding, "
-             "tests/forms/rate_form_pair_loop_test.cpp).", ""]
+             "tests/forms/rate_form_pair_loop_test.cpp; its threads own chunks of rows, so it too gives the same bits "
+             "on any thread count).", ""]
     runs = {}
     for what, rates in (("Run", 2), ("RunOneRate", 1)):
         for loop, suffix in loops:
@@ -98,7 +102,7 @@ def main():
             if b_step is None or b_fix is None or b_rate is None or t_reb is None:
                 continue
             n, steps, pairs = b_fix["particles"], b_fix["steps"], b_fix["pairs"]
-            step_us = 1e6 * t_step / (n * steps)
+            step_us = 1e6 * t_step / (n * b_step["steps"])
             fix_us = 1e6 * t_fix / (n * steps)
             rate_us = 1e6 * t_rate / (n * b_rate["evaluations"])
             reb_us = 1e6 * t_reb / n
@@ -107,17 +111,21 @@ def main():
                                        pairs=pairs / n, verlet_pairs=b_reb.get("pairs_rebuilt", 0) / n)
             lines.append(f"| {scene} | {loop} | {int(n)} | {pairs / n:.1f} | {2 * rate_us:.3g} | "
                          f"{fix_us - 2 * rate_us:.3g} | {fix_us:.3g} | {reb_us:.3g} | {step_us:.3g} "
-                         f"({int(b_step['builds'])} in {int(steps)}) | {bound_us:.3g} | {fix_us / bound_us:.1f} |")
+                         f"({int(b_step['builds'])} in {int(b_step['steps'])}) | {bound_us:.3g} | {fix_us / bound_us:.1f} |")
     lines += ["",
-              "- **timed run**: run_rate_form for the timed steps with the Verlet list (skin 0.5 dx), its build at the "
-              "start included (so short runs overstate the rebuild share); **step, fixed list**: the same steps on "
-              "the scene's list (radius = kernel support), never rebuilt; **2 rate evaluations**: "
-              "RateFormScheme::rate averaged over the states the run passes through, twice (the "
-              "predictor-corrector's two evaluations; kernel sums, velocity gradient, Jaumann stress rate, artificial "
-              "stress and viscosity are fused per pair, so kernel and stress work are not timed apart); "
-              "**integration**: the steps on a fixed list minus the two evaluations (state updates, checks, "
-              "records); **neighbour rebuild**: RateFormScheme::rebuilt (cell-list search at radius support + skin "
-              "and the scheme's set-up on the new list).",
+              "- **timed run**: a whole run_rate_form call of the timed steps with the Verlet list (skin 0.5 dx), "
+              "its set-up and its build at the start included (so short runs overstate the rebuild share); "
+              "**step, fixed list**: steady-state steps on the scene's list (radius = kernel support), never "
+              "rebuilt: a RateFormStepper is built and takes one warm-up step outside the timing, then the same "
+              "number of steps is timed with the run loop's state check after each, so the per-run set-up (the "
+              "state copies and the first touch of the integrator's buffers) is excluded; its steps start one step "
+              "later than the run's; **2 rate evaluations**: RateFormScheme::rate averaged over the states a run "
+              "from the start passes through, twice (the predictor-corrector's two evaluations; kernel sums, "
+              "velocity gradient, Jaumann stress rate, artificial stress and viscosity are fused per pair, so kernel "
+              "and stress work are not timed apart); **integration**: the fixed-list step minus the two evaluations "
+              "(the predictor and corrector state updates and the state check of a step after a warm-up step, "
+              "set-up excluded); **neighbour rebuild**: RateFormScheme::rebuilt (cell-list search at radius "
+              "support + skin and the scheme's set-up on the new list).",
               "- **bandwidth bound**: the least data a step must move (two evaluations each reading the state and "
               "the list's indices and writing the rates, seven state passes of the integration; "
               "gms_step_benchmark.cpp model_bytes) over the triad bandwidth. The ratio says how far the step is from "
@@ -151,19 +159,31 @@ def main():
             lines.append(f"At the study's skin of 0.5 dx the fastest is {at_default[k5]['us']:.3g} µs ({k5[0]} loop, "
                          f"{k5[1]} rate evaluation{'s' if k5[1] > 1 else ''} per step), "
                          f"{at_default[k5]['us'] / TARGET_US:.2f} × the target.")
+        if DEFAULT_RUN in runs and base:
+            d = runs[DEFAULT_RUN]["us"]
+            lines.append(f"Target (issue 35): ≤ {TARGET_DEFAULT_US} µs per particle-step on one core for the default "
+                         f"configuration of `sphstab scene rings` (pairs loop, 1 rate evaluation per step, skin 0.5 dx): "
+                         f"{d:.3g} µs, {d / TARGET_DEFAULT_US:.2f} × the target" +
+                         (": **met**" if d <= TARGET_DEFAULT_US else ": **not met**") +
+                         f"; {base['us'] / d:.2f} × faster than the row loop with 2 rate evaluations in this run.")
         lines.append("")
-    threaded = [(scene, what) for scene in ("RingsSI", "Lattice99856", "Lattice1000000") for what in ("Step", "Rate")
-                if best(bms, f"{what}/{scene}/threads:2")[1]]
+    threaded = [(scene, loop, suffix, what) for scene in ("RingsSI", "Lattice99856", "Lattice1000000")
+                for loop, suffix in loops for what in ("Step", "Rate")
+                if best(bms, f"{what}/{scene}{suffix}/threads:2")[1] and best(bms, f"{what}/{scene}{suffix}")[1]]
     if threaded:
         lines += ["", "## Two threads (OpenMP, core/threads.hpp)", "",
-                  "The same benchmarks with two threads, in the same run; the state after the scene's steps was "
+                  "The same benchmarks with two threads, in the same run, for both loops: the row loop splits its "
+                  "particle rows between the threads, the pair loop its chunks of rows (each chunk's owner computes "
+                  "its particles' sums, the pairs across two chunks computed by both owners, "
+                  "forms/rate_form/pair_loop.hpp). For every scene and loop the state after the scene's steps was "
                   "checked to be the same bits as with one thread before timing. Speed-up = one-thread time / "
-                  "two-thread time (best of the repetitions each; the ideal on this machine's 2 cores is 2).", "",
-                  "| benchmark | scene | one thread, ms | two threads, ms | speed-up |", "|---|---|---|---|---|"]
-        for scene, what in threaded:
-            t1, _ = best(bms, f"{what}/{scene}")
-            t2, _ = best(bms, f"{what}/{scene}/threads:2")
-            lines.append(f"| {what} | {scene} | {1e3 * t1:.4g} | {1e3 * t2:.4g} | {t1 / t2:.2f} |")
+                  "two-thread time (best of the repetitions each; the ideal is 2).", "",
+                  "| benchmark | scene | loop | one thread, ms | two threads, ms | speed-up |",
+                  "|---|---|---|---|---|---|"]
+        for scene, loop, suffix, what in threaded:
+            t1, _ = best(bms, f"{what}/{scene}{suffix}")
+            t2, _ = best(bms, f"{what}/{scene}{suffix}/threads:2")
+            lines.append(f"| {what} | {scene} | {loop} | {1e3 * t1:.4g} | {1e3 * t2:.4g} | {t1 / t2:.2f} |")
     with open(a.md, "w") as f:
         f.write("\n".join(lines) + "\n")
 

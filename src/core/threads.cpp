@@ -1,12 +1,12 @@
 #include "sphstab/core/threads.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
-
-#include <unistd.h>
 
 #ifdef SPHSTAB_WITH_OPENMP
 #include <omp.h>
@@ -72,6 +72,14 @@ int thread_index() {
   return omp_get_thread_num();
 #else
   return 0;
+#endif
+}
+
+int region_threads() {
+#ifdef SPHSTAB_WITH_OPENMP
+  return omp_get_num_threads();
+#else
+  return 1;
 #endif
 }
 

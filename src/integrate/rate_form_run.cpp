@@ -6,10 +6,12 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sphstab/core/checked_arithmetic.hpp"
 #include "sphstab/core/format.hpp"
+#include "sphstab/core/threads.hpp"
 #include "sphstab/integrate/xsph.hpp"
 #include "sphstab/models/von_mises.hpp"
 
@@ -59,7 +61,10 @@ struct RunBook {
   /// Builds the run's own list (radius support + skin) at the positions of y.
   void build(const Eigen::VectorXd& at) {
     const Discretisation<Dim>& d = base.discretisation();
-    own = std::make_unique<RateFormScheme<Dim>>(base.rebuilt(at, d.kernel.support_radius(d.h) + o.neighbour_skin));
+    auto next =
+        std::make_unique<RateFormScheme<Dim>>(base.rebuilt(at, d.kernel.support_radius(d.h) + o.neighbour_skin));
+    if (own) next->take_scratch(*own);  // the previous list's buffers: no new pages per build
+    own = std::move(next);
     scheme = own.get();
     x_build = d.particles.x;
     for (int i = 0; i < d.size(); ++i)
@@ -88,6 +93,13 @@ struct RunBook {
   }
 };
 
+/// The calling thread's contiguous block of [0, size) in its parallel region: (first, length).
+inline std::pair<Eigen::Index, Eigen::Index> block_of(Eigen::Index size) {
+  const int t = thread_index(), count = region_threads();
+  const Eigen::Index a = size * t / count, e = size * (t + 1) / count;
+  return {a, e - a};
+}
+
 /// [GMS2001, (6.14)-(6.18)] (rate_form_run.hpp), one step at a time so that the run and the step matrix
 /// (rate_form_step_matrix) execute the same code. Between steps it holds b.y and, with reuse_corrector_rate, the
 /// carried rate f0 (the previous corrector's evaluation F(x, v_p, rho_p, S_p)).
@@ -107,23 +119,41 @@ struct PredictorCorrector {
       b.rate(b.y, f0);
       b.evaluations += 1;
     }
-    yp = b.y + dt * f0;  // predictor for v, rho, S (and a first-order x, replaced below)
-    for (int i = 0; i < n; ++i) {
-      const int xo = b.base.position_offset(i);
-      if (xo >= 0)  // x = x0 + dt vhat0 + dt^2/2 a0, not corrected [GMS2001, (6.15)]
-        yp.segment(xo, Dim) =
-            b.y.segment(xo, Dim) + dt * f0.segment(xo, Dim) + 0.5 * dt * dt * f0.segment(xo + Dim, Dim);
+    // The updates are element by element, so threads (each a block of entries, then a block of particles) give the
+    // same bits as one: in a run with threads they would otherwise be serial work between the threaded evaluations.
+    const Eigen::Index size = b.y.size();
+    yp.resize(size);
+    y.resize(size);
+    const int threads = threads_for(n);
+#pragma omp parallel num_threads(threads)
+    {
+      const auto [a, len] = block_of(size);
+      yp.segment(a, len) = b.y.segment(a, len) + dt * f0.segment(a, len);  // predictor for v, rho, S (and x, below)
+#pragma omp barrier
+#pragma omp for schedule(static)
+      for (int i = 0; i < n; ++i) {
+        const int xo = b.base.position_offset(i);
+        if (xo >= 0)  // x = x0 + dt vhat0 + dt^2/2 a0, not corrected [GMS2001, (6.15)]
+          yp.segment(xo, Dim) =
+              b.y.segment(xo, Dim) + dt * f0.segment(xo, Dim) + 0.5 * dt * dt * f0.segment(xo + Dim, Dim);
+      }
     }
     b.rate(yp, f1);
     b.evaluations += 1;
-    y = yp + 0.5 * dt * (f1 - f0);
-    for (int i = 0; i < n; ++i) {
-      const int xo = b.base.position_offset(i);
-      if (xo < 0) continue;
-      if (o.positions == PositionUpdate::Gms)
-        y.segment(xo, Dim) = yp.segment(xo, Dim);
-      else
-        y.segment(xo, Dim) = b.y.segment(xo, Dim) + 0.5 * dt * (f0.segment(xo, Dim) + f1.segment(xo, Dim));
+#pragma omp parallel num_threads(threads)
+    {
+      const auto [a, len] = block_of(size);
+      y.segment(a, len) = yp.segment(a, len) + 0.5 * dt * (f1.segment(a, len) - f0.segment(a, len));
+#pragma omp barrier
+#pragma omp for schedule(static)
+      for (int i = 0; i < n; ++i) {
+        const int xo = b.base.position_offset(i);
+        if (xo < 0) continue;
+        if (o.positions == PositionUpdate::Gms)
+          y.segment(xo, Dim) = yp.segment(xo, Dim);
+        else
+          y.segment(xo, Dim) = b.y.segment(xo, Dim) + 0.5 * dt * (f0.segment(xo, Dim) + f1.segment(xo, Dim));
+      }
     }
     if (plastic) return_to_yield_surface(b.base, *plastic, y);
     b.y.swap(y);

@@ -1,7 +1,7 @@
 // The rate-form scheme's pair loop (PairLoop::Pairs: each pair once, src/forms/rate_form/pair_loop.hpp) against
-// its row loop (PairLoop::Rows, every pair from both sides): the same rates to rounding for every combination of the terms, in 1D
-// and 2D, with fixed layers or periodic, with a list longer than the support, driven particles, other kernels; and
-// what it refuses.
+// its row loop (PairLoop::Rows, every pair from both sides): the same rates to rounding for every combination of the
+// terms, in 1D and 2D, with fixed layers or periodic, with a list longer than the support, driven particles, other
+// kernels; and what it refuses.
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
@@ -134,6 +134,38 @@ TEST(RateFormPairLoop, RebuiltKeepsTheLoopAndComplexStatesUseTheRowLoop) {
   EXPECT_EQ(Eigen::VectorXd(fc.real()), Eigen::VectorXd(gc.real()));
 }
 
+TEST(RateFormPairLoop, TakenScratchGivesTheSameBits) {
+  // A run's Verlet rebuilds hand the old scheme's scratch arrays to the new one (RunBook::build): the rates must be the
+  // bits of a scheme with its own, whether the taken arrays are larger (longer list) or smaller, for both loops and the
+  // complex (row-loop) evaluation.
+  const auto disc = test::lattice_discretisation<2>({.n = 6, .h = 1.3, .perturbation = 0.1});
+  for (PairLoop loop : {PairLoop::Rows, PairLoop::Pairs})
+    for (double donor_radius : {1.5 * 2.6, 2.6}) {
+      const RateFormOptions o{
+          .xsph = 0.5, .viscosity = ViscositySwitch::Always, .artificial_stress = 0.3, .pair_loop = loop};
+      const RateFormScheme<2> base(disc, kGms, o);
+      const Eigen::VectorXd y0 = busy_state(base, 6), y = busy_state(base, 7);
+      RateFormScheme<2> donor = base.rebuilt(y0, donor_radius);
+      Eigen::VectorXd f;
+      donor.rate(y0, f);
+      Eigen::VectorXcd fc;
+      donor.rate(Eigen::VectorXcd(y0.cast<std::complex<double>>()), fc);
+      const RateFormScheme<2> own = base.rebuilt(y, 1.2 * 2.6);
+      RateFormScheme<2> taker = base.rebuilt(y, 1.2 * 2.6);
+      taker.take_scratch(donor);
+      Eigen::VectorXd g, h;
+      own.rate(y, g);
+      taker.rate(y, h);
+      EXPECT_EQ(g, h) << "loop " << static_cast<int>(loop) << ", donor list radius " << donor_radius;
+      Eigen::VectorXcd gc, hc;
+      own.rate(Eigen::VectorXcd(y.cast<std::complex<double>>()), gc);
+      taker.rate(Eigen::VectorXcd(y.cast<std::complex<double>>()), hc);
+      EXPECT_EQ(gc, hc);
+      donor.rate(y0, f);  // the donor, left without scratch, grows its own again
+      EXPECT_EQ(f.size(), base.size());
+    }
+}
+
 TEST(RateFormPairLoop, SameBitsOnOneAndTwoThreads) {
   // The pair loop is serial; the per-particle passes around it (unpack, stresses, rates) are threaded row by row. A
   // 40 x 40 block (about 1900 particles with the layers: above the 512 rows per thread that turn threading on) with
@@ -175,5 +207,5 @@ TEST(RateFormPairLoop, RefusesTheFormsItDoesNotCover) {
   EXPECT_THROW(parse_pair_loop("half"), std::invalid_argument);
 }
 
-}  // namespace
+}  // namespace rate_form_pair_loop_test
 }  // namespace sphstab

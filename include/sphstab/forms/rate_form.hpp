@@ -255,6 +255,11 @@ class RateFormScheme final : public SemiDiscreteSystem {
   /// @param neighbour_radius list radius >= the kernel support (0: the support)
   /// Throws std::invalid_argument for a state of the wrong size, non-finite positions or a radius below the support.
   RateFormScheme rebuilt(const Eigen::VectorXd& y, double neighbour_radius = 0) const;
+  /// Takes over the scratch arrays of `previous` (which is left with none), e.g. of the scheme a rebuilt() one
+  /// replaces in a run: its rate evaluations then reuse those buffers instead of allocating and first touching their
+  /// own (per build about 20 bytes per listed pair and 200 per particle; at 1e6 particles with a Verlet list, 0.7 GB).
+  /// The rates do not change: every scratch entry an evaluation reads is written earlier in the same call.
+  void take_scratch(RateFormScheme& previous) { m_work = std::move(previous.m_work); }
 
   /// Distributed evaluation (distributed/distributed_rate_form.hpp): from here on rate(VectorXd) computes the rates of
   /// particles [first, last) only, with the same operations per particle as the whole evaluation (so the same bits),
