@@ -75,14 +75,6 @@ int thread_index() {
 #endif
 }
 
-int region_threads() {
-#ifdef SPHSTAB_WITH_OPENMP
-  return omp_get_num_threads();
-#else
-  return 1;
-#endif
-}
-
 bool threads_available() {
 #ifdef SPHSTAB_WITH_OPENMP
   return true;

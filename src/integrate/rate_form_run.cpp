@@ -6,7 +6,6 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "sphstab/core/checked_arithmetic.hpp"
@@ -93,13 +92,6 @@ struct RunBook {
   }
 };
 
-/// The calling thread's contiguous block of [0, size) in its parallel region: (first, length).
-inline std::pair<Eigen::Index, Eigen::Index> block_of(Eigen::Index size) {
-  const int t = thread_index(), count = region_threads();
-  const Eigen::Index a = size * t / count, e = size * (t + 1) / count;
-  return {a, e - a};
-}
-
 /// [GMS2001, (6.14)-(6.18)] (rate_form_run.hpp), one step at a time so that the run and the step matrix
 /// (rate_form_step_matrix) execute the same code. Between steps it holds b.y and, with reuse_corrector_rate, the
 /// carried rate f0 (the previous corrector's evaluation F(x, v_p, rho_p, S_p)).
@@ -119,17 +111,16 @@ struct PredictorCorrector {
       b.rate(b.y, f0);
       b.evaluations += 1;
     }
-    // The updates are element by element, so threads (each a block of entries, then a block of particles) give the
-    // same bits as one: in a run with threads they would otherwise be serial work between the threaded evaluations.
+    // The updates are element by element, so threads give the same bits as one: in a run with threads they would
+    // otherwise be serial work between the threaded evaluations.
     const Eigen::Index size = b.y.size();
     yp.resize(size);
     y.resize(size);
     const int threads = threads_for(n);
 #pragma omp parallel num_threads(threads)
     {
-      const auto [a, len] = block_of(size);
-      yp.segment(a, len) = b.y.segment(a, len) + dt * f0.segment(a, len);  // predictor for v, rho, S (and x, below)
-#pragma omp barrier
+#pragma omp for schedule(static)
+      for (Eigen::Index k = 0; k < size; ++k) yp[k] = b.y[k] + dt * f0[k];  // predictor for v, rho, S (x below)
 #pragma omp for schedule(static)
       for (int i = 0; i < n; ++i) {
         const int xo = b.base.position_offset(i);
@@ -142,9 +133,8 @@ struct PredictorCorrector {
     b.evaluations += 1;
 #pragma omp parallel num_threads(threads)
     {
-      const auto [a, len] = block_of(size);
-      y.segment(a, len) = yp.segment(a, len) + 0.5 * dt * (f1.segment(a, len) - f0.segment(a, len));
-#pragma omp barrier
+#pragma omp for schedule(static)
+      for (Eigen::Index k = 0; k < size; ++k) y[k] = yp[k] + 0.5 * dt * (f1[k] - f0[k]);
 #pragma omp for schedule(static)
       for (int i = 0; i < n; ++i) {
         const int xo = b.base.position_offset(i);

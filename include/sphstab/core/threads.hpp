@@ -60,8 +60,6 @@ bool fixed_threads();
 
 /// The calling thread's index within its parallel region (0 outside one).
 int thread_index();
-/// The number of threads of the calling thread's parallel region (1 outside one).
-int region_threads();
 
 /// True when sphstab was built with OpenMP.
 bool threads_available();
