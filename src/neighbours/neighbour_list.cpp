@@ -1,6 +1,7 @@
 #include "sphstab/neighbours/neighbour_list.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -12,6 +13,17 @@
 #include "sphstab/numerics/instantiation.hpp"
 
 namespace sphstab {
+
+template <int Dim>
+double expected_neighbour_pairs(const ParticleSet<Dim>& p, double radius) {
+  const double n = p.size();
+  if (n == 0) return 0;
+  // Ball of the radius over the mean particle volume, as a ratio of lengths so that nothing under/overflows.
+  const double cell = std::pow(p.volume.mean(), 1.0 / Dim), ratio = radius / cell;
+  const double ball =
+      Dim == 1 ? 2 * ratio : (Dim == 2 ? M_PI * ratio * ratio : 4.0 / 3.0 * M_PI * ratio * ratio * ratio);
+  return n * std::min(n, 1.0 + ball);
+}
 
 namespace {
 
@@ -28,163 +40,206 @@ void check_inputs(const ParticleSet<Dim>& p, double radius, const char* who) {
 
 }  // namespace
 
+namespace detail {
+
+/// Cells of edge >= radius / kCellsPerRadius over the bounding box (or the periodic box), the particles counting-sorted
+/// into them, and their positions in that order, so that a row's candidates are read contiguously. Cells of half the
+/// radius: the candidates of a row cover (2.5 r)^Dim instead of (3 r)^Dim, about 30 % fewer in 2D (the SI rings'
+/// search 1.1x faster with the contiguous runs below than with radius-sized cells, measured).
 template <int Dim>
-double expected_neighbour_pairs(const ParticleSet<Dim>& p, double radius) {
-  const double n = p.size();
-  if (n == 0) return 0;
-  // Ball of the radius over the mean particle volume, as a ratio of lengths so that nothing under/overflows.
-  const double cell = std::pow(p.volume.mean(), 1.0 / Dim), ratio = radius / cell;
-  const double ball =
-      Dim == 1 ? 2 * ratio : (Dim == 2 ? M_PI * ratio * ratio : 4.0 / 3.0 * M_PI * ratio * ratio * ratio);
-  return n * std::min(n, 1.0 + ball);
-}
+struct CellGrid {
+  static constexpr double kCellsPerRadius = 2;
+  using Point = typename ParticleSet<Dim>::Point;
+
+  const ParticleSet<Dim>& p;
+  Point lo;
+  std::array<int, Dim> cells, reach;  ///< cells per axis; cells a neighbour can be away along the axis
+  std::array<double, Dim> edge, period;
+  bool any_periodic = false;
+  std::vector<long> cell_start;  ///< the particles of cell c at sorted positions [cell_start[c], cell_start[c + 1])
+  std::vector<int> sorted;       ///< particle indices, by cell and within a cell ascending
+  std::vector<Point> xs;         ///< their positions
+
+  CellGrid(const ParticleSet<Dim>& set, double radius) : p(set) {
+    const int n = p.size();
+    lo = p.x.colwise().minCoeff();
+    Point hi = p.x.colwise().maxCoeff();
+    for (int a = 0; a < Dim; ++a) {
+      if (p.periodic[a]) {
+        lo[a] = p.box_lo[a];
+        hi[a] = p.box_hi[a];
+      }
+      // Clamp in double before the cast (L / radius can exceed any int).
+      const double L = std::max(hi[a] - lo[a], 0.0);
+      cells[a] = static_cast<int>(std::clamp(std::floor(kCellsPerRadius * L / radius), 1.0, 4.0 * n + 4));
+    }
+    // Sparse sets spread far apart: coarsen so the grid never has more than ~4N cells.
+    auto product = [&] {
+      long c = 1;
+      for (int a = 0; a < Dim; ++a) c *= cells[a];
+      return c;
+    };
+    while (product() > 4L * n + 64) {
+      int big = static_cast<int>(std::max_element(cells.begin(), cells.end()) - cells.begin());
+      cells[big] = std::max(1, cells[big] / 2);
+    }
+    for (int a = 0; a < Dim; ++a) {
+      const double L = std::max(hi[a] - lo[a], 0.0);
+      edge[a] = L > 0 ? L / cells[a] : 1.0;
+      if (!p.periodic[a]) edge[a] = std::max(edge[a], radius / kCellsPerRadius);
+      // |x_j - x_i| < r along a puts j at most ceil(r / edge) cells from i.
+      reach[a] = static_cast<int>(std::min<double>(std::ceil(radius / edge[a]), cells[a]));
+      period[a] = p.box_hi[a] - p.box_lo[a];
+      any_periodic = any_periodic || p.periodic[a];
+    }
+    // Counting sort of the particles into cells (stable: ascending within a cell).
+    cell_start.assign(product() + 1, 0);
+    std::vector<long> cell_of(n);
+    for (int i = 0; i < n; ++i) {
+      cell_of[i] = cell_index(i);
+      ++cell_start[cell_of[i] + 1];
+    }
+    for (std::size_t c = 0; c + 1 < cell_start.size(); ++c) cell_start[c + 1] += cell_start[c];
+    sorted.resize(n);
+    std::vector<long> fill(cell_start.begin(), cell_start.end() - 1);
+    for (int i = 0; i < n; ++i) sorted[fill[cell_of[i]]++] = i;
+    xs.resize(n);
+    for (int s = 0; s < n; ++s) xs[s] = p.x.row(sorted[s]);
+  }
+
+  int coord(int i, int a) const {
+    return static_cast<int>(std::clamp(std::floor((p.x(i, a) - lo[a]) / edge[a]), 0.0, cells[a] - 1.0));
+  }
+  long cell_index(int i) const {
+    long c = 0;
+    for (int a = Dim - 1; a >= 0; --a) c = c * cells[a] + coord(i, a);
+    return c;
+  }
+
+  /// The runs of cells particle i's row visits along axis a (one, or two where a periodic axis wraps): ci - reach ..
+  /// ci + reach, clipped in a bounded axis; every cell once when the axis has at most 2 reach + 1 cells.
+  int axis_runs(int i, int a, std::array<int, 2>& from, std::array<int, 2>& to) const {
+    const int ci = coord(i, a), c0 = ci - reach[a], c1 = ci + reach[a];
+    if (2 * reach[a] + 1 >= cells[a]) {
+      from[0] = 0, to[0] = cells[a] - 1;
+      return 1;
+    }
+    if (!p.periodic[a] || (c0 >= 0 && c1 < cells[a])) {
+      from[0] = std::max(c0, 0), to[0] = std::min(c1, cells[a] - 1);
+      return 1;
+    }
+    if (c0 < 0) {
+      from = {0, c0 + cells[a]}, to = {c1, cells[a] - 1};
+    } else {
+      from = {c0, 0}, to = {cells[a] - 1, c1 - cells[a]};
+    }
+    return 2;
+  }
+
+  /// Calls scan(s0, s1) for the ranges of sorted positions holding row i's candidates, each candidate once. Axis 0
+  /// varies fastest in the cell index, so a run of cells along it is one range.
+  template <class Scan>
+  void for_each_candidate_range(int i, const Scan& scan) const {
+    std::array<std::array<int, 2>, Dim> from, to;
+    std::array<int, Dim> runs, cc, run{};
+    for (int a = 0; a < Dim; ++a) {
+      runs[a] = axis_runs(i, a, from[a], to[a]);
+      cc[a] = from[a][0];
+    }
+    while (true) {
+      long base = 0;
+      for (int a = Dim - 1; a >= 1; --a) base = base * cells[a] + cc[a];
+      base *= cells[0];
+      for (int r = 0; r < runs[0]; ++r) scan(cell_start[base + from[0][r]], cell_start[base + to[0][r] + 1]);
+      // The next cell of axes 1 .. Dim-1, odometer-style.
+      int a = 1;
+      for (; a < Dim; ++a) {
+        if (cc[a] < to[a][run[a]]) {
+          ++cc[a];
+          break;
+        }
+        if (run[a] + 1 < runs[a]) {
+          cc[a] = from[a][++run[a]];
+          break;
+        }
+        run[a] = 0;
+        cc[a] = from[a][0];
+      }
+      if (a == Dim) return;
+    }
+  }
+};
+
+}  // namespace detail
 
 template <int Dim>
 NeighbourList find_neighbours(const ParticleSet<Dim>& p, double radius) {
   check_inputs(p, radius, "find_neighbours");
   const int n = p.size();
   const double pairs = expected_neighbour_pairs(p, radius);
-  require_memory(pairs * sizeof(int) * 1.5, "find_neighbours: ~" + format_number(pairs, 3) + " neighbour pairs");
+  // The unsorted rows and the list: two copies of the pairs.
+  require_memory(pairs * sizeof(int) * 2.5, "find_neighbours: ~" + format_number(pairs, 3) + " neighbour pairs");
   const double r2 = radius * radius;
+  const detail::CellGrid<Dim> grid(p, radius);
 
-  // Cell grid over the bounding box (or the periodic box); cell edge >= radius, at most ~n cells.
-  using Point = typename ParticleSet<Dim>::Point;
-  Point lo = p.x.colwise().minCoeff(), hi = p.x.colwise().maxCoeff();
-  std::array<int, Dim> cells;
-  std::array<double, Dim> edge;
-  long ncells = 1;
-  for (int a = 0; a < Dim; ++a) {
-    if (p.periodic[a]) {
-      lo[a] = p.box_lo[a];
-      hi[a] = p.box_hi[a];
-    }
-    double L = std::max(hi[a] - lo[a], 0.0);
-    // Clamp in double before the cast (L / radius can exceed any int).
-    cells[a] = static_cast<int>(std::clamp(std::floor(L / radius), 1.0, 4.0 * n + 4));
-  }
-  // Sparse sets spread far apart: coarsen so the grid never has more than ~4N cells.
-  auto product = [&] {
-    long c = 1;
-    for (int a = 0; a < Dim; ++a) c *= cells[a];
-    return c;
-  };
-  while (product() > 4L * n + 64) {
-    int big = static_cast<int>(std::max_element(cells.begin(), cells.end()) - cells.begin());
-    cells[big] = std::max(1, cells[big] / 2);
-  }
-  for (int a = 0; a < Dim; ++a) {
-    double L = std::max(hi[a] - lo[a], 0.0);
-    edge[a] = L > 0 ? L / cells[a] : 1.0;
-    if (!p.periodic[a]) edge[a] = std::max(edge[a], radius);
-    ncells *= cells[a];
-  }
-  auto cell_coord = [&](int i, int a) {
-    return static_cast<int>(std::clamp(std::floor((p.x(i, a) - lo[a]) / edge[a]), 0.0, cells[a] - 1.0));
-  };
-
-  // Counting sort of particles into cells.
-  std::vector<long> cell_start(ncells + 1, 0);
-  std::vector<long> cell_of(n);
-  for (int i = 0; i < n; ++i) {
-    long c = 0;
-    for (int a = Dim - 1; a >= 0; --a) c = c * cells[a] + cell_coord(i, a);
-    cell_of[i] = c;
-    ++cell_start[c + 1];
-  }
-  for (long c = 0; c < ncells; ++c) cell_start[c + 1] += cell_start[c];
-  std::vector<int> sorted(n);
-  {
-    std::vector<long> fill(cell_start.begin(), cell_start.end() - 1);
-    for (int i = 0; i < n; ++i) sorted[fill[cell_of[i]]++] = i;
-  }
-
-  // Positions in cell order, so that a cell's candidates are read contiguously.
-  std::vector<Point> xs(n);
-  for (int s = 0; s < n; ++s) xs[s] = p.x.row(sorted[s]);
-  std::array<double, Dim> period;
-  bool any_periodic = false;
-  for (int a = 0; a < Dim; ++a) {
-    period[a] = p.box_hi[a] - p.box_lo[a];
-    any_periodic = any_periodic || p.periodic[a];
-  }
-
-  // One row: its neighbours in index order (appended to `out`), the same whichever thread finds it.
-  const auto find_row = [&](int i, std::vector<int>& row, std::vector<int>& out) {
-    row.clear();
+  // Row i's neighbours in cell order, appended to `out` without a branch (about half the candidates pass), by
+  // ParticleSet::separation()'s arithmetic. Exactly symmetric: x_j - x_i = -(x_i - x_j) and round(-t) = -round(t).
+  const auto find_row = [&](int i, std::vector<int>& out) {
+    using Point = typename ParticleSet<Dim>::Point;
     const Point xi = p.x.row(i);
-    std::array<int, Dim> ci;
-    for (int a = 0; a < Dim; ++a) ci[a] = cell_coord(i, a);
-    // Visit the 3^Dim surrounding cells (fewer when an axis has < 3 cells, to avoid double visits).
-    std::array<int, Dim> span;
-    for (int a = 0; a < Dim; ++a) span[a] = std::min(3, cells[a]);
-    int combos = 1;
-    for (int a = 0; a < Dim; ++a) combos *= span[a];
-    for (int k = 0; k < combos; ++k) {
-      int rest = k;
-      long c = 0;
-      bool skip = false;
-      std::array<int, Dim> cc;
-      for (int a = 0; a < Dim; ++a) {
-        int off = rest % span[a] - (span[a] == 3 ? 1 : 0);
-        rest /= span[a];
-        int v = span[a] == 3 ? ci[a] + off : off;  // fewer than 3 cells: visit all of them
-        if (v < 0 || v >= cells[a]) {
-          if (!p.periodic[a]) {
-            skip = true;
-            break;
-          }
-          v = (v + cells[a]) % cells[a];
-        }
-        cc[a] = v;
-      }
-      if (skip) continue;
-      for (int a = Dim - 1; a >= 0; --a) c = c * cells[a] + cc[a];
-      // ParticleSet::separation()'s arithmetic; appended without a branch (about a third of the candidates pass).
-      const long s0 = cell_start[c], s1 = cell_start[c + 1];
-      std::size_t len = row.size();
-      row.resize(len + static_cast<std::size_t>(s1 - s0));
+    const std::size_t start = out.size();
+    grid.for_each_candidate_range(i, [&](long s0, long s1) {
+      std::size_t len = out.size();
+      out.resize(len + static_cast<std::size_t>(s1 - s0));
       for (long s = s0; s < s1; ++s) {
-        const int j = sorted[s];
-        Point d = xi - xs[s];
-        if (any_periodic)
+        const int j = grid.sorted[s];
+        Point d = xi - grid.xs[s];
+        if (grid.any_periodic)
           for (int a = 0; a < Dim; ++a)
-            if (p.periodic[a]) d[a] -= period[a] * std::round(d[a] / period[a]);
-        row[len] = j;
+            if (p.periodic[a]) d[a] -= grid.period[a] * std::round(d[a] / grid.period[a]);
+        out[len] = j;
         len += static_cast<std::size_t>((j == i) | (d.squaredNorm() < r2));
       }
-      row.resize(len);
-    }
-    std::sort(row.begin(), row.end());
-    row.erase(std::unique(row.begin(), row.end()), row.end());
-    out.insert(out.end(), row.begin(), row.end());
-    return static_cast<long>(row.size());
+      out.resize(len);
+    });
+    return static_cast<long>(out.size() - start);
   };
 
   // Rows in contiguous blocks, one per thread, each into its own buffer (reserved from the expected pair count: a
-  // rebuild of the rings' Verlet list otherwise reallocates and page-faults its way up); the blocks are joined in
-  // order, so the list is the same for any thread count (tests/neighbours: 1, 2 and 3 threads).
-  NeighbourList list;
-  list.radius = radius;
-  list.offsets.assign(n + 1, 0);
+  // rebuild of the rings' Verlet list otherwise reallocates and page-faults its way up).
   const int threads = threads_for(n);
+  std::vector<int> bound(threads + 1);
+  for (int t = 0; t <= threads; ++t) bound[t] = static_cast<int>(static_cast<long>(n) * t / threads);
   std::vector<std::vector<int>> block(threads);
+  std::vector<long> count(n);
   FirstException first;
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (int t = 0; t < threads; ++t)
     first.run([&] {
-      const int i0 = static_cast<int>(static_cast<long>(n) * t / threads);
-      const int i1 = static_cast<int>(static_cast<long>(n) * (t + 1) / threads);
-      block[t].reserve(static_cast<std::size_t>(1.1 * pairs * (i1 - i0) / std::max(n, 1)) + 64);
-      std::vector<int> row;
-      for (int i = i0; i < i1; ++i) list.offsets[i + 1] = find_row(i, row, block[t]);
+      block[t].reserve(static_cast<std::size_t>(1.1 * pairs * (bound[t + 1] - bound[t]) / std::max(n, 1)) + 64);
+      for (int i = bound[t]; i < bound[t + 1]; ++i) count[i] = find_row(i, block[t]);
     });
   first.rethrow();
-  for (int i = 0; i < n; ++i) list.offsets[i + 1] += list.offsets[i];
-  if (threads == 1) {
-    list.indices = std::move(block[0]);
-  } else {
-    list.indices.reserve(static_cast<std::size_t>(list.offsets[n]));
-    for (const std::vector<int>& b : block) list.indices.insert(list.indices.end(), b.begin(), b.end());
+
+  // Sorted rows by a transpose instead of a sort per row (which took 40 % of the search): the pattern is symmetric,
+  // so row j holds count[j] entries, the i whose rows hold j, and visiting i in ascending order writes them sorted.
+  // Thread t writes the rows of its own block; the list is the same for any thread count (tests/neighbours: 1, 2
+  // and 3 threads).
+  NeighbourList list;
+  list.radius = radius;
+  list.offsets.assign(n + 1, 0);
+  for (int i = 0; i < n; ++i) list.offsets[i + 1] = list.offsets[i] + count[i];
+  list.indices.resize(static_cast<std::size_t>(list.offsets[n]));
+  std::vector<long> next(list.offsets.begin(), list.offsets.end() - 1);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (int t = 0; t < threads; ++t) {
+    const int j0 = bound[t], j1 = bound[t + 1];
+    for (int u = 0; u < threads; ++u) {
+      const int* q = block[u].data();
+      for (int i = bound[u]; i < bound[u + 1]; ++i)
+        for (const int* const end = q + count[i]; q < end; ++q)
+          if (*q >= j0 && *q < j1) list.indices[next[*q]++] = i;
+    }
   }
   return list;
 }

@@ -47,6 +47,21 @@ TEST(NeighbourList, MatchesBruteForceOnRandomSets) {
     }
 }
 
+TEST(NeighbourList, MatchesBruteForceInSmallPeriodicBoxesAndSparseSets) {
+  // The cells are half the radius, a row visits 2 ceil(r / edge) + 1 cells per axis: periodic boxes of 2.05 r (every
+  // cell visited), 3 r and 5.3 r (runs that wrap), and sets so sparse that the grid is coarsened (cells wider than r).
+  for (double box_over_r : {2.05, 3.0, 5.3})
+    for (unsigned seed : {4u, 5u}) {
+      expect_same(random_set<1>(40, 1.0, true, seed), 1.0 / box_over_r);
+      expect_same(random_set<2>(150, 1.0, true, seed), 1.0 / box_over_r);
+      expect_same(random_set<3>(200, 1.0, true, seed), 1.0 / box_over_r);
+    }
+  for (bool periodic : {false, true}) {
+    expect_same(random_set<2>(40, 1000.0, periodic, 6u), 40.0);
+    expect_same(random_set<3>(40, 1000.0, periodic, 6u), 120.0);
+  }
+}
+
 TEST(NeighbourList, SameListOnAnyThreadCount) {
   // Rows are searched in one block per thread and the blocks joined in order: the list may not depend on the count.
   // 3000 rows: at least kMinRowsPerThread rows for each of 3 threads, so every count really splits the rows.
