@@ -113,5 +113,5 @@ TEST(NeighbourList, RejectsBadInput) {
   EXPECT_THROW(find_neighbours(q, 0.3), std::invalid_argument);
 }
 
-}  // namespace
+}  // namespace neighbour_list_test
 }  // namespace sphstab
