@@ -10,7 +10,9 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
+#include "sphstab/core/simd_dispatch.hpp"
 #include "sphstab/core/threads.hpp"
 #include "sphstab/jacobian/matrix_free_linearisation.hpp"
 #include "sphstab/particles/lattice.hpp"
@@ -249,6 +251,45 @@ TEST(MatrixFreeStorage, FusedProductsSameBitsAsTwoCalls) {
   EXPECT_THROW(lin.apply_A0_and_A1(1.0, x, y, y), std::invalid_argument);
   EXPECT_THROW(lin.apply_A0_and_A1(1.0, x, small, z), std::invalid_argument);
   EXPECT_NO_THROW(lin.apply_A0_and_A1(1.0, x, y, z));
+}
+
+/// ByOffset's sweeps in their AVX2 build against the baseline build (core/simd_dispatch.hpp): the same bits for every
+/// form, both pre-strain kinds and each product, signed zeros included.
+template <int Dim>
+void expect_avx2_same_bits(const Discretisation<Dim>& d) {
+  for (MomentumForm form : all_momentum_forms())
+    for (PreStrainKind kind : {PreStrainKind::Isotropic, PreStrainKind::UniaxialX}) {
+      const std::string what = momentum_form_name(form) + " " + prestrain_kind_name(kind);
+      const MatrixFreeLinearisation<Dim> lin(d, kMaterial, form, kind, MatrixFreeStorage::ByOffset);
+      const Eigen::VectorXd x = random_vector(lin.dofs(), 23);
+      const auto products = [&] {
+        std::vector<Eigen::VectorXd> out(4, Eigen::VectorXd(lin.dofs()));
+        lin.apply_A0(x, out[0]);
+        lin.apply_A1(x, out[1]);
+        lin.apply(-0.3, x, out[2]);
+        Eigen::VectorXd l(lin.dofs());
+        lin.apply_A0_and_A1(0.5, x, out[3], l);
+        out.push_back(l);
+        return out;
+      };
+      const std::vector<Eigen::VectorXd> fast = products();
+      const PortableSimdGuard baseline;
+      ASSERT_FALSE(avx2_enabled());
+      const std::vector<Eigen::VectorXd> base = products();
+      for (std::size_t k = 0; k < base.size(); ++k) {
+        EXPECT_EQ(std::memcmp(fast[k].data(), base[k].data(), sizeof(double) * base[k].size()), 0)
+            << what << " product " << k;
+        const bool a1_only = k == 1 || k == 4;  // the minus form's A1 is zero
+        if (!a1_only || form != MomentumForm::Minus) EXPECT_GT(base[k].cwiseAbs().maxCoeff(), 0.0) << what << " " << k;
+      }
+    }
+}
+
+TEST(MatrixFreeStorage, Avx2SweepsSameBitsAsBaseline) {
+  if (!avx2_enabled()) GTEST_SKIP() << "no AVX2 on this CPU (or SPHSTAB_SIMD=baseline): only the baseline build runs";
+  // Lines longer than the sweeps' 128-site chunks, so that full vectors, chunk ends and remainders all occur.
+  expect_avx2_same_bits(*lattice<2>(150, KernelType::CubicSpline, 1.3));
+  expect_avx2_same_bits(*lattice<3>(9, KernelType::QuinticSpline, 1.2));
 }
 
 }  // namespace matrix_free_storage_test

@@ -30,12 +30,16 @@ ParticleSet<Dim> random_set(int n, double box, bool periodic, unsigned seed) {
   return p;
 }
 
+/// The search (both ways of sorting its rows) against the brute-force reference.
 template <int Dim>
 void expect_same(const ParticleSet<Dim>& p, double radius) {
-  auto a = find_neighbours(p, radius);
-  auto b = find_neighbours_brute_force(p, radius);
-  ASSERT_EQ(a.offsets, b.offsets);
-  ASSERT_EQ(a.indices, b.indices);
+  const NeighbourList b = find_neighbours_brute_force(p, radius);
+  for (detail::RowOrder order : {detail::RowOrder::Transpose, detail::RowOrder::Sort}) {
+    const NeighbourList a = detail::find_neighbours(p, radius, order);
+    ASSERT_EQ(a.offsets, b.offsets);
+    ASSERT_EQ(a.indices, b.indices);
+  }
+  ASSERT_EQ(find_neighbours(p, radius).indices, b.indices);
 }
 
 TEST(NeighbourList, MatchesBruteForceOnRandomSets) {
@@ -73,9 +77,11 @@ TEST(NeighbourList, SameListOnAnyThreadCount) {
     for (int threads : {1, 2, 3}) {
       const ThreadCountGuard guard(threads);
       ASSERT_EQ(threads_for(3000), threads);
-      const NeighbourList list = find_neighbours(p, 0.81);
-      EXPECT_EQ(list.offsets, reference.offsets) << threads << " threads, periodic " << periodic;
-      EXPECT_EQ(list.indices, reference.indices) << threads << " threads, periodic " << periodic;
+      for (detail::RowOrder order : {detail::RowOrder::Transpose, detail::RowOrder::Sort}) {
+        const NeighbourList list = detail::find_neighbours(p, 0.81, order);
+        EXPECT_EQ(list.offsets, reference.offsets) << threads << " threads, periodic " << periodic;
+        EXPECT_EQ(list.indices, reference.indices) << threads << " threads, periodic " << periodic;
+      }
     }
   }
 }

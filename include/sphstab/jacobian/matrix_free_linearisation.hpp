@@ -160,6 +160,13 @@ class MatrixFreeLinearisation {
   static double estimated_bytes(const Discretisation<Dim>& discretisation,
                                 MatrixFreeStorage storage = MatrixFreeStorage::Auto);
 
+  /// Index of (a, b) in the stress buffer: the diagonal first, then xy[, xz, yz].
+  static constexpr int voigt(int a, int b) {
+    if (a == b) return a;
+    if (a > b) std::swap(a, b);
+    return Dim == 2 ? 2 : (a == 0 ? 2 + b : 5);
+  }
+
  private:
   struct Lattice;  // the free box and offset set of ByOffset, or why there is none (matrix_free_linearisation.cpp)
   static Lattice find_lattice(const Discretisation<Dim>& d);
@@ -170,12 +177,6 @@ class MatrixFreeLinearisation {
   /// y = (c0 A0 + c1 A1) x on the lattice grids (matrix_free_by_offset_product.cpp); with y1, y = c0 A0 x and
   /// y1 = c1 A1 x instead.
   void apply_by_offset(double c0, double c1, const double* x, double* y, double* y1 = nullptr) const;
-  /// Index of (a, b) in the stress buffer: the diagonal first, then xy[, xz, yz].
-  static constexpr int voigt(int a, int b) {
-    if (a == b) return a;
-    if (a > b) std::swap(a, b);
-    return Dim == 2 ? 2 : (a == 0 ? 2 + b : 5);
-  }
   void check_vectors(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<Eigen::VectorXd>& y,
                      const char* who) const;
 

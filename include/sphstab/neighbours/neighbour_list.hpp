@@ -26,14 +26,21 @@ struct NeighbourList {
 template <int Dim>
 double expected_neighbour_pairs(const ParticleSet<Dim>& particles, double radius);
 
-/// O(N + pairs) cell-list search: cells of edge >= radius / 2, each row's candidates read as contiguous runs of cells,
-/// the rows made sorted by transposing the symmetric pattern (no sort per row); the same list for any thread count.
-/// Peak memory about twice the list's indices (the unsorted rows beside the list). Throws std::invalid_argument for a
+/// O(N + pairs) cell-list search: cells of edge >= radius / 2, each row's candidates read as contiguous runs of cells;
+/// the rows sorted by transposing the symmetric pattern (up to 4 M pairs; peak memory then twice the list's indices)
+/// or, for larger lists, by a sort per row. The same list for any thread count. Throws std::invalid_argument for a
 /// radius outside check_length()'s range (core/length_scale.hpp), an invalid particle set, or a periodic box shorter
 /// than 2 * radius in a periodic axis (the minimum-image convention would then miss images); MemoryLimitError when the
 /// estimated pairs do not fit the memory limit.
 template <int Dim>
 NeighbourList find_neighbours(const ParticleSet<Dim>& particles, double radius);
+
+namespace detail {
+/// How find_neighbours sorts its rows (it chooses by size; both here for the tests).
+enum class RowOrder { Transpose, Sort };
+template <int Dim>
+NeighbourList find_neighbours(const ParticleSet<Dim>& particles, double radius, RowOrder order);
+}  // namespace detail
 
 /// O(N^2) reference search with the same conventions (for tests and small sets).
 template <int Dim>
