@@ -118,8 +118,9 @@ def claim_cost_linear_in_dofs(r):
 def claim_storage_by_offset_against_per_pair(r):
     """G and H by lattice offset against per pair, in the same run (n = 256 on 1 thread, 1000 on 1 and 2 threads): the
     same e_crit to 5e-15 relative (FFTW_MEASURE's plans: see claim_variants), the linearisation 17x smaller (61 against 1035 MB at n = 1000), peak RSS 2.0-2.2x
-    lower, and the products inside the solve 1.5-3x faster (1.8-2.8x in the run of 2026-12-07); the total wall time
-    moves less (1.0-1.6x) because the
+    lower, and the products inside the solve 1.5-6x faster (1.8-2.8x in the first run of 2026-12-07; 2.7-3.2x once
+    the by-offset sweeps got their AVX2 clones, which the per-pair route has not: core/simd_dispatch.hpp, up to 2x on
+    the sweeps); the total wall time moves less (1.0-2x) because the
     products are the smallest of the solve's three parts (DST preconditioner, dense block algebra), as summary.md
     states."""
     rows = r.csv("results.csv")
@@ -135,12 +136,12 @@ def claim_storage_by_offset_against_per_pair(r):
         peak = p["peak_rss_MB"] / o["peak_rss_MB"]
         check(1.9 <= peak <= 2.3, f"{p.where()}: peak RSS ratio {peak:.3g}")
         prod = p["solve_products_s"] / o["solve_products_s"]
-        check(1.5 <= prod <= 3, f"{p.where()}: products in the solve {prod:.3g}x")
+        check(1.5 <= prod <= 6, f"{p.where()}: products in the solve {prod:.3g}x")
         approx(r.stated(rf"\*\*n = {p['n']}, {p['threads']} thread\(s\)\*\*: per pair / by offset = .*?, ([\d.]+) "
                         rf"\(products in the solve\)"), prod, f"summary.md products ratio {p.where()}", abs_=0.0051)
         tot = p["total_s"] / o["total_s"]
-        check(1.0 <= tot <= 1.6, f"{p.where()}: total {tot:.3g}x")
-    return "by offset: same e_crit, 17x less linearisation memory, ~2x less peak, products 1.5-3x faster"
+        check(1.0 <= tot <= 2, f"{p.where()}: total {tot:.3g}x")
+    return "by offset: same e_crit, 17x less linearisation memory, ~2x less peak, products 1.5-6x faster"
 
 
 def claim_variants(r):
