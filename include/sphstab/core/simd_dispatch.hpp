@@ -13,7 +13,8 @@
 namespace sphstab {
 
 /// True when the CPU and the operating system support AVX2, the environment does not set SPHSTAB_SIMD=baseline (read
-/// once) and no PortableSimdGuard is alive.
+/// once; "auto" or unset: the CPU decides; another value is named on stderr and ignored) and no PortableSimdGuard is
+/// alive.
 bool avx2_enabled();
 
 /// Forces the portable loops while alive (for tests comparing the two builds; not thread-safe against running loops).
