@@ -21,6 +21,7 @@
 #include "../../src/forms/rate_form/dispatch.hpp"
 #include "../../src/forms/rate_form/pair_loop.hpp"
 #include "forms_fixture.hpp"
+#include "sphstab/core/simd_dispatch.hpp"
 #include "sphstab/core/threads.hpp"
 #include "sphstab/forms/linear_elastic.hpp"
 #include "sphstab/forms/rate_form.hpp"
@@ -298,6 +299,37 @@ TEST(Threads, PairLoopIsTheSameBitsForAnyChunksAndThreads) {
       for (int chunks : {0, 1, 2, 3, 5, 8, 13, 40})
         EXPECT_EQ(test::differing_bits(serial, pair_loop_outputs(c, in, threads, chunks)), 0)
             << c.name << ": " << threads << " threads, " << chunks << " chunks";
+  }
+}
+
+/// The pair loop's row scalars by the AVX2 lanes (rate_form/pair_lanes.hpp, 4 pairs per vector) give the bits of the
+/// baseline's 2 lanes, on one thread and on three threads over 7 chunks (halo rows: a row's pairs in part), for the
+/// sweeps above; the Wendland kernel takes the kernel's own functions (no lanes) and is the same either way.
+TEST(Threads, PairLoopAvx2LanesAreTheBaselineBits) {
+  if (!avx2_enabled()) GTEST_SKIP() << "no AVX2 on this CPU (or SPHSTAB_SIMD=baseline): only the baseline build runs";
+  const auto block = test::lattice_discretisation<2>({.n = 20, .h = 1.5, .perturbation = 0.2});
+  const auto torus = test::lattice_discretisation<2>({.n = 20, .h = 1.5, .periodic = true, .perturbation = 0.2});
+  const auto mixed = shuffled(*block, 11);
+  const std::vector<PairLoopCase> cases = {
+      {"plain", block},
+      {"viscosity+stress", block, ViscositySwitch::Always, true},
+      {"xsph (gms)", block, ViscositySwitch::Compression, true, true},
+      {"summation", block, ViscositySwitch::Compression, false, false, true},
+      {"periodic", torus, ViscositySwitch::Compression, true, true},
+      {"shuffled summation+xsph", mixed, ViscositySwitch::Always, true, true, true},
+  };
+  for (const PairLoopCase& c : cases) {
+    const PairLoopInputs in = pair_loop_inputs(*c.disc, 6);
+    for (const auto& [threads, chunks] : {std::pair{1, 1}, std::pair{3, 7}}) {
+      Eigen::VectorXd baseline;
+      {
+        const PortableSimdGuard portable;
+        baseline = pair_loop_outputs(c, in, threads, chunks);
+      }
+      const Eigen::VectorXd avx2 = pair_loop_outputs(c, in, threads, chunks);
+      EXPECT_GT(baseline.cwiseAbs().maxCoeff(), 1e-3) << c.name;
+      EXPECT_EQ(test::differing_bits(baseline, avx2), 0) << c.name << ": " << threads << " threads";
+    }
   }
 }
 

@@ -4,6 +4,7 @@
 /// cubic spline written out and vectorised, the kernel's own functions otherwise). Shared by the row loop
 /// (plain_rows.hpp) and the pair loop (pair_loop.hpp).
 #include <Eigen/Core>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <type_traits>
@@ -143,6 +144,12 @@ class CubicFunctions {
   double m_h, m_cw, m_cd;
 
  public:
+  /// row_pairs()'s constants: 1 / h, c_w, c_d / h, -0.75 c_d (pair_lanes.hpp computes the same values by lanes).
+  std::array<double, 4> pair_constants() const {
+    const double inv_h = 1.0 / m_h;
+    return {inv_h, m_cw, m_cd * inv_h, -0.75 * m_cd};
+  }
+
   /// W and dW/dr / r for the pair loop (pair_loop.hpp), within rounding of row_slopes<true>(), not bitwise:
   /// s = r (1/h), and dW/dr / r = (c_d / h)(-3 + 2.25 s) on the inner piece (no division), -0.75 c_d (2 - s)^2 / r on
   /// the outer one. r[q] >= 0; r = 0 gives the inner piece's finite limit.

@@ -34,6 +34,7 @@
 
 #include "artificial_stress.hpp"
 #include "kernel_rows.hpp"
+#include "pair_lanes.hpp"
 #include "pair_viscosity.hpp"
 #include "sphstab/core/threads.hpp"
 #include "sphstab/forms/rate_form.hpp"
@@ -96,10 +97,11 @@ struct PairRowScratch {
   std::vector<int> j;                            // the row's neighbours
   std::vector<Eigen::Matrix<double, Dim, 1>> r;  // the row's r_ij
   std::size_t stride = 0;
-  /// Room for `pairs` pairs: the compaction writes one slot past the kept ones.
+  /// Room for `pairs` pairs: the compaction writes one slot past the kept ones, and pair_lanes.hpp's vectors reach
+  /// to the next multiple of kMaxPairLanes.
   void reserve(std::size_t pairs) {
     if (pairs < stride) return;
-    stride = std::max(pairs + 1, 2 * stride);
+    stride = (std::max(pairs + 1, 2 * stride) + kMaxPairLanes - 1) / kMaxPairLanes * kMaxPairLanes;
     row.resize(kArrays * stride);
     j.resize(stride);
     r.resize(stride);
@@ -188,9 +190,14 @@ struct PairSweeps {
   const PairFactor& pair_factor;
   PairLoopScratch<Dim>& s;
   bool periodic;
+  // The cubic spline (with GMS's f^4 when the artificial stress is on): the row scalars by pair_lanes.hpp, its AVX2
+  // clone when `avx2`; other kernels and exponents by the kernel's and PairFactor's row functions.
+  bool lanes = false, avx2 = false;
+  PairLaneConstants lane{};
 
   /// The first row with a pair into [a, b): the lowest neighbour of its particles (rows are sorted and hold i).
   int halo_start(int a, int b) const {
+    if (a == 0) return 0;  // one chunk (one thread): no halo, and no pass over the rows' first entries
     int lo = a;
     for (int k = a; k < b; ++k)
       if (A.offsets[k] < A.offsets[k + 1]) lo = std::min(lo, A.indices[A.offsets[k]]);
@@ -351,21 +358,26 @@ struct PairSweeps {
     };
     const std::size_t len = periodic ? gather(std::true_type{}) : gather(std::false_type{});
     // Pair scalars as whole-row loops (lane by lane: a pair's values do not depend on the row's other pairs).
-    Eigen::Map<Eigen::ArrayXd>(rr, len) = Eigen::Map<const Eigen::ArrayXd>(r2, len).sqrt();
-    row_pairs(kf, len, rr, w, gf);
-    if constexpr (kStress) pair_factor.row_by_reciprocal(len, w, f);
-    if constexpr (kViscous || kXsph)
-      for (std::size_t q = 0; q < len; ++q) ib[q] = 2.0 / (rho_i + rhoj[q]);
-    if constexpr (kViscous)
-      for (std::size_t q = 0; q < len; ++q) {
-        const double mu_ij = viscosity_mu(A.h, vr[q], r2[q], A.eta2);  // pair_viscosity.hpp
-        const double pi = viscosity_pi(mu_ij, A.alpha_c0, A.beta, kViscosity == ViscositySwitch::Compression);
-        const double cq = pi * ib[q];
-        if constexpr (kViscosity == ViscositySwitch::Compression)
-          c[q] = vr[q] < 0 ? cq : 0.0;
-        else
-          c[q] = cq;
-      }
+    if (lanes) {
+      const PairLaneRow lane_row{len, rho_i, r2, vr, rhoj, w, gf, f, ib, c};  // PairLaneRow's order
+      pair_lanes<kViscosity, kStress, kXsph>(avx2, lane, lane_row);
+    } else {
+      Eigen::Map<Eigen::ArrayXd>(rr, len) = Eigen::Map<const Eigen::ArrayXd>(r2, len).sqrt();
+      row_pairs(kf, len, rr, w, gf);
+      if constexpr (kStress) pair_factor.row_by_reciprocal(len, w, f);
+      if constexpr (kViscous || kXsph)
+        for (std::size_t q = 0; q < len; ++q) ib[q] = 2.0 / (rho_i + rhoj[q]);
+      if constexpr (kViscous)
+        for (std::size_t q = 0; q < len; ++q) {
+          const double mu_ij = viscosity_mu(A.h, vr[q], r2[q], A.eta2);  // pair_viscosity.hpp
+          const double pi = viscosity_pi(mu_ij, A.alpha_c0, A.beta, kViscosity == ViscositySwitch::Compression);
+          const double cq = pi * ib[q];
+          if constexpr (kViscosity == ViscositySwitch::Compression)
+            c[q] = vr[q] < 0 ? cq : 0.0;
+          else
+            c[q] = cq;
+        }
+    }
     // Scatter to both particles.
     Vec acc_i = Vec::Zero(), dvh_i = Vec::Zero();
     Mat L_i = Mat::Zero();
@@ -456,6 +468,15 @@ void pair_loop(const PairLoopArrays<Dim>& A, const KernelRows& kf, const PairFac
   bool periodic = false;
   for (int e = 0; e < Dim; ++e) periodic = periodic || A.half_box[e] < std::numeric_limits<double>::infinity();
   PairSweeps<Dim, kViscosity, kStress, kXsph, KernelRows> sweeps{A, kf, pair_factor, s, periodic};
+  if constexpr (std::is_same_v<KernelRows, CubicFunctions<Dim>>) {
+    if (!kStress || pair_factor.fourth_power()) {
+      const std::array<double, 4> c = kf.pair_constants();
+      sweeps.lanes = true;
+      sweeps.avx2 = avx2_enabled();
+      const double inv_w_dp = kStress ? pair_factor.reciprocal_w_dp() : 0.0;  // PairLaneConstants' order
+      sweeps.lane = {c[0], c[1], c[2], c[3], inv_w_dp, A.h, A.eta2, A.alpha_c0, A.beta};
+    }
+  }
   FirstException first_error;
 #pragma omp parallel num_threads(threads)
   {
