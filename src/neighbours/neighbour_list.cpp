@@ -2,15 +2,22 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/length_scale.hpp"
 #include "sphstab/core/memory_budget.hpp"
+#include "sphstab/core/simd_dispatch.hpp"
 #include "sphstab/core/threads.hpp"
 #include "sphstab/numerics/instantiation.hpp"
+
+#if SPHSTAB_HAS_AVX2_CLONES
+#include <immintrin.h>
+#endif
 
 namespace sphstab {
 
@@ -41,6 +48,59 @@ void check_inputs(const ParticleSet<Dim>& p, double radius, const char* who) {
 }  // namespace
 
 namespace detail {
+
+#if SPHSTAB_HAS_AVX2_CLONES
+namespace {
+
+/// For each 4-bit mask, the byte shuffle that moves the 32-bit lanes it selects to the front, in order.
+struct CompressTable {
+  alignas(16) std::uint8_t shuffle[16][16];
+  constexpr CompressTable() : shuffle{} {
+    for (int m = 0; m < 16; ++m) {
+      int to = 0;
+      for (int lane = 0; lane < 4; ++lane)
+        if (m >> lane & 1) {
+          for (int b = 0; b < 4; ++b) shuffle[m][4 * to + b] = static_cast<std::uint8_t>(4 * lane + b);
+          ++to;
+        }
+      for (int b = 4 * to; b < 16; ++b) shuffle[m][b] = 0x80;  // zero: written past the kept ones, overwritten later
+    }
+  }
+};
+constexpr CompressTable kCompress{};
+
+/// The 2D scan of find_neighbours (no periodic axis) four candidates at a time: per candidate the scalar scan's
+/// operations (d = x_i - x_j, d_x d_x + d_y d_y < r^2, or j == i), so the same rows; the kept indices moved to the
+/// front by a shuffle and stored four at a time (the caller has room for the whole range).
+SPHSTAB_TARGET_AVX2 std::size_t scan_2d_avx2(const double* xs, const int* sorted, long s0, long s1, double xi,
+                                             double yi, int i, double r2, int* out, std::size_t used) {
+  const __m256d vxi = _mm256_set1_pd(xi), vyi = _mm256_set1_pd(yi), vr2 = _mm256_set1_pd(r2);
+  const __m128i vi = _mm_set1_epi32(i);
+  long s = s0;
+  for (; s + 4 <= s1; s += 4) {
+    const __m256d a = _mm256_loadu_pd(xs + 2 * s), b = _mm256_loadu_pd(xs + 2 * s + 4);  // x0 y0 x1 y1, x2 y2 x3 y3
+    const __m256d lo = _mm256_permute2f128_pd(a, b, 0x20), hi = _mm256_permute2f128_pd(a, b, 0x31);
+    const __m256d dx = _mm256_sub_pd(vxi, _mm256_unpacklo_pd(lo, hi)),
+                  dy = _mm256_sub_pd(vyi, _mm256_unpackhi_pd(lo, hi));
+    const __m256d d2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
+    const __m128i js = _mm_loadu_si128(reinterpret_cast<const __m128i*>(sorted + s));
+    const int keep = _mm256_movemask_pd(_mm256_cmp_pd(d2, vr2, _CMP_LT_OQ)) |
+                     _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(js, vi)));
+    const __m128i shuffle = _mm_load_si128(reinterpret_cast<const __m128i*>(kCompress.shuffle[keep]));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + used), _mm_shuffle_epi8(js, shuffle));
+    used += static_cast<std::size_t>(std::popcount(static_cast<unsigned>(keep)));
+  }
+  for (; s < s1; ++s) {
+    const int j = sorted[s];
+    const double dx = xi - xs[2 * s], dy = yi - xs[2 * s + 1];
+    out[used] = j;
+    used += static_cast<std::size_t>((j == i) | (dx * dx + dy * dy < r2));
+  }
+  return used;
+}
+
+}  // namespace
+#endif
 
 /// Cells of edge >= radius / kCellsPerRadius over the bounding box (or the periodic box), the particles counting-sorted
 /// into them, and their positions in that order, so that a row's candidates are read contiguously. Cells of half the
@@ -180,6 +240,9 @@ NeighbourList find_neighbours(const ParticleSet<Dim>& p, double radius, RowOrder
                  "find_neighbours: ~" + format_number(pairs, 3) + " neighbour pairs");
   const double r2 = radius * radius;
   const CellGrid<Dim> grid(p, radius);
+  const bool avx2 = Dim == 2 && !grid.any_periodic && avx2_enabled();  // scan_2d_avx2 reads xs as x, y pairs
+  static_assert(sizeof(typename CellGrid<Dim>::Point) == Dim * sizeof(double));
+  (void)avx2;
 
   // Row i's neighbours in cell order, appended at out[used..] without a branch (about half the candidates pass), by
   // ParticleSet::separation()'s arithmetic. Exactly symmetric: x_j - x_i = -(x_i - x_j) and round(-t) = -round(t).
@@ -192,6 +255,13 @@ NeighbourList find_neighbours(const ParticleSet<Dim>& p, double radius, RowOrder
       if (out.size() < used + static_cast<std::size_t>(s1 - s0))
         out.resize(std::max(2 * out.size(), used + static_cast<std::size_t>(s1 - s0)));
       int* const o = out.data();
+#if SPHSTAB_HAS_AVX2_CLONES
+      if constexpr (Dim == 2)
+        if (avx2) {
+          used = scan_2d_avx2(grid.xs.data()->data(), grid.sorted.data(), s0, s1, xi[0], xi[1], i, r2, o, used);
+          return;
+        }
+#endif
       for (long s = s0; s < s1; ++s) {
         const int j = grid.sorted[s];
         Point d = xi - grid.xs[s];
