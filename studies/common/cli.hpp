@@ -2,7 +2,7 @@
 /// \file cli.hpp
 /// The command line a study driver starts with, the same in every driver that uses it: CLI11's app, --out (the output
 /// directory, first in --help, created once parsed) and --quick (the study's test case, last in --help), parsed as
-/// CLI11_PARSE parses.
+/// CLI11_PARSE parses; and --threads for a driver that runs its cases side by side.
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <functional>
@@ -35,6 +35,11 @@ struct DriverCli {
                                 const std::string& help) {
     quick_defaults.emplace_back(name, [&value, quick_value] { value = quick_value; });
     return app.add_option(name, value, help);
+  }
+
+  /// Adds --threads: how many runs go side by side (parallel_for, run_costliest_first), 1 to 64.
+  CLI::Option* add_threads(int& threads, const std::string& help = "concurrent runs") {
+    return app.add_option("--threads", threads, help)->check(CLI::Range(1, 64));
   }
 
   /// Adds --quick, parses the command line, sets the --quick defaults of add_quick_option and creates the directory

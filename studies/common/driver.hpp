@@ -28,9 +28,22 @@ auto run_costliest_first(const std::vector<Case>& cases, int threads, Cost cost,
   return results;
 }
 
-/// Sets wall_seconds (the wall time since t0, 3 digits) and writes <out>/summary.json: a driver's last step.
-inline void write_summary(Summary& summary, const std::string& out, Clock::time_point t0) {
-  summary.set("wall_seconds", seconds_since(t0), 3);
+/// What write_summary records beside the study's own keys. A wall time is measured on shared cores, so a study whose
+/// summary reads its timings says under what load (the 1-minute load average at the end) and, with its runs side by
+/// side, on how many threads.
+struct SummaryTiming {
+  std::string wall_key = "wall_seconds";  ///< the wall time's key (the older drivers' summaries say "wall_total")
+  bool load = false;                      ///< "load": load_average()
+  int threads = 0;                        ///< "threads", when > 0
+};
+
+/// Sets the wall time since t0 (3 digits) and what `timing` asks for, and writes <out>/summary.json: a driver's last
+/// step.
+inline void write_summary(Summary& summary, const std::string& out, Clock::time_point t0,
+                          const SummaryTiming& timing = {}) {
+  summary.set(timing.wall_key, seconds_since(t0), 3);
+  if (timing.load) summary.set("load", load_average());
+  if (timing.threads > 0) summary.set("threads", timing.threads);
   summary.write(out);
 }
 

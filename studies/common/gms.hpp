@@ -2,7 +2,8 @@
 /// \file gms.hpp
 /// What the Gray-Monaghan-Swift studies (gms-plate, gms-rings, gms-slab) share beyond the library's scenes
 /// (problems/gms_scenes.hpp: GMS's scheme, the three set-ups): the cost of a run and the frozen-state spectrum of a
-/// state along a run.
+/// state along a run, with its options on a driver's command line.
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -19,8 +20,8 @@
 #include "sphstab/growth/mirror_symmetry.hpp"
 #include "sphstab/growth/rate_form_spectrum.hpp"
 #include "sphstab/integrate/rate_form_run.hpp"
-#include "sphstab/problems/gms_scenes.hpp"
 #include "sphstab/io/csv.hpp"
+#include "sphstab/problems/gms_scenes.hpp"
 
 namespace sphstab::study {
 
@@ -87,7 +88,7 @@ namespace detail {
 /// The spectrum of `scheme` at rest at y, whole or (mirror) as the union of the four mirror classes' spectra; in the
 /// latter case out's class and residual fields are set. Throws std::runtime_error when a spectrum fails.
 inline RateFormSpectrum frozen_eigen(const RateFormScheme<2>& s, const Eigen::VectorXd& y, const Eigen::Matrix2Xd& x,
-                              const FrozenMirror* mirror, FrozenSpectrum& out) {
+                                     const FrozenMirror* mirror, FrozenSpectrum& out) {
   if (!mirror) {
     RateFormSpectrum sp = rate_form_spectrum(s, y, {.want_mode = true});
     if (sp.info() != Status::Successful) throw std::runtime_error("frozen spectrum: " + sp.reason);
@@ -229,15 +230,18 @@ inline std::vector<FrozenRow> frozen_spectra_along_run(const RateFormScheme<2>& 
         const FrozenRow r{st.name, st.t, e, visc,
                           frozen_spectrum(scheme, st.y, e, visc, out + "/frozen_mode" + suffix + ".csv", mirror)};
         const FrozenSpectrum& f = r.spectrum;
-        std::vector<CsvCell> cells = {st.name,     st.t,     e,
+        std::vector<CsvCell> cells = {st.name,          st.t,          e,
                                       visc ? 1.0 : 0.0, f.growth_rate, static_cast<double>(f.unstable),
-                                      f.peak_x,   f.peak_y, f.peak_share};
+                                      f.peak_x,         f.peak_y,      f.peak_share};
         const double nan = std::numeric_limits<double>::quiet_NaN();
         if (mirror)
           cells.insert(cells.end(), {f.class_x ? static_cast<double>(f.class_x) : nan,
                                      f.class_y ? static_cast<double>(f.class_y) : nan, f.symmetry_residual});
         w.row(cells);
-        std::vector<std::string> md = {sig(st.t, 4), fixed(e, 1), visc ? "on" : "off", sig(f.growth_rate, 3),
+        std::vector<std::string> md = {sig(st.t, 4),
+                                       fixed(e, 1),
+                                       visc ? "on" : "off",
+                                       sig(f.growth_rate, 3),
                                        std::to_string(f.unstable),
                                        f.unstable ? "(" + fixed(f.peak_x, 2) + ", " + fixed(f.peak_y, 2) + ")" : "-",
                                        f.unstable ? fixed(f.peak_share, 2) : "-"};
@@ -251,6 +255,17 @@ inline std::vector<FrozenRow> frozen_spectra_along_run(const RateFormScheme<2>& 
     }
   sum.set("frozen_table", table);
   return rows;
+}
+
+/// Adds a driver's options of the frozen spectra along one of its runs (frozen_spectra_along_run, on a coarser grid):
+/// --dp-spectrum, that grid's spacing `dp` in [0, dp_max] (0: none), and --spectrum-times, the states' `times` in
+/// [t_min, 1e4], a comma list (`times_help`: which of them is also taken with the viscosity on, in what units). The
+/// driver sorts the times once parsed.
+inline void add_frozen_spectra_options(CLI::App& app, double& dp, std::vector<double>& times, double dp_max,
+                                       double t_min, const std::string& times_help) {
+  app.add_option("--dp-spectrum", dp, "grid spacing of the frozen-state spectra (0: none)")
+      ->check(CLI::Range(0.0, dp_max));
+  app.add_option("--spectrum-times", times, times_help)->delimiter(',')->check(CLI::Range(t_min, 1e4));
 }
 
 }  // namespace sphstab::study

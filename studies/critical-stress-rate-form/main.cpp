@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "common/cli.hpp"
+#include "common/driver.hpp"
 #include "common/study.hpp"
 #include "sphstab/io/csv.hpp"
 #include "sphstab/jacobian/analytic_jacobian_2d.hpp"
@@ -181,8 +182,7 @@ int main(int argc, char** argv) {
   s.set("cubic_table", cubic_table);
   s.set("block_table", block_table);
   s.set("hex_table", hex_table);
-  s.set("wall_total", study::seconds_since(t0), 3);
-  s.write(cli.out);
+  study::write_summary(s, cli.out, t0, {.wall_key = "wall_total"});
   std::printf("1D sph against T_plus/(1 - T_plus): worst relative difference %.2g\n", worst_prediction);
   return 0;
 }

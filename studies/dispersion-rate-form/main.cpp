@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "common/cli.hpp"
+#include "common/driver.hpp"
 #include "common/study.hpp"
 #include "dispersion_cases.hpp"
 #include "sphstab/io/csv.hpp"
@@ -254,8 +255,7 @@ int main(int argc, char** argv) {
   s.set("bar_rows", bar_rows);
   s.set("path_points", path_points);
   s.set("grid", grid);
-  s.set("wall_total", study::seconds_since(t0), 3);
-  s.write(cli.out);
+  study::write_summary(s, cli.out, t0, {.wall_key = "wall_total"});
   std::printf("GMS (5.8)/(5.9) worst %.2g, slaved |lambda| worst %.2g, 1D closed form worst %.2g\n", worst_gms,
               worst_slaved, worst_1d);
   return 0;

@@ -128,7 +128,7 @@ int main(int argc, char** argv) try {
                        "pipeline check: the plate 6 across over 0.04 periods, the rings at dp = 0.2 over 10 time "
                        "units, references at dt0 / 8"};
   int threads = 2;
-  cli.app.add_option("--threads", threads, "runs side by side (each on one thread)")->check(CLI::Range(1, 64));
+  cli.add_threads(threads, "runs side by side (each on one thread)");
   if (const auto exit = cli.parse(argc, argv)) return *exit;
   const auto t0 = study::Clock::now();
 
@@ -203,9 +203,7 @@ int main(int argc, char** argv) try {
   summary.set("runs_table", table);
   summary.set("slab_pc1", slab_pc1.status + (slab_pc1.reason.empty() ? "" : ": " + slab_pc1.reason));
   summary.set("slab_decision", slab_pc1.status == "refused" ? "PC2" : "undecided (no slab runs)");
-  summary.set("threads", threads);
-  summary.set("load", study::load_average());
-  study::write_summary(summary, cli.out, t0);
+  study::write_summary(summary, cli.out, t0, {.load = true, .threads = threads});
   return 0;
 } catch (const std::exception& e) {
   return study::exit_on_error("gms-pc1", e);

@@ -19,6 +19,9 @@
 #include <string>
 #include <vector>
 
+#include "common/cli.hpp"
+#include "common/driver.hpp"
+#include "common/gms.hpp"
 #include "common/study.hpp"
 #include "ring_case.hpp"
 #include "ring_measures.hpp"
@@ -30,39 +33,36 @@
 using namespace grings;
 
 int main(int argc, char** argv) try {
-  CLI::App app{"GMS 2001 §7.2: colliding rubber rings with and without the artificial stress"};
-  std::string out = "results/gms-rings";
+  study::DriverCli cli{"GMS 2001 §7.2: colliding rubber rings with and without the artificial stress",
+                       "results/gms-rings",
+                       "pipeline check: dp 0.2, t_end 20, 5 SI steps, 3 frames, spectra at dp 0.5"};
   double t_end = 250, dp = 0.1, gap = 0.2, skin = 0.5;
   int threads = 2, frames = 12;
   long si_steps = 300;
-  bool si_full = false, quick = false;
+  bool si_full = false;
   double dp_spectrum = 0.25;
   std::vector<double> spectrum_times = {5, 25, 45};
-  app.add_option("--out", out, "output directory");
-  app.add_option("--t-end", t_end, "run length in cm/c0 (default 250, about 2 ovalling periods)")
+  cli.app.add_option("--t-end", t_end, "run length in cm/c0 (default 250, about 2 ovalling periods)")
       ->check(CLI::Range(0.01, 1e5));
-  app.add_option("--dp", dp, "grid spacing of the GMS-unit rings in cm (GMS 0.1; thickness 1 needs dp <= 0.5)")
+  cli.app.add_option("--dp", dp, "grid spacing of the GMS-unit rings in cm (GMS 0.1; thickness 1 needs dp <= 0.5)")
       ->check(CLI::Range(1e-3, 0.5));
-  app.add_option("--gap", gap, "distance between the outer circles in cm (GMS give none)")
+  cli.app.add_option("--gap", gap, "distance between the outer circles in cm (GMS give none)")
       ->check(CLI::Range(0.0, 10.0));
-  app.add_option("--skin", skin, "Verlet skin of the neighbour list in dp (rebuild after skin / 2 of motion)")
+  cli.app.add_option("--skin", skin, "Verlet skin of the neighbour list in dp (rebuild after skin / 2 of motion)")
       ->check(CLI::Range(0.05, 10.0));
-  app.add_option("--threads", threads, "concurrent runs")->check(CLI::Range(1, 64));
-  app.add_option("--frames", frames, "VTK frames per run (0: none)")->check(CLI::Range(0, 1000));
-  app.add_option("--si-steps", si_steps, "steps of the timed SI run")->check(CLI::Range(1L, 1000000L));
-  app.add_flag("--si-full", si_full, "run the SI configuration over the whole collision (about 20 min per eps)");
-  app.add_option("--dp-spectrum", dp_spectrum, "grid spacing of the frozen-state spectra (0: none)")
-      ->check(CLI::Range(0.0, 0.5));
-  app.add_option("--spectrum-times", spectrum_times,
-                 "times of the frozen spectra (the first also with the viscosity on), cm/c0")
-      ->delimiter(',')
-      ->check(CLI::Range(0.0, 1e4));
-  app.add_flag("--quick", quick, "pipeline check: dp 0.2, t_end 20, 5 SI steps, 3 frames, spectra at dp 0.5");
-  CLI11_PARSE(app, argc, argv);
-  if (quick) dp = 0.2, t_end = 20, si_steps = 5, frames = std::min(frames, 3), dp_spectrum = 0.5, spectrum_times = {5};
+  cli.add_threads(threads);
+  cli.app.add_option("--frames", frames, "VTK frames per run (0: none)")->check(CLI::Range(0, 1000));
+  cli.app.add_option("--si-steps", si_steps, "steps of the timed SI run")->check(CLI::Range(1L, 1000000L));
+  cli.app.add_flag("--si-full", si_full, "run the SI configuration over the whole collision (about 20 min per eps)");
+  study::add_frozen_spectra_options(cli.app, dp_spectrum, spectrum_times, 0.5, 0.0,
+                                    "times of the frozen spectra (the first also with the viscosity on), cm/c0");
+  if (const auto exit = cli.parse(argc, argv)) return *exit;
+  if (cli.quick)
+    dp = 0.2, t_end = 20, si_steps = 5, frames = std::min(frames, 3), dp_spectrum = 0.5, spectrum_times = {5};
   std::sort(spectrum_times.begin(), spectrum_times.end());
   const auto t0 = study::Clock::now();
   const std::string load_start = study::load_average();
+  const std::string& out = cli.out;
   std::filesystem::create_directories(out + "/series");
 
   // ---- The runs, in case order on the threads; series/<tag>.csv per run. ----
@@ -125,13 +125,11 @@ int main(int argc, char** argv) try {
     frozen_spectra(dp_spectrum, gap, skin, spectrum_times, out, s);
     s.set("frozen_wall", study::seconds_since(ts), 3);
   }
-  s.set("wall_total", study::seconds_since(t0), 3);
   s.set("load_start", load_start);
   s.set("load_end", study::load_average());
-  s.write(out);
+  study::write_summary(s, out, t0, {.wall_key = "wall_total"});
   std::printf("gms-rings done in %.1f s\n", study::seconds_since(t0));
   return 0;
 } catch (const std::exception& e) {
-  std::fprintf(stderr, "study_gms_rings: %s\n", e.what());
-  return 1;
+  return study::exit_on_error("study_gms_rings", e);
 }

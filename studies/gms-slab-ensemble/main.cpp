@@ -64,7 +64,7 @@ int main(int argc, char** argv) try {
   cli.app.add_option("--members", perturbed, "perturbed members per eps")->check(CLI::Range(0, 100));
   cli.app.add_option("--perturbation", perturbation, "largest initial displacement of a free particle, in dp")
       ->check(CLI::Range(0.0, 0.1));
-  cli.app.add_option("--threads", threads, "runs side by side")->check(CLI::Range(1, 64));
+  cli.add_threads(threads, "runs side by side");
   if (const auto exit = cli.parse(argc, argv)) return *exit;
   for (const auto& [name, v] : {std::pair{"--dp", dp}, std::pair{"--perturbation", perturbation}})
     if (!std::isfinite(v))
@@ -125,9 +125,7 @@ int main(int argc, char** argv) try {
   s.set("dp", dp, 3);
   s.set("perturbation", perturbation, 3);
   s.set("perturbed", perturbed);
-  s.set("threads", threads);
-  s.set("load", study::load_average());
-  study::write_summary(s, cli.out, t0);
+  study::write_summary(s, cli.out, t0, {.load = true, .threads = threads});
   return 0;
 } catch (const std::exception& e) {
   return study::exit_on_error("gms-slab-ensemble", e);

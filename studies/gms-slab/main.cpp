@@ -19,6 +19,9 @@
 #include <string>
 #include <vector>
 
+#include "common/cli.hpp"
+#include "common/driver.hpp"
+#include "common/gms.hpp"
 #include "common/study.hpp"
 #include "slab_case.hpp"
 #include "slab_run.hpp"
@@ -30,44 +33,38 @@ using namespace gslab;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) try {
-  CLI::App app{"GMS 2001 §7.3: plastic slab in tension with and without the artificial stress"};
-  std::string out = "results/gms-slab";
+  study::DriverCli cli{"GMS 2001 §7.3: plastic slab in tension with and without the artificial stress",
+                       "results/gms-slab", "pipeline check: dp 0.08, both runs to t = 40"};
   std::vector<double> dps = {0.04, 0.05};
   double t_max0 = 200, t_max3 = 650, margin = 40, chunk = 10, skin = 0.5;
   int threads = 2, frames = 12;
-  bool quick = false;
   double dp_spectrum = 0.0625;
   std::vector<double> spectrum_times = {60, 100};
-  app.add_option("--out", out, "output directory");
-  app.add_option("--dp", dps, "particle spacings, comma list (GMS 0.016: about 30 CPU minutes for eps = 0.3)")
+  cli.app.add_option("--dp", dps, "particle spacings, comma list (GMS 0.016: about 30 CPU minutes for eps = 0.3)")
       ->delimiter(',')
       ->check(CLI::Range(0.004, 0.2));
-  app.add_option("--t-max-eps0", t_max0, "longest eps = 0 run (GMS break 119)")->check(CLI::Range(1.0, 1e5));
-  app.add_option("--t-max-eps03", t_max3, "longest eps = 0.3 run (GMS break 542)")->check(CLI::Range(1.0, 1e5));
-  app.add_option("--margin", margin,
-                 "run on at most this long after the break (1.5 dp bonds) when the ends have not "
-                 "separated (2h)")
+  cli.app.add_option("--t-max-eps0", t_max0, "longest eps = 0 run (GMS break 119)")->check(CLI::Range(1.0, 1e5));
+  cli.app.add_option("--t-max-eps03", t_max3, "longest eps = 0.3 run (GMS break 542)")->check(CLI::Range(1.0, 1e5));
+  cli.app
+      .add_option("--margin", margin,
+                  "run on at most this long after the break (1.5 dp bonds) when the ends have not separated (2h)")
       ->check(CLI::Range(0.0, 1e5));
-  app.add_option("--chunk", chunk, "chunk length between break checks (whole time units)")
+  cli.app.add_option("--chunk", chunk, "chunk length between break checks (whole time units)")
       ->check(CLI::Range(1.0, 1000.0));
-  app.add_option("--skin", skin, "Verlet skin of the neighbour list in dp")->check(CLI::Range(0.05, 10.0));
-  app.add_option("--threads", threads, "concurrent runs")->check(CLI::Range(1, 64));
-  app.add_option("--frames", frames, "regular VTK frames per run (0: none)")->check(CLI::Range(0, 1000));
-  app.add_option("--dp-spectrum", dp_spectrum, "grid spacing of the frozen-state spectra (0: none)")
-      ->check(CLI::Range(0.0, 0.2));
-  app.add_option("--spectrum-times", spectrum_times,
-                 "times of the frozen spectra (the last also with the viscosity on)")
-      ->delimiter(',')
-      ->check(CLI::Range(0.01, 1e4));
-  app.add_flag("--quick", quick, "pipeline check: dp 0.08, both runs to t = 40");
-  CLI11_PARSE(app, argc, argv);
-  if (quick)
+  cli.app.add_option("--skin", skin, "Verlet skin of the neighbour list in dp")->check(CLI::Range(0.05, 10.0));
+  cli.add_threads(threads);
+  cli.app.add_option("--frames", frames, "regular VTK frames per run (0: none)")->check(CLI::Range(0, 1000));
+  study::add_frozen_spectra_options(cli.app, dp_spectrum, spectrum_times, 0.2, 0.01,
+                                    "times of the frozen spectra (the last also with the viscosity on)");
+  if (const auto exit = cli.parse(argc, argv)) return *exit;
+  if (cli.quick)
     dps = {0.08}, t_max0 = t_max3 = 40, frames = std::min(frames, 4), dp_spectrum = 0.125, spectrum_times = {20};
   std::sort(spectrum_times.begin(), spectrum_times.end());
   std::sort(dps.begin(), dps.end());
   dps.erase(std::unique(dps.begin(), dps.end()), dps.end());
   const auto t0 = study::Clock::now();
   const std::string load_start = study::load_average();
+  const std::string& out = cli.out;
   fs::create_directories(out + "/series");
 
   // ---- The runs: every dp with eps = 0.3 and 0, longest first on the threads; series/<tag>.csv per run. ----
@@ -118,11 +115,9 @@ int main(int argc, char** argv) try {
     frozen_spectra(dp_spectrum, skin, spectrum_times, out, s);
     s.set("frozen_wall", study::seconds_since(ts), 3);
   }
-  s.set("wall_total", study::seconds_since(t0), 3);
-  s.write(out);
+  study::write_summary(s, out, t0, {.wall_key = "wall_total"});
   std::printf("gms-slab done in %.1f s\n", study::seconds_since(t0));
   return 0;
 } catch (const std::exception& e) {
-  std::fprintf(stderr, "study_gms_slab: %s\n", e.what());
-  return 1;
+  return study::exit_on_error("study_gms_slab", e);
 }

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/nrbc.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/core/named_values.hpp"
 #include "sphstab/forms/rate_form.hpp"
@@ -111,14 +112,11 @@ inline BarScene make_bar(const BarCase& c) {
   return scene;
 }
 
-/// The run options of a case at time step dt.
+/// The run options of a case: Powell's leap-frog (common/nrbc.hpp) at dt = cfl dx / c, with XSPH in the smoothed forms.
 inline RateFormRunOptions run_options(const BarCase& c) {
-  return {.dt = c.cfl * kDx / bar_speed(),
-          .t_end = c.t_to,
-          .energy_growth = 100,
-          .integrator = RateFormIntegrator::Leapfrog,
-          .leapfrog_xsph = smoothed(c.form) ? 0.1 : 0.0,
-          .absorbing_half_step = c.half_step && c.layers > 0};
+  RateFormRunOptions o = study::nrbc::powell_leapfrog(c.cfl * kDx / bar_speed(), c.t_to, smoothed(c.form) ? 0.1 : 0.0);
+  o.absorbing_half_step = c.half_step && c.layers > 0;
+  return o;
 }
 
 }  // namespace nrbc1d

@@ -42,7 +42,7 @@ int main(int argc, char** argv) try {
       ->check(CLI::Range(0.01, 2.0));
   cli.app.add_option("--tssfac", tssfac, "the headline dt = tssfac h / c (MCM deck TSSFAC 0.8, DYNA's rule at rest)")
       ->check(CLI::Range(0.01, 1.5));
-  cli.app.add_option("--threads", threads, "concurrent runs")->check(CLI::Range(1, 64));
+  cli.add_threads(threads);
   cli.app.add_option("--cfl-sweep", sweep, "CFL values of the sweep")->delimiter(',')->check(CLI::Range(0.01, 2.0));
   cli.app.add_option("--h", h_values, "h / dx of the h-study")->delimiter(',')->check(CLI::Range(1.0, 4.0));
   if (const auto exit = cli.parse(argc, argv)) return *exit;

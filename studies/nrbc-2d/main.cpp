@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "common/driver.hpp"
+#include "common/nrbc.hpp"
 #include "common/study.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/forms/rate_form.hpp"
@@ -28,38 +29,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Powell's units (g, cm, us): rho 7.8, E 2.1, nu 0.3 (plane strain), v0 = 0.01.
-constexpr double kV0 = 0.01;
+using namespace study::nrbc;  // Powell's steel, the boundaries (Reference, Free, P, M, HPowell, HHigdon, Traction)
 
-/// P, M: Powell (2.42), (2.45) on every detected boundary particle; HPowell / HHigdon: P with c_p, c_s times k.n or
-/// divided by it, k the a-priori direction of the waves (radial from the centre); Traction: the LS-DYNA viscous
-/// traction (2.75) on the outer layer (depth dx), momentum kept, with the plain SPH gradient (NCSPH's row momentum
-/// form has no traction-free surface to add a traction to); FreePlain: that scheme without the traction.
-/// ReferencePlain: the reference with the plain gradient, for those two.
-enum class Boundary { Reference, Free, P, M, HPowell, HHigdon, Traction, FreePlain, ReferencePlain };
-const char* boundary_name(Boundary b) {
-  switch (b) {
-    case Boundary::Reference:
-      return "reference";
-    case Boundary::Free:
-      return "free";
-    case Boundary::P:
-      return "P";
-    case Boundary::M:
-      return "M";
-    case Boundary::HPowell:
-      return "H-Powell";
-    case Boundary::HHigdon:
-      return "H-Higdon";
-    case Boundary::Traction:
-      return "traction";
-    case Boundary::FreePlain:
-      return "free-plain";
-    case Boundary::ReferencePlain:
-      return "reference-plain";
-  }
-  return "?";
-}
+// Powell's units (g, cm, us): common/nrbc.hpp's steel, v0 = 0.01.
+constexpr double kV0 = 0.01;
 
 /// Initial velocity: v0 x_mi / |x_mi| everywhere ((2.73), the infinite space collapsing), that field rotated by pi/8
 /// (2.74), or only within 0.25 of the centre and at rest elsewhere ((2.76), Powell's central disc, at v0 = 0.01 and
@@ -75,14 +48,15 @@ const char* field_label(Field f) {
                               : "central disc, v0 = 0.05";
 }
 bool is_disc(Field f) { return f == Field::Disc || f == Field::FastDisc; }
-bool is_reference(Boundary b) { return b == Boundary::Reference || b == Boundary::ReferencePlain; }
-bool absorbs(Boundary b) { return !is_reference(b) && b != Boundary::Free && b != Boundary::FreePlain; }
-bool plain_gradient(Boundary b) {
-  return b == Boundary::Traction || b == Boundary::FreePlain || b == Boundary::ReferencePlain;
-}
 
+/// One run: the boundary under an initial field. P, M, H-Powell and H-Higdon on every detected boundary particle with
+/// the NCSPH gradient (H: k radial from the centre); the traction on the outer layer (depth dx) with the plain SPH
+/// gradient (NCSPH's row momentum form has no traction-free surface to add a traction to). `plain`: the free block or
+/// the reference with the plain gradient too (free-plain: the traction's scheme without the traction;
+/// reference-plain: the reference for those two).
 struct SquareCase {
   Boundary boundary = Boundary::P;
+  bool plain = false;
   Field field = Field::Centred;
   bool half_step = false;  ///< Powell's algorithm 2.3 timing of the absorbing particles
   int n = 50;              ///< particles per side of the block
@@ -98,8 +72,12 @@ struct SquareRun {
   std::vector<double> t, ke;  ///< kinetic energy of the central n x n particles over KE0
 };
 
+bool plain_gradient(const SquareCase& c) { return c.plain || c.boundary == Boundary::Traction; }
+/// The boundary as runs.csv names it: free-plain and reference-plain for the plain-gradient free block and reference.
+std::string boundary_label(const SquareCase& c) { return boundary_name(c.boundary) + (c.plain ? "-plain" : ""); }
+
 std::string tag_of(const SquareCase& c) {
-  return std::string(boundary_name(c.boundary)) + "_" + field_name(c.field) +
+  return boundary_label(c) + "_" + field_name(c.field) +
          (absorbs(c.boundary) ? (c.half_step ? "_half" : "_whole") : "");
 }
 
@@ -119,27 +97,19 @@ SquareRun run_square(const SquareCase& c) {
       if (i >= c.margin && i < c.margin + c.n && j >= c.margin && j < c.margin + c.n) central.push_back(k);
     }
   auto disc = make_discretisation(p, Kernel<2>(KernelType::CubicSpline), c.h_over_dx * dx);
-  const ElasticMaterial mat = ElasticMaterial::from_young_poisson(2.1, 0.3, 7.8);
-  RateFormScheme<2> scheme(
-      disc, mat,
-      {.continuity = ContinuityForm::Divergence,
-       .viscosity = ViscositySwitch::Compression,
-       .gradient = plain_gradient(c.boundary) ? RateFormGradient::Plain : RateFormGradient::Ncsph});
+  RateFormScheme<2> scheme(disc, kSteel,
+                           {.continuity = ContinuityForm::Divergence,
+                            .viscosity = ViscositySwitch::Compression,
+                            .gradient = plain_gradient(c) ? RateFormGradient::Plain : RateFormGradient::Ncsph});
   SquareRun r{.c = c, .particles = side * side};
   if (absorbs(c.boundary)) {
     const BoundaryParticles<2> b = boundary_particles(disc->particles, disc->kernel, disc->h, disc->neighbours);
-    AbsorbingParticles<2> a{.condition = c.boundary == Boundary::M          ? AbsorbingCondition::Sochaki
-                                         : c.boundary == Boundary::Traction ? AbsorbingCondition::ViscousTraction
-                                                                            : AbsorbingCondition::ClaytonEngquist,
-                            .traction_depth = dx};
+    AbsorbingParticles<2> a = absorbing_particles(c.boundary, dx, false);
     for (int i : b.particles) {
       if (c.boundary == Boundary::Traction && b.layer[i] != 0) continue;  // the outer face only
       const Eigen::Vector2d n = b.normal.row(i).transpose();
-      a.particles.push_back(i), a.normals.push_back(n);
       // H: the waves come from the centre, k = (x_i - x_m) / |x_i - x_m|.
-      const double kn = (p.x.row(i).transpose() - Eigen::Vector2d(0.5, 0.5)).normalized().dot(n);
-      if (c.boundary == Boundary::HPowell) a.speed_scale.push_back(kn);
-      if (c.boundary == Boundary::HHigdon) a.speed_scale.push_back(1 / kn);
+      add_absorbing(a, c.boundary, i, n, (p.x.row(i).transpose() - Eigen::Vector2d(0.5, 0.5)).normalized().dot(n));
     }
     r.absorbing = static_cast<int>(a.particles.size());
     r.layers = c.boundary == Boundary::Traction ? 1 : b.layers;
@@ -161,21 +131,15 @@ SquareRun run_square(const SquareCase& c) {
     return e;
   };
   const double ke0 = central_ke(y0);
+  RateFormRunOptions o = powell_leapfrog(c.cfl * dx / kSteel.p_wave_speed(), c.t_end);
+  o.observer = [&](long, double t, const Eigen::VectorXd& y) {
+    r.t.push_back(t);
+    r.ke.push_back(central_ke(y) / ke0);
+  };
+  o.absorbing_half_step = c.half_step && r.absorbing > 0;
+  o.neighbour_skin = c.field == Field::FastDisc ? 0.5 * dx : 0.0;  // the fast disc's particles move by about dx
   const auto t0 = study::Clock::now();
-  const RateFormRunResult res = run_rate_form(scheme, y0,
-                                              {.dt = c.cfl * dx / mat.p_wave_speed(),
-                                               .t_end = c.t_end,
-                                               .energy_growth = 100,
-                                               .observer =
-                                                   [&](long, double t, const Eigen::VectorXd& y) {
-                                                     r.t.push_back(t);
-                                                     r.ke.push_back(central_ke(y) / ke0);
-                                                   },
-                                               .integrator = RateFormIntegrator::Leapfrog,
-                                               .leapfrog_xsph = 0.1,
-                                               .absorbing_half_step = c.half_step && r.absorbing > 0,
-                                               // the fast disc's particles move by about dx: a Verlet list
-                                               .neighbour_skin = c.field == Field::FastDisc ? 0.5 * dx : 0.0});
+  const RateFormRunResult res = run_rate_form(scheme, y0, o);
   r.wall = study::seconds_since(t0);
   r.status = run_status_name(res.status);
   return r;
@@ -203,26 +167,30 @@ int main(int argc, char** argv) try {
   const auto t0 = study::Clock::now();
   fs::create_directories(out + "/series");
   // The reference's own (moving, free) boundary must not be heard in the block before t_end: margin dx > c_p t_end.
-  const double cp = ElasticMaterial::from_young_poisson(2.1, 0.3, 7.8).p_wave_speed();
+  const double cp = kSteel.p_wave_speed();
   if (margin / static_cast<double>(n) <= cp * t_end)
     throw std::invalid_argument("margin " + std::to_string(margin) +
                                 " too small: the reference's boundary is heard at t = " +
                                 format_number(margin / static_cast<double>(n) / cp) + " < t_end");
   std::vector<SquareCase> cases;
   for (Field field : {Field::Centred, Field::Skewed, Field::Disc, Field::FastDisc}) {
-    cases.push_back(
-        {.boundary = Boundary::Reference, .field = field, .n = n, .margin = margin, .cfl = cfl, .t_end = t_end});
-    if (field == Field::Disc)
-      cases.push_back(
-          {.boundary = Boundary::ReferencePlain, .field = field, .n = n, .margin = margin, .cfl = cfl, .t_end = t_end});
+    const SquareCase reference_case{
+        .boundary = Boundary::Reference, .field = field, .n = n, .margin = margin, .cfl = cfl, .t_end = t_end};
+    cases.push_back(reference_case);
+    if (field == Field::Disc) {  // and with the plain gradient (reference-plain)
+      cases.push_back(reference_case);
+      cases.back().plain = true;
+    }
     cases.push_back({.boundary = Boundary::Free, .field = field, .n = n, .cfl = cfl, .t_end = t_end});
     for (Boundary b : {Boundary::P, Boundary::M})
       for (bool half : {false, true})
         if (!half || field != Field::FastDisc)
           cases.push_back({.boundary = b, .field = field, .half_step = half, .n = n, .cfl = cfl, .t_end = t_end});
-    for (Boundary b : {Boundary::HPowell, Boundary::HHigdon, Boundary::Traction, Boundary::FreePlain})
+    // The free block last again, with the plain gradient (free-plain).
+    for (Boundary b : {Boundary::HPowell, Boundary::HHigdon, Boundary::Traction, Boundary::Free})
       if (field != Field::Skewed)  // H's a-priori direction is the radial one: not the skewed field's
-        cases.push_back({.boundary = b, .field = field, .n = n, .cfl = cfl, .t_end = t_end});
+        cases.push_back(
+            {.boundary = b, .plain = b == Boundary::Free, .field = field, .n = n, .cfl = cfl, .t_end = t_end});
   }
   // Most expensive (the references) first; rows stay in case order.
   const std::vector<SquareRun> runs = study::run_costliest_first(
@@ -234,30 +202,29 @@ int main(int argc, char** argv) try {
   std::string md;
   for (const SquareRun& r : runs) {
     // The plain-gradient runs against the plain reference where there is one.
-    const auto reference = [&](Boundary kind) {
-      return std::find_if(runs.begin(), runs.end(),
-                          [&](const SquareRun& q) { return q.c.boundary == kind && q.c.field == r.c.field; });
+    const auto reference = [&](bool plain) {
+      return std::find_if(runs.begin(), runs.end(), [&](const SquareRun& q) {
+        return q.c.boundary == Boundary::Reference && q.c.plain == plain && q.c.field == r.c.field;
+      });
     };
-    auto it = plain_gradient(r.c.boundary) ? reference(Boundary::ReferencePlain) : runs.end();
-    if (it == runs.end()) it = reference(Boundary::Reference);
+    auto it = plain_gradient(r.c) ? reference(true) : runs.end();
+    if (it == runs.end()) it = reference(false);
     const SquareRun& ref = *it;
     double dev = 0, t_dev = NAN;
     const std::size_t m = std::min(r.ke.size(), ref.ke.size());
     for (std::size_t k = 0; k < m; ++k)
       if (std::abs(r.ke[k] - ref.ke[k]) > dev) dev = std::abs(r.ke[k] - ref.ke[k]), t_dev = r.t[k];
     const std::string timing = r.absorbing > 0 ? (r.c.half_step ? "half" : "whole") : "-";
-    w.row({boundary_name(r.c.boundary), field_name(r.c.field), timing, r.particles, r.absorbing, r.layers, r.status,
-           dev, t_dev, r.ke.back(), ref.ke.back(), r.wall});
+    w.row({boundary_label(r.c), field_name(r.c.field), timing, r.particles, r.absorbing, r.layers, r.status, dev, t_dev,
+           r.ke.back(), ref.ke.back(), r.wall});
     CsvWriter s(out + "/series/" + tag_of(r.c) + ".csv", {"t", "ke_over_ke0", "ke_ref_over_ke0"});
     for (std::size_t k = 0; k < m; ++k) s.row({r.t[k], r.ke[k], ref.ke[k]});
-    if (r.c.boundary == Boundary::Reference) continue;
-    study::md_row(
-        md, {field_label(r.c.field),
-             std::string(boundary_name(r.c.boundary)) + (&ref != &*reference(Boundary::Reference) ? " †" : ""), timing,
-             std::to_string(r.absorbing) + " (" + std::to_string(r.layers) + " layers)", r.status,
-             study::sig(100 * dev, 3) + " % at t = " + study::sig(t_dev, 3),
-             study::sig(100 * r.ke.back(), 3) + " % (" + study::sig(100 * ref.ke.back(), 3) + " %)",
-             study::sig(r.wall, 3)});
+    if (r.c.boundary == Boundary::Reference && !r.c.plain) continue;
+    study::md_row(md, {field_label(r.c.field), boundary_label(r.c) + (&ref != &*reference(false) ? " †" : ""), timing,
+                       std::to_string(r.absorbing) + " (" + std::to_string(r.layers) + " layers)", r.status,
+                       study::sig(100 * dev, 3) + " % at t = " + study::sig(t_dev, 3),
+                       study::sig(100 * r.ke.back(), 3) + " % (" + study::sig(100 * ref.ke.back(), 3) + " %)",
+                       study::sig(r.wall, 3)});
   }
   sum.set("table", md);
   sum.set("n", n);

@@ -1,26 +1,22 @@
 #pragma once
-// The cases of the surface impact [Powell2012, ch. 2 §3.2(c)]: Powell's steel and grid, the truncations (where the
-// absorbing particles are and which condition they carry), the probes, and the case table of the study.
+// The cases of the surface impact [Powell2012, ch. 2 §3.2(c)] on Powell's steel and grid (common/nrbc.hpp): the
+// truncations (where the absorbing particles are and which condition they carry), the probes, and the case table of
+// the study.
 #include <Eigen/Core>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "common/nrbc.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/forms/rate_form.hpp"
 
 namespace nrbc_impact {
 
 using namespace sphstab;
-
-constexpr double kDx = 0.02;  // Powell's grid (cm)
-const ElasticMaterial kSteel = ElasticMaterial::from_young_poisson(2.1, 0.3, 7.8);
+using namespace sphstab::study::nrbc;  // Powell's steel and grid (kSteel, kDx), the boundaries (Free, P, M, Traction)
 
 enum class Side { None, Sides, Bottom };  ///< where the absorbing particles are
-enum class Boundary { Free, P, M, Traction };
-inline const char* boundary_name(Boundary b) {
-  return b == Boundary::Free ? "free" : b == Boundary::P ? "P" : b == Boundary::M ? "M" : "traction";
-}
 
 struct ImpactCase {
   std::string name;  ///< narrow, shallow, reference, free-W

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/driver.hpp"
+#include "common/nrbc.hpp"
 #include "common/study.hpp"
 #include "impact_cases.hpp"
 #include "sphstab/forms/rate_form.hpp"
@@ -39,16 +40,12 @@ inline ImpactRun run_impact(const ImpactCase& c) {
       disc, kSteel,
       {.continuity = ContinuityForm::Divergence, .viscosity = ViscositySwitch::Compression, .gradient = c.gradient});
   ImpactRun r{.c = c, .particles = n};
-  if (c.boundary != Boundary::Free) {
-    // Powell's manual normals on floor(2h/dx) + 1 = 3 layers (the viscous traction: the outer layer only).
+  if (absorbs(c.boundary)) {
+    // Powell's manual normals on floor(2h/dx) + 1 = 3 layers (the viscous traction: the outer layer only), with the
+    // NCSPH-normalised velocity gradient at the absorbing particles (nrbc-plane-wave: the plain one reflects 2.4x more
+    // energy at normal incidence, lambda = 12 dx).
     const int layers = c.boundary == Boundary::Traction ? 1 : 3;
-    AbsorbingParticles<2> a{.condition = c.boundary == Boundary::M          ? AbsorbingCondition::Sochaki
-                                         : c.boundary == Boundary::Traction ? AbsorbingCondition::ViscousTraction
-                                                                            : AbsorbingCondition::ClaytonEngquist,
-                            .traction_depth = kDx,
-                            // NCSPH-normalised velocity gradient at the absorbing particles (nrbc-plane-wave: the
-                            // plain one reflects 2.4x more energy at normal incidence, lambda = 12 dx)
-                            .normalised = c.boundary != Boundary::Traction};
+    AbsorbingParticles<2> a = absorbing_particles(c.boundary, kDx, true);
     for (int j = 0; j < c.ny; ++j)
       for (int i = 0; i < c.nx; ++i) {
         Eigen::Vector2d normal = Eigen::Vector2d::Zero();
@@ -56,7 +53,7 @@ inline ImpactRun run_impact(const ImpactCase& c) {
         if (c.side == Side::Sides && i >= c.nx - layers) normal = {1, 0};
         if (c.side == Side::Bottom && j >= c.ny - layers) normal = {0, -1};
         if (normal.squaredNorm() == 0) continue;
-        a.particles.push_back(j * c.nx + i), a.normals.push_back(normal);
+        add_absorbing(a, c.boundary, j * c.nx + i, normal);
       }
     r.absorbing = static_cast<int>(a.particles.size());
     scheme.set_absorbing(a);
@@ -74,25 +71,18 @@ inline ImpactRun run_impact(const ImpactCase& c) {
     }
     at.push_back(d < 1e-9 ? best : -1);  // -1: outside this domain (recorded as NaN)
   }
+  RateFormRunOptions o = powell_leapfrog(c.cfl * kDx / kSteel.p_wave_speed(), c.t_end);
+  o.observer = [&](long, double t, const Eigen::VectorXd& y) {
+    r.t.push_back(t);
+    std::vector<Eigen::Vector2d> v;
+    for (int k : at)
+      v.push_back(k < 0 ? Eigen::Vector2d(NAN, NAN) : Eigen::Vector2d(y.segment<2>(scheme.velocity_offset(k))));
+    r.v.push_back(std::move(v));
+  };
+  o.neighbour_skin = 0.5 * kDx;
   const auto t0 = study::Clock::now();
   const double c0 = study::thread_cpu_seconds();
-  const RateFormRunResult res =
-      run_rate_form(scheme, y0,
-                    {.dt = c.cfl * kDx / kSteel.p_wave_speed(),
-                     .t_end = c.t_end,
-                     .energy_growth = 100,
-                     .observer =
-                         [&](long, double t, const Eigen::VectorXd& y) {
-                           r.t.push_back(t);
-                           std::vector<Eigen::Vector2d> v;
-                           for (int k : at)
-                             v.push_back(k < 0 ? Eigen::Vector2d(NAN, NAN)
-                                               : Eigen::Vector2d(y.segment<2>(scheme.velocity_offset(k))));
-                           r.v.push_back(std::move(v));
-                         },
-                     .integrator = RateFormIntegrator::Leapfrog,
-                     .leapfrog_xsph = 0.1,
-                     .neighbour_skin = 0.5 * kDx});
+  const RateFormRunResult res = run_rate_form(scheme, y0, o);
   r.wall = study::seconds_since(t0);
   r.cpu = study::thread_cpu_seconds() - c0;
   r.status = run_status_name(res.status);

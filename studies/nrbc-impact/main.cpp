@@ -11,8 +11,9 @@
 //
 // Writes to --out DIR: runs.csv (one row per run: the error at the probes, wall time), speeds.csv (arrival fits),
 // series/<tag>.csv (t and v_x, v_y at each probe), summary.json.
-// The material, truncations, probes and case table are in impact_cases.hpp, one run in impact_run.hpp, the wave speeds
-// and errors in impact_measures.hpp, the CSV files in impact_tables.hpp, the key numbers in impact_summary.hpp.
+// Powell's steel and grid, the boundaries and his leap-frog are in common/nrbc.hpp (shared with nrbc-2d and
+// nrbc-plane-wave), the truncations, probes and case table in impact_cases.hpp, one run in impact_run.hpp, the wave
+// speeds and errors in impact_measures.hpp, the CSV files in impact_tables.hpp, the key numbers in impact_summary.hpp.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <filesystem>

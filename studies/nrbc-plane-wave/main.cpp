@@ -20,6 +20,7 @@
 
 #include "common/cli.hpp"
 #include "common/driver.hpp"
+#include "common/nrbc.hpp"
 #include "common/study.hpp"
 #include "sphstab/core/format.hpp"
 #include "sphstab/forms/rate_form.hpp"
@@ -32,30 +33,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kDx = 0.02;
-const ElasticMaterial kSteel = ElasticMaterial::from_young_poisson(2.1, 0.3, 7.8);
-
-enum class Condition { Periodic, P, M, HPowell, HHigdon, Traction };
-const char* condition_name(Condition c) {
-  switch (c) {
-    case Condition::Periodic:
-      return "periodic";
-    case Condition::P:
-      return "P";
-    case Condition::M:
-      return "M";
-    case Condition::HPowell:
-      return "H-Powell";
-    case Condition::HHigdon:
-      return "H-Higdon";
-    case Condition::Traction:
-      return "traction";
-  }
-  return "?";
-}
+using namespace study::nrbc;  // Powell's steel and grid; the conditions: Periodic, P, M, HPowell, HHigdon, Traction
 
 struct StripCase {
-  Condition condition = Condition::P;
+  Boundary condition = Boundary::P;
   int ny = 24;         ///< particles across the period; 0: normal incidence (a strip 6 particles across)
   int nx = 400;        ///< particles along x
   double lambda = 12;  ///< wavelength in dx
@@ -74,12 +55,12 @@ struct StripRun {
 };
 
 std::string label_of(const StripCase& c) {
-  const bool plain = !c.normalised && c.condition != Condition::Periodic && c.condition != Condition::Traction;
-  return std::string(condition_name(c.condition)) + (plain ? " (plain gradient)" : "");
+  const bool plain = !c.normalised && c.condition != Boundary::Periodic && c.condition != Boundary::Traction;
+  return boundary_name(c.condition) + (plain ? " (plain gradient)" : "");
 }
 std::string tag_of(const StripCase& c) {
-  return std::string(condition_name(c.condition)) + (label_of(c).find("plain") != std::string::npos ? "_plain" : "") +
-         "_ny" + std::to_string(c.ny) + "_lambda" + format_number(c.lambda, 3);
+  return boundary_name(c.condition) + (label_of(c).find("plain") != std::string::npos ? "_plain" : "") + "_ny" +
+         std::to_string(c.ny) + "_lambda" + format_number(c.lambda, 3);
 }
 
 StripRun run_strip(const StripCase& c) {
@@ -93,7 +74,7 @@ StripRun run_strip(const StripCase& c) {
   p.spacing = kDx;
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < c.nx; ++i) p.x.row(j * c.nx + i) << (i + 0.5) * kDx, (j + 0.5) * kDx;
-  p.periodic = {c.condition == Condition::Periodic, true};
+  p.periodic = {c.condition == Boundary::Periodic, true};
   p.box_lo = Eigen::Vector2d::Zero();
   p.box_hi = Eigen::Vector2d(Lx, Ly);
   auto disc = make_discretisation(p, Kernel<2>(KernelType::CubicSpline), 1.3 * kDx);
@@ -103,29 +84,19 @@ StripRun run_strip(const StripCase& c) {
                             .viscosity = ViscositySwitch::Off,
                             .gradient = RateFormGradient::Plain});
   const double kn = std::cos(r.theta);
-  if (c.condition != Condition::Periodic) {
-    const bool traction = c.condition == Condition::Traction;
-    const int layers = traction ? 1 : 3;  // floor(2h/dx) + 1 = 3
-    AbsorbingParticles<2> a{.condition = c.condition == Condition::M ? AbsorbingCondition::Sochaki
-                                         : traction                  ? AbsorbingCondition::ViscousTraction
-                                                                     : AbsorbingCondition::ClaytonEngquist,
-                            .traction_depth = kDx,
-                            .normalised = c.normalised && !traction};
+  if (c.condition != Boundary::Periodic) {
+    const int layers = c.condition == Boundary::Traction ? 1 : 3;  // floor(2h/dx) + 1 = 3
+    AbsorbingParticles<2> a = absorbing_particles(c.condition, kDx, c.normalised);
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < c.nx; ++i) {
         if (i >= layers && i < c.nx - layers) continue;
-        a.particles.push_back(j * c.nx + i), a.normals.emplace_back(i < layers ? -1.0 : 1.0, 0.0);
-        if (c.condition == Condition::HPowell) a.speed_scale.push_back(kn);
-        if (c.condition == Condition::HHigdon) a.speed_scale.push_back(1 / kn);
+        add_absorbing(a, c.condition, j * c.nx + i, Eigen::Vector2d(i < layers ? -1.0 : 1.0, 0.0), kn);
       }
     r.absorbing = static_cast<int>(a.particles.size());
     scheme.set_absorbing(a);
-    const AbsorbingCondition ac = traction                      ? AbsorbingCondition::ViscousTraction
-                                  : c.condition == Condition::M ? AbsorbingCondition::Sochaki
-                                                                : AbsorbingCondition::ClaytonEngquist;
-    const double scale = c.condition == Condition::HPowell ? kn : c.condition == Condition::HHigdon ? 1 / kn : 1.0;
-    r.analytic = reflected_energy(ac, kSteel.p_wave_speed(), std::sqrt(kSteel.mu() / kSteel.density()), r.theta,
-                                  WaveKind::P, scale);
+    r.analytic =
+        reflected_energy(absorbing_condition(c.condition), kSteel.p_wave_speed(),
+                         std::sqrt(kSteel.mu() / kSteel.density()), r.theta, WaveKind::P, speed_scale(c.condition, kn));
   } else {
     r.analytic = 1;
   }
@@ -178,7 +149,7 @@ int main(int argc, char** argv) try {
   int threads = 2, nx = 400;
   double lambda = 12;
   std::vector<double> degrees{15, 30, 45, 60};  // the oblique angles of the tables
-  cli.app.add_option("--threads", threads, "concurrent runs")->check(CLI::Range(1, 64));
+  cli.add_threads(threads);
   cli.app.add_option("--nx", nx, "particles along the strip")->check(CLI::Range(100, 5000));
   cli.app.add_option("--lambda", lambda, "wavelength in particle spacings")->check(CLI::Range(4.0, 100.0));
   if (const auto exit = cli.parse(argc, argv)) return *exit;
@@ -193,15 +164,15 @@ int main(int argc, char** argv) try {
     std::vector<int> periods{0};
     for (double deg : degrees) periods.push_back(static_cast<int>(std::lround(l / std::sin(deg * M_PI / 180))));
     for (int ny : periods) {
-      for (Condition cond : {Condition::Periodic, Condition::P, Condition::M, Condition::HPowell, Condition::HHigdon,
-                             Condition::Traction})
+      for (Boundary cond :
+           {Boundary::Periodic, Boundary::P, Boundary::M, Boundary::HPowell, Boundary::HHigdon, Boundary::Traction})
         cases.push_back({.condition = cond, .ny = ny, .nx = n, .lambda = l});
-      cases.push_back({.condition = Condition::P, .ny = ny, .nx = n, .lambda = l, .normalised = false});
+      cases.push_back({.condition = Boundary::P, .ny = ny, .nx = n, .lambda = l, .normalised = false});
     }
   }
-  for (Condition cond : {Condition::Periodic, Condition::P, Condition::Traction})
+  for (Boundary cond : {Boundary::Periodic, Boundary::P, Boundary::Traction})
     for (bool normalised : {true, false})
-      if (normalised || cond == Condition::P)
+      if (normalised || cond == Boundary::P)
         cases.push_back({.condition = cond, .ny = 0, .nx = 4 * nx, .lambda = 4 * lambda, .normalised = normalised});
   // The largest strips (particles: a normal-incidence strip is 6 across) first; rows stay in case order.
   const std::vector<StripRun> runs = study::run_costliest_first(
@@ -214,14 +185,14 @@ int main(int argc, char** argv) try {
   double worst_periodic = 0;
   for (const StripRun& r : runs) {
     const StripRun& per = *std::find_if(runs.begin(), runs.end(), [&](const StripRun& q) {
-      return q.c.condition == Condition::Periodic && q.c.ny == r.c.ny && q.c.lambda == r.c.lambda;
+      return q.c.condition == Boundary::Periodic && q.c.ny == r.c.ny && q.c.lambda == r.c.lambda;
     });
     const bool plain = label_of(r.c).find("plain") != std::string::npos;
-    w.row({condition_name(r.c.condition), plain ? "plain" : "normalised", r.c.ny, r.c.lambda, r.theta * 180 / M_PI,
+    w.row({boundary_name(r.c.condition), plain ? "plain" : "normalised", r.c.ny, r.c.lambda, r.theta * 180 / M_PI,
            r.particles, r.absorbing, r.status, r.measured, r.analytic, per.measured, r.cpu});
     CsvWriter s(cli.out + "/series/" + tag_of(r.c) + ".csv", {"t", "two_ke_over_ke0"}, false);
     for (std::size_t k = 0; k < r.t.size(); ++k) s.row({r.t[k], r.e[k]});
-    if (r.c.condition == Condition::Periodic) {
+    if (r.c.condition == Boundary::Periodic) {
       worst_periodic = std::max(worst_periodic, std::abs(r.measured - 1));
       continue;
     }
