@@ -302,7 +302,7 @@ TEST(Threads, PairLoopIsTheSameBitsForAnyChunksAndThreads) {
   }
 }
 
-/// The pair loop's row scalars by the AVX2 lanes (rate_form/lanes.hpp, 4 pairs per vector) give the bits of the
+/// The pair loop's row scalars by the AVX2 lanes (rate_form/pair_lanes.hpp, 4 pairs per vector) give the bits of the
 /// baseline's 2 lanes, on one thread and on three threads over 7 chunks (halo rows: a row's pairs in part), for the
 /// sweeps above; the Wendland kernel takes the kernel's own functions (no lanes) and is the same either way.
 TEST(Threads, PairLoopAvx2LanesAreTheBaselineBits) {

@@ -64,7 +64,7 @@ class PairFactor {
       f[q] = (x * x) * (x * x);
     }
   }
-  /// row_by_reciprocal() is (w (1 / W(dp)))^4 (lanes.hpp computes it by lanes).
+  /// row_by_reciprocal() is (w (1 / W(dp)))^4 (pair_lanes.hpp computes it by lanes).
   bool fourth_power() const { return m_int == 4; }
   double reciprocal_w_dp() const { return 1.0 / m_w_dp; }
   template <class Scalar>

@@ -69,11 +69,10 @@ void run_pairs(Evaluation<Dim, double>& e, bool deferred) {
   // In the pair loop's parallel region (one region from the stresses to the rates; a refused artificial stress is
   // rethrown after it): each particle's stresses and whether it moves with XSPH before the sweeps, each chunk's rates
   // once its sums are complete.
-  const auto prepare = [&](int i0, int i1) {
-    if (deferred)
-      for (int i = i0; i < i1; ++i) e.unpack(i);
-    e.stress_range(i0, i1);
-    for (int i = i0; i < i1; ++i) ws.xsph_moves[i] = e.x_off[i] >= 0 && !e.is_driven(i);
+  const auto prepare = [&](int i) {
+    if (deferred) e.unpack(i);
+    e.stress(i);
+    ws.xsph_moves[i] = e.x_off[i] >= 0 && !e.is_driven(i);
   };
   const auto done = [&](int a, int b) {
     for (int i = a; i < b; ++i)

@@ -8,9 +8,7 @@
 /// Every loop runs the same operations in the same order for any thread count: threads own whole rows and sum them in
 /// the serial order (core/threads.hpp); the pair loop's threads own whole chunks of particles (pair_loop.hpp).
 #include <Eigen/Core>
-#include <algorithm>
 #include <array>
-#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -23,7 +21,6 @@
 #include "equation_of_state.hpp"
 #include "jaumann.hpp"
 #include "kernel_rows.hpp"
-#include "lanes.hpp"
 #include "sphstab/core/threads.hpp"
 #include "sphstab/forms/rate_form.hpp"
 
@@ -113,9 +110,6 @@ struct Evaluation {
   /// stresses() of particle i alone (for a loop's own parallel region: size_stresses() first). Throws
   /// std::invalid_argument for an artificial stress refused at rho <= 0.
   void stress(int i);
-  /// stress(i) of the particles [i0, i1): for a real 2D state without bulk viscosity by vectors of particles
-  /// (lanes.hpp: the same bits), otherwise one by one. Throws as stress(i).
-  void stress_range(int i0, int i1);
   void size_stresses() {
     ws.sigma.resize(n);
     ws.sigma_rho2.resize(n);
@@ -235,38 +229,9 @@ template <int Dim, class Scalar>
 void Evaluation<Dim, Scalar>::stresses() {
   size_stresses();
   FirstException first_error;
-  constexpr int kBlock = 64;  // particles per call of stress_range
-  const int blocks = (n + kBlock - 1) / kBlock;
 #pragma omp parallel for schedule(static) num_threads(threads)
-  for (int b = 0; b < blocks; ++b) first_error.run([&] { stress_range(b * kBlock, std::min(n, (b + 1) * kBlock)); });
+  for (int i = 0; i < n; ++i) first_error.run([&] { stress(i); });
   first_error.rethrow();
-}
-
-template <int Dim, class Scalar>
-void Evaluation<Dim, Scalar>::stress_range(int i0, int i1) {
-  if constexpr (Dim == 2 && std::is_same_v<Scalar, double>) {
-    if (!bulk) {
-      const bool avx2 = avx2_enabled(), with_r = o.artificial_stress > 0;
-      const StressLaneConstants k{K, rho0, o.artificial_stress};
-      for (int i = i0; i < i1; i += static_cast<int>(kMaxPairLanes)) {
-        const int count = std::min(i1 - i, static_cast<int>(kMaxPairLanes));
-        bool valid = true;  // the artificial stress refuses rho <= 0 (or not finite): stress(i) throws for it
-        for (int l = 0; l < count; ++l) valid = valid && ws.rho[i + l] > 0 && std::isfinite(ws.rho[i + l]);
-        if (with_r && !valid) {
-          for (int l = 0; l < count; ++l) stress(i + l);
-          continue;
-        }
-        const StressLaneBlock block{static_cast<std::size_t>(count), &ws.rho[i],    ws.S[i].data(), ws.sigma[i].data(),
-                                    ws.sigma_rho2[i].data(),         ws.R[i].data()};
-        if (with_r)
-          stress_lanes<true>(avx2, k, block);
-        else
-          stress_lanes<false>(avx2, k, block);
-      }
-      return;
-    }
-  }
-  for (int i = i0; i < i1; ++i) stress(i);
 }
 
 template <int Dim, class Scalar>

@@ -144,7 +144,7 @@ class CubicFunctions {
   double m_h, m_cw, m_cd;
 
  public:
-  /// row_pairs()'s constants: 1 / h, c_w, c_d / h, -0.75 c_d (lanes.hpp computes the same values by lanes).
+  /// row_pairs()'s constants: 1 / h, c_w, c_d / h, -0.75 c_d (pair_lanes.hpp computes the same values by lanes).
   std::array<double, 4> pair_constants() const {
     const double inv_h = 1.0 / m_h;
     return {inv_h, m_cw, m_cd * inv_h, -0.75 * m_cd};

@@ -34,7 +34,7 @@
 
 #include "artificial_stress.hpp"
 #include "kernel_rows.hpp"
-#include "lanes.hpp"
+#include "pair_lanes.hpp"
 #include "pair_viscosity.hpp"
 #include "sphstab/core/threads.hpp"
 #include "sphstab/forms/rate_form.hpp"
@@ -97,7 +97,7 @@ struct PairRowScratch {
   std::vector<int> j;                            // the row's neighbours
   std::vector<Eigen::Matrix<double, Dim, 1>> r;  // the row's r_ij
   std::size_t stride = 0;
-  /// Room for `pairs` pairs: the compaction writes one slot past the kept ones, and lanes.hpp's vectors reach
+  /// Room for `pairs` pairs: the compaction writes one slot past the kept ones, and pair_lanes.hpp's vectors reach
   /// to the next multiple of kMaxPairLanes.
   void reserve(std::size_t pairs) {
     if (pairs < stride) return;
@@ -133,8 +133,6 @@ struct PairLoopScratch {
 /// default plate 1.3 / 3.9 / 9.2 %; a shuffled numbering 50 / 75 / 88 %), and with the other core busy, 2 threads over
 /// 8 chunks took 3 % (rings) and 9 % (lattice) longer per evaluation than over 2 chunks, over 4 chunks 1 and 3.5 %.
 inline constexpr int kChunksPerThread = 2;
-/// Particles per call of the pair loop's prepare (vectors of particles: lanes.hpp).
-inline constexpr int kPrepareBlock = 64;
 inline int pair_loop_chunks(int threads, int n) {
   return threads <= 1 ? 1 : std::max(1, std::min(n, kChunksPerThread * threads));
 }
@@ -192,7 +190,7 @@ struct PairSweeps {
   const PairFactor& pair_factor;
   PairLoopScratch<Dim>& s;
   bool periodic;
-  // The cubic spline (with GMS's f^4 when the artificial stress is on): the row scalars by lanes.hpp, its AVX2
+  // The cubic spline (with GMS's f^4 when the artificial stress is on): the row scalars by pair_lanes.hpp, its AVX2
   // clone when `avx2`; other kernels and exponents by the kernel's and PairFactor's row functions.
   bool lanes = false, avx2 = false;
   PairLaneConstants lane{};
@@ -444,10 +442,9 @@ struct PairSweeps {
 };
 
 /// The pair loop with the viscosity switch, artificial stress and XSPH compiled in (kf: kernel_rows.hpp), in one
-/// parallel region of `threads` threads over `chunks` chunks (0: pair_loop_chunks): prepare(i0, i1) and the packing of
-/// the particles [i0, i1) in blocks of kPrepareBlock, then the sweeps by chunk; done(a, b) is called once per chunk
-/// when the outputs of the particles [a, b) are written (row-parallel: for their rates). The first exception of prepare
-/// or done is rethrown after the region.
+/// parallel region of `threads` threads over `chunks` chunks (0: pair_loop_chunks): prepare(i) and the packing of each
+/// particle, then the sweeps by chunk; done(a, b) is called once per chunk when the outputs of the particles [a, b)
+/// are written (row-parallel: for their rates). The first exception of prepare or done is rethrown after the region.
 template <int Dim, ViscositySwitch kViscosity, bool kStress, bool kXsph, class KernelRows, class Prepare, class Done>
 void pair_loop(const PairLoopArrays<Dim>& A, const KernelRows& kf, const PairFactor& pair_factor,
                PairLoopScratch<Dim>& s, int threads, int chunks, Prepare&& prepare, Done&& done) {
@@ -480,17 +477,15 @@ void pair_loop(const PairLoopArrays<Dim>& A, const KernelRows& kf, const PairFac
       sweeps.lane = {c[0], c[1], c[2], c[3], inv_w_dp, A.h, A.eta2, A.alpha_c0, A.beta};
     }
   }
-  const int blocks = (n + kPrepareBlock - 1) / kPrepareBlock;
   FirstException first_error;
 #pragma omp parallel num_threads(threads)
   {
     PairRowScratch<Dim>& rs = s.rows[thread_index()];
 #pragma omp for schedule(static)
-    for (int block = 0; block < blocks; ++block)
+    for (int i = 0; i < n; ++i)
       first_error.run([&] {
-        const int i0 = block * kPrepareBlock, i1 = std::min(n, i0 + kPrepareBlock);
-        prepare(i0, i1);
-        for (int i = i0; i < i1; ++i) pack_particle(A, s.particle[i], i);
+        prepare(i);
+        pack_particle(A, s.particle[i], i);
       });
     // The barriers: after the packing (every particle's data), after the first sweep with XSPH (every vhat and kept
     // pair), at the region's end (no other: the last loop is nowait).
@@ -512,7 +507,7 @@ template <int Dim, ViscositySwitch kViscosity, bool kStress, bool kXsph, class K
 void pair_loop(const PairLoopArrays<Dim>& A, const KernelRows& kf, const PairFactor& pair_factor,
                PairLoopScratch<Dim>& s, int threads = 1, int chunks = 0) {
   pair_loop<Dim, kViscosity, kStress, kXsph>(
-      A, kf, pair_factor, s, threads, chunks, [](int, int) {}, [](int, int) {});
+      A, kf, pair_factor, s, threads, chunks, [](int) {}, [](int, int) {});
 }
 
 }  // namespace sphstab::rate_form_detail

@@ -1,9 +1,9 @@
-// The rate form's vector lanes (src/forms/rate_form/lanes.hpp) against the scalar code they stand for, bit for bit.
-// The pair loop's row scalars: W and dW/dr / r (CubicFunctions::row_pairs), f^4 (PairFactor::row_by_reciprocal), 1 /
+// The pair loop's row scalars by vector lanes (src/forms/rate_form/pair_lanes.hpp) against the scalar functions they
+// stand for, bit for bit: W and dW/dr / r (CubicFunctions::row_pairs), f^4 (PairFactor::row_by_reciprocal), 1 /
 // rhobar and Pi / rhobar (pair_viscosity.hpp), on rows of every length 0..13 (whole vectors and every remainder) whose
 // radii cover the inner piece, the outer piece, the support's exterior, the breakpoints s = 1 and 2 exactly and r = 0,
 // for both builds (the baseline's 2 lanes; the AVX2 clone's 4 where the CPU has it).
-#include "../../src/forms/rate_form/lanes.hpp"
+#include "../../src/forms/rate_form/pair_lanes.hpp"
 
 #include <gtest/gtest.h>
 
@@ -18,14 +18,13 @@
 
 #include "../../src/forms/rate_form/artificial_stress.hpp"
 #include "../../src/forms/rate_form/dispatch.hpp"
-#include "../../src/forms/rate_form/equation_of_state.hpp"
 #include "../../src/forms/rate_form/kernel_rows.hpp"
 #include "../../src/forms/rate_form/pair_viscosity.hpp"
 #include "sphstab/core/simd_dispatch.hpp"
 #include "sphstab/kernel/kernel.hpp"
 
 namespace sphstab {
-namespace lanes_test {
+namespace pair_lanes_test {
 
 namespace rd = rate_form_detail;
 
@@ -133,76 +132,5 @@ TEST(PairLanes, Avx2LanesAreTheScalarFunctionsBits) {
   expect_all_same_bits(true);
 }
 
-/// The particles' stresses by lanes (stress_lanes) against Evaluation::stress's scalar code (eos_pressure,
-/// cauchy_stress, sigma / rho^2, particle_artificial_stress), bit for bit: blocks of 1 to 4 particles whose stresses
-/// are isotropic (scale 0), tensile in both, one or neither principal direction, with half_diff of either sign, and
-/// with S_xy = -0 under a tension and a compression (the sign of sigma_xy's zero follows p 0).
-void expect_stress_same_bits(bool avx2) {
-  const double K = 2.5, rho0 = 1.1, eps = 0.3;
-  std::mt19937 rng(23);
-  std::uniform_real_distribution<double> u(-1.0, 1.0), rho(0.6, 1.6);
-  const auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x); };
-  long compared = 0;
-  for (int trial = 0; trial < 200; ++trial) {
-    const std::size_t count = 1 + trial % rd::kMaxPairLanes;
-    std::vector<double> r(count);
-    std::vector<Eigen::Vector3d> S(count);
-    for (std::size_t l = 0; l < count; ++l) {
-      r[l] = rho(rng);
-      S[l] = Eigen::Vector3d(u(rng), u(rng), u(rng));
-      switch ((trial + l) % 6) {
-        case 0:
-          S[l] = Eigen::Vector3d::Zero();
-          break;  // isotropic: sigma = -p I
-        case 1:
-          S[l][2] = -0.0;
-          r[l] = 0.9 * rho0;
-          break;  // S_xy = -0, p < 0
-        case 2:
-          S[l][2] = -0.0;
-          r[l] = 1.2 * rho0;
-          break;  // S_xy = -0, p > 0
-        case 3:
-          S[l] = S[l].cwiseAbs() + Eigen::Vector3d(2, 2, 0);
-          break;  // both principal stresses tensile
-        default:
-          break;
-      }
-    }
-    for (bool with_r : {false, true}) {
-      std::vector<Eigen::Matrix2d> sigma(count), sr(count), R(count);
-      const rd::StressLaneBlock block{count, r.data(), S[0].data(), sigma[0].data(), sr[0].data(), R[0].data()};
-      if (with_r)
-        rd::stress_lanes<true>(avx2, {K, rho0, eps}, block);
-      else
-        rd::stress_lanes<false>(avx2, {K, rho0, eps}, block);
-      for (std::size_t l = 0; l < count; ++l) {
-        // Evaluation::stress, without bulk viscosity.
-        const double pressure = rd::eos_pressure(K, r[l], rho0) + 0.0;
-        const Eigen::Matrix2d s = rd::cauchy_stress<2, double>(S[l], pressure);
-        const Eigen::Matrix2d q = s / (r[l] * r[l]);
-        const Eigen::Matrix2d a =
-            with_r ? rd::particle_artificial_stress<2, double>(s, r[l], eps) : Eigen::Matrix2d::Zero().eval();
-        for (int e = 0; e < 4; ++e) {
-          const std::string at = std::string(avx2 ? "AVX2" : "baseline") + ", trial " + std::to_string(trial) +
-                                 ", particle " + std::to_string(l) + ", entry " + std::to_string(e);
-          EXPECT_EQ(bits(sigma[l].data()[e]), bits(s.data()[e])) << at << ": sigma";
-          EXPECT_EQ(bits(sr[l].data()[e]), bits(q.data()[e])) << at << ": sigma / rho^2";
-          EXPECT_EQ(bits(R[l].data()[e]), bits(a.data()[e])) << at << ": R " << R[l].data()[e] << " vs " << a.data()[e];
-        }
-        ++compared;
-      }
-    }
-  }
-  EXPECT_EQ(compared, 2 * 50 * (1 + 2 + 3 + 4));
-}
-
-TEST(StressLanes, BaselineLanesAreTheScalarStressesBits) { expect_stress_same_bits(false); }
-
-TEST(StressLanes, Avx2LanesAreTheScalarStressesBits) {
-  if (!avx2_enabled()) GTEST_SKIP() << "no AVX2 on this CPU (or SPHSTAB_SIMD=baseline): only the baseline build runs";
-  expect_stress_same_bits(true);
-}
-
-}  // namespace lanes_test
+}  // namespace pair_lanes_test
 }  // namespace sphstab

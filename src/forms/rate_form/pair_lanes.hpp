@@ -1,20 +1,16 @@
 #pragma once
-/// \file lanes.hpp
-/// Internal to src/forms: the rate form's per-pair and per-particle arithmetic as vector loops (several pairs or
-/// particles per vector), compiled twice: for the x86-64 baseline (SSE2, 2 per vector) and for AVX2 (4 per vector),
-/// the clone chosen at run time (core/simd_dispatch.hpp).
-/// - pair_lanes: the pair loop's scalars of one row (pair_loop.hpp), from the squared distances r2 (and v_ij . r_ij,
-///   rho_j): W and dW/dr / r of the cubic spline (kernel_rows.hpp, CubicFunctions::row_pairs), f^n = (W (1 / W(dp)))^4
-///   for GMS's n = 4 (artificial_stress.hpp, PairFactor::row_by_reciprocal), 1 / rhobar_ij = 2 / (rho_i + rho_j), and
-///   Pi_ij / rhobar_ij (pair_viscosity.hpp);
-/// - stress_lanes: the particles' stresses of a 2D real state without bulk viscosity (evaluation.hpp,
-///   Evaluation::stress): the pressure of the equation of state, sigma = S - p I, sigma / rho^2 and the artificial
-///   stress R [GMS2001, (6.1)-(6.7)] (models/artificial_stress_particle.hpp), every branch computed and one selected.
+/// \file pair_lanes.hpp
+/// Internal to src/forms: the pair loop's per-pair scalars of one row (pair_loop.hpp) as whole-row vector loops,
+/// compiled twice: for the x86-64 baseline (SSE2, 2 pairs per vector) and for AVX2 (4 pairs per vector), the clone
+/// chosen at run time (core/simd_dispatch.hpp). From the squared distances r2 (and v_ij . r_ij, rho_j):
+///   W and dW/dr / r of the cubic spline (kernel_rows.hpp, CubicFunctions::row_pairs),
+///   f^n = (W (1 / W(dp)))^4 for GMS's n = 4 (artificial_stress.hpp, PairFactor::row_by_reciprocal),
+///   1 / rhobar_ij = 2 / (rho_i + rho_j), and Pi_ij / rhobar_ij (pair_viscosity.hpp).
 /// Every lane does the operations of those functions' scalar code, in the same order, and no multiply-add is formed
-/// (the clone enables AVX2, not FMA). So both builds give those functions' bits (tests/forms/lanes_test.cpp compares
-/// them with the scalar code; tests/forms/threads_determinism_test.cpp runs the pair loop on both).
+/// (the clone enables AVX2, not FMA). So both builds give those functions' bits (tests/forms/
+/// threads_determinism_test.cpp runs both).
 ///
-/// One body (lanes_body.hpp) is included twice, in a namespace per instruction set; the AVX2 copy inside a
+/// One body (pair_lanes_body.hpp) is included twice, in a namespace per instruction set; the AVX2 copy inside a
 /// region that gives every function defined there the target attribute (GCC's target pragma, Clang's attribute
 /// region), so that 4-wide vectors are only ever passed between AVX2 functions.
 #include <cmath>
@@ -49,20 +45,6 @@ struct PairLaneRow {
   double *w = nullptr, *gf = nullptr, *f = nullptr, *ib = nullptr, *c = nullptr;
 };
 
-/// The constants of the particles' stresses: the bulk modulus, the reference density and the artificial stress's
-/// epsilon (used with kStress only).
-struct StressLaneConstants {
-  double bulk_modulus = 0, rho0 = 0, epsilon = 0;
-};
-
-/// Up to kMaxPairLanes particles: rho[l] and the stored deviator S[3 l .. 3 l + 2] (xx, yy, xy) in; sigma, sigma /
-/// rho^2 and R out as column-major 2 x 2 matrices (4 doubles each), for l < count.
-struct StressLaneBlock {
-  std::size_t count = 0;
-  const double *rho = nullptr, *S = nullptr;
-  double *sigma = nullptr, *sigma_rho2 = nullptr, *R = nullptr;
-};
-
 namespace lanes {
 using v2d = double __attribute__((vector_size(16)));
 using v2l = long long __attribute__((vector_size(16)));
@@ -70,7 +52,7 @@ using v4d = double __attribute__((vector_size(32)));
 using v4l = long long __attribute__((vector_size(32)));
 }  // namespace lanes
 
-namespace lanes_baseline {
+namespace pair_lanes_baseline {
 using V = lanes::v2d;
 using Mask = lanes::v2l;
 SPHSTAB_ALWAYS_INLINE inline V vsqrt(V x) {
@@ -80,8 +62,8 @@ SPHSTAB_ALWAYS_INLINE inline V vsqrt(V x) {
   return V{std::sqrt(x[0]), std::sqrt(x[1])};
 #endif
 }
-#include "lanes_body.hpp"
-}  // namespace lanes_baseline
+#include "pair_lanes_body.hpp"
+}  // namespace pair_lanes_baseline
 
 #if SPHSTAB_HAS_AVX2_CLONES
 #if defined(__clang__)
@@ -90,12 +72,12 @@ SPHSTAB_ALWAYS_INLINE inline V vsqrt(V x) {
 #pragma GCC push_options
 #pragma GCC target("avx2")
 #endif
-namespace lanes_avx2 {
+namespace pair_lanes_avx2 {
 using V = lanes::v4d;
 using Mask = lanes::v4l;
 SPHSTAB_ALWAYS_INLINE inline V vsqrt(V x) { return reinterpret_cast<V>(_mm256_sqrt_pd(reinterpret_cast<__m256d>(x))); }
-#include "lanes_body.hpp"
-}  // namespace lanes_avx2
+#include "pair_lanes_body.hpp"
+}  // namespace pair_lanes_avx2
 #if defined(__clang__)
 #pragma clang attribute pop
 #else
@@ -103,27 +85,15 @@ SPHSTAB_ALWAYS_INLINE inline V vsqrt(V x) { return reinterpret_cast<V>(_mm256_sq
 #endif
 #endif
 
-/// The block's stresses by the clone `avx2` names (as pair_lanes). With kStress every rho must be finite and > 0 (the
-/// caller's to check: the scalar code throws there).
-template <bool kStress>
-inline void stress_lanes(bool avx2, const StressLaneConstants& k, const StressLaneBlock& block) {
-#if SPHSTAB_HAS_AVX2_CLONES
-  if (avx2) return lanes_avx2::stresses<kStress>(k, block);
-#else
-  (void)avx2;
-#endif
-  lanes_baseline::stresses<kStress>(k, block);
-}
-
 /// The row's scalars by the clone `avx2` names (true only where SPHSTAB_HAS_AVX2_CLONES and avx2_enabled()).
 template <ViscositySwitch kViscosity, bool kStress, bool kXsph>
 inline void pair_lanes(bool avx2, const PairLaneConstants& k, const PairLaneRow& row) {
 #if SPHSTAB_HAS_AVX2_CLONES
-  if (avx2) return lanes_avx2::row<kViscosity, kStress, kXsph>(k, row);
+  if (avx2) return pair_lanes_avx2::row<kViscosity, kStress, kXsph>(k, row);
 #else
   (void)avx2;
 #endif
-  lanes_baseline::row<kViscosity, kStress, kXsph>(k, row);
+  pair_lanes_baseline::row<kViscosity, kStress, kXsph>(k, row);
 }
 
 }  // namespace sphstab::rate_form_detail
