@@ -70,10 +70,11 @@ def claim_rings_run_speedups(r):
 
 def claim_skin_sets_only_the_cost(r):
     """Skins 0.5, 0.75 and 1 dx (pairs loop, 1 evaluation; same end state, checked by the benchmark): a larger skin
-    needs fewer builds (56 > 39 > 30 over 300 steps) and the runs with 0.75 and 1 dx are faster than with 0.5 dx, but
-    save less than the 0.5 dx run's share of rebuilds (its builds per step times one rebuild of the Verlet list,
-    Rebuild/RingsSI/pairs, over its time per particle-step): a larger skin can at most save the builds it avoids, and
-    pays for them with longer lists. The fastest configuration is a larger skin."""
+    needs fewer builds (56 > 39 > 30 over 300 steps), and it saves at most the 0.5 dx run's share of rebuilds (its
+    builds per step times one rebuild of the Verlet list, Rebuild/RingsSI/pairs, over its time per particle-step): a
+    larger skin can at most save the builds it avoids, and pays for them with longer lists. Which skin is fastest
+    depends on that balance (a larger one was, before the search's and the pair scalars' vector clones made rebuilds
+    and list entries cheaper); the returned line says which it is in this run."""
     best = _best(r)
     skins = [("pairs", 1, s) for s in (0.5, 0.75, 1.0)]
     builds = [_get(best, RUNS[k])["builds"] for k in skins]
@@ -83,13 +84,12 @@ def claim_skin_sets_only_the_cost(r):
     reb = _get(best, "Rebuild/RingsSI/pairs")
     rebuild_share = (run["builds"] / run["steps"]) * 1e3 * reb["real_time"] / reb["particles"] / us[0]
     for k, u in zip(skins[1:], us[1:]):
-        check(0 < 1 - u / us[0] < rebuild_share,
+        check(1 - u / us[0] < rebuild_share,
               f"skin {k[2]}: saves {100 * (1 - u / us[0]):.3g} % of the 0.5 dx run (its rebuilds: "
               f"{100 * rebuild_share:.3g} %)")
-    fastest = min(RUNS, key=lambda k: _run_us(best, RUNS[k]))
-    check(fastest in skins[1:], f"fastest configuration {fastest}")
+    fastest = min(skins, key=lambda k: _run_us(best, RUNS[k]))
     return f"builds {builds[0]:g}/{builds[1]:g}/{builds[2]:g}; 0.5 dx / larger skin {us[0] / us[1]:.3g}, " \
-           f"{us[0] / us[2]:.3g}; rebuilds {100 * rebuild_share:.3g} % of the 0.5 dx run"
+           f"{us[0] / us[2]:.3g}; rebuilds {100 * rebuild_share:.3g} % of the 0.5 dx run; fastest skin {fastest[2]:g} dx"
 
 
 def claim_rate_evaluations_dominate_compute_bound(r):
