@@ -58,7 +58,7 @@ class PairFactor {
   /// row() for the pair loop: f[q] = (w[q] (1 / W(dp)))^4 for GMS's n = 4 (within rounding of row()), row() otherwise.
   void row_by_reciprocal(std::size_t len, const double* __restrict w, double* __restrict f) const {
     if (m_int != 4) return row(len, w, f);
-    const double inv = 1.0 / m_w_dp;
+    const double inv = reciprocal_w_dp();
     for (std::size_t q = 0; q < len; ++q) {
       const double x = w[q] * inv;
       f[q] = (x * x) * (x * x);

@@ -154,7 +154,7 @@ class CubicFunctions {
   /// s = r (1/h), and dW/dr / r = (c_d / h)(-3 + 2.25 s) on the inner piece (no division), -0.75 c_d (2 - s)^2 / r on
   /// the outer one. r[q] >= 0; r = 0 gives the inner piece's finite limit.
   void row_pairs(std::size_t len, const double* __restrict r, double* __restrict w, double* __restrict gf) const {
-    const double inv_h = 1.0 / m_h, cw = m_cw, cd_h = m_cd * inv_h, cd_out = -0.75 * m_cd;
+    const auto [inv_h, cw, cd_h, cd_out] = pair_constants();
     std::size_t q = 0;
 #if defined(__SSE2__)
     const __m128d vinv_h = _mm_set1_pd(inv_h), two = _mm_set1_pd(2.0), one = _mm_set1_pd(1.0);
