@@ -9,6 +9,7 @@
 #include <string>
 
 #include "sphstab/core/format.hpp"
+#include "sphstab/core/huge_page_allocator.hpp"
 #include "sphstab/core/length_scale.hpp"
 #include "sphstab/core/memory_budget.hpp"
 #include "sphstab/core/simd_dispatch.hpp"
@@ -247,7 +248,7 @@ NeighbourList find_neighbours(const ParticleSet<Dim>& p, double radius, RowOrder
   // Row i's neighbours in cell order, appended at out[used..] without a branch (about half the candidates pass), by
   // ParticleSet::separation()'s arithmetic. Exactly symmetric: x_j - x_i = -(x_i - x_j) and round(-t) = -round(t).
   // `out` grows geometrically and is cut to `used` at the end (a resize per cell run would zero-fill every time).
-  const auto find_row = [&](int i, std::vector<int>& out, std::size_t& used) {
+  const auto find_row = [&](int i, auto& out, std::size_t& used) {
     using Point = typename ParticleSet<Dim>::Point;
     const Point xi = p.x.row(i);
     const std::size_t start = used;
@@ -282,24 +283,30 @@ NeighbourList find_neighbours(const ParticleSet<Dim>& p, double radius, RowOrder
   const int threads = threads_for(n);
   std::vector<int> bound(threads + 1);
   for (int t = 0; t <= threads; ++t) bound[t] = static_cast<int>(static_cast<long>(n) * t / threads);
-  std::vector<std::vector<int>> block(threads);
   std::vector<long> count(n);
-  FirstException first;
+  const auto search_blocks = [&](auto& block) {
+    FirstException first;
 #pragma omp parallel for schedule(static) num_threads(threads)
-  for (int t = 0; t < threads; ++t)
-    first.run([&] {
-      block[t].resize(static_cast<std::size_t>(1.1 * pairs * (bound[t + 1] - bound[t]) / std::max(n, 1)) + 64);
-      std::size_t used = 0;
-      for (int i = bound[t]; i < bound[t + 1]; ++i) count[i] = find_row(i, block[t], used);
-      block[t].resize(used);
-    });
-  first.rethrow();
+    for (int t = 0; t < threads; ++t)
+      first.run([&] {
+        block[t].resize(static_cast<std::size_t>(1.1 * pairs * (bound[t + 1] - bound[t]) / std::max(n, 1)) + 64);
+        std::size_t used = 0;
+        for (int i = bound[t]; i < bound[t + 1]; ++i) count[i] = find_row(i, block[t], used);
+        block[t].resize(used);
+      });
+    first.rethrow();
+  };
 
   NeighbourList list;
   list.radius = radius;
-  list.offsets.assign(n + 1, 0);
-  for (int i = 0; i < n; ++i) list.offsets[i + 1] = list.offsets[i] + count[i];
-  if (order == RowOrder::Sort) {  // the blocks joined in order
+  const auto set_offsets = [&] {
+    list.offsets.assign(n + 1, 0);
+    for (int i = 0; i < n; ++i) list.offsets[i + 1] = list.offsets[i] + count[i];
+  };
+  if (order == RowOrder::Sort) {  // the blocks joined in order (one block becomes the list: no copy)
+    std::vector<std::vector<int>> block(threads);
+    search_blocks(block);
+    set_offsets();
     if (threads == 1) {
       list.indices = std::move(block[0]);
     } else {
@@ -308,6 +315,11 @@ NeighbourList find_neighbours(const ParticleSet<Dim>& p, double radius, RowOrder
     }
     return list;
   }
+  // The transpose's blocks are scratch, dropped at the end: huge-page work arrays (core/huge_page_allocator.hpp),
+  // which a rebuild into fresh memory faults in 2 MiB at a time.
+  std::vector<HugePageVector<int>> block(threads);
+  search_blocks(block);
+  set_offsets();
   // The pattern is symmetric, so row j holds count[j] entries, the i whose rows hold j, and visiting i in ascending
   // order writes them sorted. Thread t writes the rows of its own block.
   list.indices.resize(static_cast<std::size_t>(list.offsets[n]));

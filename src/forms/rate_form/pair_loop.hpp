@@ -36,6 +36,7 @@
 #include "kernel_rows.hpp"
 #include "pair_lanes.hpp"
 #include "pair_viscosity.hpp"
+#include "sphstab/core/huge_page_allocator.hpp"
 #include "sphstab/core/threads.hpp"
 #include "sphstab/forms/rate_form.hpp"
 
@@ -116,13 +117,15 @@ struct PairLoopScratch {
   // XSPH: j and g of the pairs in support of each row, row i's from kept_start[i], kept_count[i] of them. A chunk's
   // rows keep theirs one after the other from its first list entry (room enough: its rows have no more pairs than
   // entries), so that each chunk's owner writes its own part whichever thread takes which chunk.
-  std::vector<int> kept_j, kept_count;
-  std::vector<long> kept_start;
-  std::vector<Eigen::Matrix<double, Dim, 1>> kept_g;
-  std::vector<PairParticle<Dim>> particle;
-  std::vector<MotionSums<Dim>> motion;
-  std::vector<GradientParticle<Dim>> gradient_particle;
-  std::vector<GradientSums<Dim>> gradient;
+  // The arrays of a list's size or of particles are huge-page work arrays (core/huge_page_allocator.hpp): a run's
+  // first evaluation touches them all.
+  HugePageVector<int> kept_j, kept_count;
+  HugePageVector<long> kept_start;
+  HugePageVector<Eigen::Matrix<double, Dim, 1>> kept_g;
+  HugePageVector<PairParticle<Dim>> particle;
+  HugePageVector<MotionSums<Dim>> motion;
+  HugePageVector<GradientParticle<Dim>> gradient_particle;
+  HugePageVector<GradientSums<Dim>> gradient;
 };
 
 /// The chunks of the pair loop for `threads` threads: one for one thread (no halo), else kChunksPerThread per thread,
