@@ -100,6 +100,10 @@ struct PredictorCorrector {
   RunBook<Dim>& b;
   const VonMises* plastic;
   Eigen::VectorXd f0{}, f1{}, yp{}, y{};
+  // Per state entry: 1 where it is a position x_a of a free particle, so that each update is one pass over the state
+  // (one barrier with threads) with the positions' own formula where the mask says; the offsets are the base
+  // scheme's, the same for every build.
+  std::vector<unsigned char> position{};
 
   /// From b.y to the next step's state in b.y. fresh: f0 = F(b.y) first (always without reuse_corrector_rate;
   /// the first step with it); otherwise f0 must hold the carried rate.
@@ -114,37 +118,27 @@ struct PredictorCorrector {
     // The updates are element by element, so threads give the same bits as one: in a run with threads they would
     // otherwise be serial work between the threaded evaluations.
     const Eigen::Index size = b.y.size();
+    if (static_cast<Eigen::Index>(position.size()) != size) {
+      position.assign(size, 0);
+      for (int i = 0; i < n; ++i)
+        if (const int xo = b.base.position_offset(i); xo >= 0)
+          for (int a = 0; a < Dim; ++a) position[xo + a] = 1;
+    }
     yp.resize(size);
     y.resize(size);
     const int threads = threads_for(n);
-#pragma omp parallel num_threads(threads)
-    {
-#pragma omp for schedule(static)
-      for (Eigen::Index k = 0; k < size; ++k) yp[k] = b.y[k] + dt * f0[k];  // predictor for v, rho, S (x below)
-#pragma omp for schedule(static)
-      for (int i = 0; i < n; ++i) {
-        const int xo = b.base.position_offset(i);
-        if (xo >= 0)  // x = x0 + dt vhat0 + dt^2/2 a0, not corrected [GMS2001, (6.15)]
-          yp.segment(xo, Dim) =
-              b.y.segment(xo, Dim) + dt * f0.segment(xo, Dim) + 0.5 * dt * dt * f0.segment(xo + Dim, Dim);
-      }
-    }
+    const double half_dt2 = 0.5 * dt * dt, half_dt = 0.5 * dt;
+    const bool gms = o.positions == PositionUpdate::Gms;
+    // Predictor for v, rho, S: y + dt F0; for x, x0 + dt vhat0 + dt^2/2 a0, not corrected [GMS2001, (6.15)] (the
+    // acceleration a0 is the rate of the velocity entry Dim after x_a).
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (Eigen::Index k = 0; k < size; ++k)
+      yp[k] = position[k] ? b.y[k] + dt * f0[k] + half_dt2 * f0[k + Dim] : b.y[k] + dt * f0[k];
     b.rate(yp, f1);
     b.evaluations += 1;
-#pragma omp parallel num_threads(threads)
-    {
-#pragma omp for schedule(static)
-      for (Eigen::Index k = 0; k < size; ++k) y[k] = yp[k] + 0.5 * dt * (f1[k] - f0[k]);
-#pragma omp for schedule(static)
-      for (int i = 0; i < n; ++i) {
-        const int xo = b.base.position_offset(i);
-        if (xo < 0) continue;
-        if (o.positions == PositionUpdate::Gms)
-          y.segment(xo, Dim) = yp.segment(xo, Dim);
-        else
-          y.segment(xo, Dim) = b.y.segment(xo, Dim) + 0.5 * dt * (f0.segment(xo, Dim) + f1.segment(xo, Dim));
-      }
-    }
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (Eigen::Index k = 0; k < size; ++k)
+      y[k] = !position[k] ? yp[k] + half_dt * (f1[k] - f0[k]) : gms ? yp[k] : b.y[k] + half_dt * (f0[k] + f1[k]);
     if (plastic) return_to_yield_surface(b.base, *plastic, y);
     b.y.swap(y);
     if (o.reuse_corrector_rate) f0.swap(f1);  // the next step's F^0: F(x, v_p, rho_p, S_p) of this step
