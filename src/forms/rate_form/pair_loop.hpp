@@ -286,6 +286,7 @@ struct PairSweeps {
     const double m_i = gp[i].mass, vol_i = gp[i].vol;
     Mat L_i = Mat::Zero();
     double drho_i = 0;
+    const bool summation = A.summation;  // a local: the stores to gs[j] could alias A as far as the compiler knows
     const auto pair = [&](long q, auto i_side, auto j_side) SPHSTAB_ALWAYS_INLINE {
       const int j = kj[q];
       const Vec& g = kg[q];
@@ -293,7 +294,7 @@ struct PairSweeps {
       const Mat dg = d * g.transpose();
       if constexpr (decltype(i_side)::value) L_i += gp[j].vol * dg;
       if constexpr (decltype(j_side)::value) gs[j].L += vol_i * dg;
-      if (A.summation) {
+      if (summation) {
         const double dd = d.dot(g);
         if constexpr (decltype(i_side)::value) drho_i -= gp[j].mass * dd;
         if constexpr (decltype(j_side)::value) gs[j].drho -= m_i * dd;
@@ -386,6 +387,15 @@ struct PairSweeps {
     Mat L_i = Mat::Zero();
     double drho_i = 0;
     const bool moves_i = kXsph && A.xsph_moves[i];
+    // In locals: the scatter's stores could alias the arrays' holders as far as the compiler knows, so it would
+    // reload each of these per pair.
+    const double xsph = A.xsph;
+    const char* const moves = A.xsph_moves;
+    const double* const vol = A.vol;
+    const bool summation = A.summation;
+    int* const kept_j = kXsph ? s.kept_j.data() + kept : nullptr;
+    Vec* const kept_g = kXsph ? s.kept_g.data() + kept : nullptr;
+    GradientSums<Dim>* const gs = s.gradient.data();
     const auto pair = [&](std::size_t q, auto i_side, auto j_side) SPHSTAB_ALWAYS_INLINE {
       constexpr bool kI = decltype(i_side)::value, kJ = decltype(j_side)::value;
       const int j = jj[q];
@@ -401,25 +411,25 @@ struct PairSweeps {
       if constexpr (kI) acc_i += Pj.mass * T;
       if constexpr (kJ) ms[j].acc -= m_i * T;
       if constexpr (kXsph) {
-        const double cx = A.xsph * w[q] * ib[q];
+        const double cx = xsph * w[q] * ib[q];
         const Vec d = Pj.v - vi;
         if constexpr (kI)
           if (moves_i) dvh_i += (cx * Pj.mass) * d;
         if constexpr (kJ)
-          if (A.xsph_moves[j]) ms[j].dvhat -= (cx * m_i) * d;
+          if (moves[j]) ms[j].dvhat -= (cx * m_i) * d;
         if constexpr (kI) {
-          s.kept_j[kept + q] = j;
-          s.kept_g[kept + q] = g;
+          kept_j[q] = j;
+          kept_g[q] = g;
         }
       } else {
         const Vec d = Pj.v - vi;
         const Mat dg = d * g.transpose();
-        if constexpr (kI) L_i += A.vol[j] * dg;
-        if constexpr (kJ) s.gradient[j].L += A.vol[i] * dg;
-        if (A.summation) {
+        if constexpr (kI) L_i += vol[j] * dg;
+        if constexpr (kJ) gs[j].L += vol[i] * dg;
+        if (summation) {
           const double dd = d.dot(g);
           if constexpr (kI) drho_i -= Pj.mass * dd;
-          if constexpr (kJ) s.gradient[j].drho -= m_i * dd;
+          if constexpr (kJ) gs[j].drho -= m_i * dd;
         }
       }
     };
