@@ -231,6 +231,24 @@ struct CellGrid {
   }
 };
 
+/// The rows bound[t] .. bound[t + 1] into block[t], one block per thread (sized from the expected pairs per row);
+/// count[i] = row i's length. A function, not a generic lambda: clang 14 refuses an OpenMP region inside one.
+template <class Block, class FindRow>
+void search_row_blocks(std::vector<Block>& block, const std::vector<int>& bound, double pairs_per_row,
+                       const FindRow& find_row, std::vector<long>& count) {
+  const int threads = static_cast<int>(block.size());
+  FirstException first;
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (int t = 0; t < threads; ++t)
+    first.run([&] {
+      block[t].resize(static_cast<std::size_t>(1.1 * pairs_per_row * (bound[t + 1] - bound[t])) + 64);
+      std::size_t used = 0;
+      for (int i = bound[t]; i < bound[t + 1]; ++i) count[i] = find_row(i, block[t], used);
+      block[t].resize(used);
+    });
+  first.rethrow();
+}
+
 template <int Dim>
 NeighbourList find_neighbours(const ParticleSet<Dim>& p, double radius, RowOrder order) {
   check_inputs(p, radius, "find_neighbours");
@@ -285,16 +303,7 @@ NeighbourList find_neighbours(const ParticleSet<Dim>& p, double radius, RowOrder
   for (int t = 0; t <= threads; ++t) bound[t] = static_cast<int>(static_cast<long>(n) * t / threads);
   std::vector<long> count(n);
   const auto search_blocks = [&](auto& block) {
-    FirstException first;
-#pragma omp parallel for schedule(static) num_threads(threads)
-    for (int t = 0; t < threads; ++t)
-      first.run([&] {
-        block[t].resize(static_cast<std::size_t>(1.1 * pairs * (bound[t + 1] - bound[t]) / std::max(n, 1)) + 64);
-        std::size_t used = 0;
-        for (int i = bound[t]; i < bound[t + 1]; ++i) count[i] = find_row(i, block[t], used);
-        block[t].resize(used);
-      });
-    first.rethrow();
+    search_row_blocks(block, bound, pairs / std::max(n, 1), find_row, count);
   };
 
   NeighbourList list;
