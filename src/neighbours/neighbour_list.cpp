@@ -302,9 +302,7 @@ NeighbourList find_neighbours(const ParticleSet<Dim>& p, double radius, RowOrder
   std::vector<int> bound(threads + 1);
   for (int t = 0; t <= threads; ++t) bound[t] = static_cast<int>(static_cast<long>(n) * t / threads);
   std::vector<long> count(n);
-  const auto search_blocks = [&](auto& block) {
-    search_row_blocks(block, bound, pairs / std::max(n, 1), find_row, count);
-  };
+  const double pairs_per_row = pairs / std::max(n, 1);
 
   NeighbourList list;
   list.radius = radius;
@@ -314,7 +312,7 @@ NeighbourList find_neighbours(const ParticleSet<Dim>& p, double radius, RowOrder
   };
   if (order == RowOrder::Sort) {  // the blocks joined in order (one block becomes the list: no copy)
     std::vector<std::vector<int>> block(threads);
-    search_blocks(block);
+    search_row_blocks(block, bound, pairs_per_row, find_row, count);
     set_offsets();
     if (threads == 1) {
       list.indices = std::move(block[0]);
@@ -327,7 +325,7 @@ NeighbourList find_neighbours(const ParticleSet<Dim>& p, double radius, RowOrder
   // The transpose's blocks are scratch, dropped at the end: huge-page work arrays (core/huge_page_allocator.hpp),
   // which a rebuild into fresh memory faults in 2 MiB at a time.
   std::vector<HugePageVector<int>> block(threads);
-  search_blocks(block);
+  search_row_blocks(block, bound, pairs_per_row, find_row, count);
   set_offsets();
   // The pattern is symmetric, so row j holds count[j] entries, the i whose rows hold j, and visiting i in ascending
   // order writes them sorted. Thread t writes the rows of its own block.
