@@ -68,3 +68,30 @@ def claim_speedups_throughput_and_verdicts_are_the_csv(r):
         check(r.key(f"{case}_never_slower") == ("met" if never else "not met"), f"{case}: never-slower verdict")
         found.append(f"{case} idle {ups[('idle', 'adaptive')]:.2f}x, busy {ups[('busy', 'adaptive')]:.2f}x")
     return "; ".join(found)
+
+
+def claim_detection_floor_and_reach_are_the_csv(r):
+    """The floor table (the one-thread runs' spread per condition, the adaptive two-thread change, and whether the
+    change is beyond the spread) and whether each target lies within the machine's two-process throughput are
+    recomputed from runs.csv."""
+    rows, found = r.csv("runs.csv"), []
+    table = {(c[0], c[1]): c for c in (line.strip("| ").split(" | ") for line in r.key("floor_table").splitlines())}
+    for case in CASES:
+        t1 = _best(rows, case, "idle", 1)
+        pair = select(rows, case=case, condition="two-processes")
+        throughput = 2 * t1 / min(max(x["wall_s"] for x in pair if x["rep"] == k) for k in {x["rep"] for x in pair})
+        reach = "within" if TARGET[case] <= throughput else "above"
+        check(r.key(f"{case}_target_reach") == reach, f"{case}: target reach {r.key(f'{case}_target_reach')}")
+        for condition in ("idle", "busy"):
+            ones = [x["wall_s"] for x in select(rows, case=case, condition=condition, threads=1)]
+            spread = max(ones) / min(ones) - 1
+            change = min(ones) / _best(rows, case, condition, 2) - 1
+            cells = table.get((case, condition))
+            check(cells is not None, f"floor table: no row {case} {condition}")
+            approx(float(cells[2].rstrip(" %")), 100 * spread, f"{case} {condition} spread", abs_=0.051)
+            approx(float(cells[3].rstrip(" %")), 100 * change, f"{case} {condition} change", abs_=0.051)
+            word = ("faster" if change > 0 else "slower") if abs(change) > spread else "no difference beyond the spread"
+            check(cells[4] == word, f"{case} {condition}: '{cells[4]}', expected '{word}'")
+            found.append(f"{case} {condition} {100 * change:+.1f} % (spread {100 * spread:.1f} %): {word}")
+        found.append(f"{case} target {reach} throughput {throughput:.2f}")
+    return "; ".join(found)
