@@ -70,13 +70,8 @@ void AdaptiveThreads::after_step() {
   // The run's first step is not a measurement: it pays for first touches (workspaces, page faults, waking threads).
   if (most() <= 1 || m_steps[0] + m_steps[1] == 1) return;
   m_block_seconds += seconds;
-  if (++m_in_block < m_block_steps) return;
-  // A block too short to measure goes on with the same count, and so do the blocks after it (a block is one
-  // measurement: a few scheduler time slices at least).
-  if (m_block_seconds < kMinBlockSeconds) {
-    m_block_steps *= 2;
-    return;
-  }
+  ++m_in_block;
+  if (m_block_seconds < kMinBlockSeconds) return;  // a block is one measurement: a few scheduler time slices at least
   m_per_step[m_current] = m_block_seconds / static_cast<double>(m_in_block);
   if (m_per_step[1 - m_current] < 0) return start_block(1 - m_current);  // measure the other count first
   // The other count must be kMargin faster to replace the chosen one: timings of a shared machine are noisy, and

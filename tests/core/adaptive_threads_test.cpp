@@ -37,7 +37,7 @@ TEST(AdaptiveThreads, KeepsTheFasterCountAndRarelyMeasuresTheOther) {
     const bool two_faster = two < 1;
     const long slow_steps = two_faster ? a.steps_with_one() : a.steps_with_most();
     EXPECT_EQ(a.steps_with_one() + a.steps_with_most(), 20000);
-    // Probes once settled: one block in 65; blocks of 16 steps or fewer (doubling from 1 until 0.05 s of stepping).
+    // Probes once settled: one block in 65; a block lasts until it holds 0.05 s of stepping (9 or 5 steps here).
     EXPECT_LT(slow_steps, 20000 / 40) << two;
     const double best = 20000 * one * std::min(two, 1.0);
     EXPECT_LT(total, 1.03 * best) << two;  // within 3 % of always stepping with the faster count
@@ -65,7 +65,7 @@ TEST(AdaptiveThreads, FollowsALoadThatChangesDuringTheRun) {
 
 TEST(AdaptiveThreads, OnAnIdleMachineOnlyTheFirstMeasurementOfOneThreadIsPaid) {
   const ThreadCountGuard guard(1);
-  const auto cost = [](int t, long) { return t == 2 ? 0.006 : 0.01; };  // two threads 1.7x faster
+  const auto cost = [](int t, long) { return t == 2 ? 0.0066 : 0.011; };  // two threads 1.7x faster
   // The same run with the others' CPU unknown (every probe taken), idle (0 cores), and busy (one core).
   long one[3] = {}, skipped[3] = {};
   for (int k = 0; k < 3; ++k) {
@@ -81,11 +81,11 @@ TEST(AdaptiveThreads, OnAnIdleMachineOnlyTheFirstMeasurementOfOneThreadIsPaid) {
   EXPECT_EQ(skipped[2], 0);
   EXPECT_EQ(one[2], one[0]);  // a busy machine is probed as an unknown one
   EXPECT_GE(skipped[1], 5);   // 20000 steps: 4, 8, 16, 32, 64, 64, ... blocks between due probes
-  // Idle: the first block of one thread only, against every probe's blocks otherwise. Its length: the first block
-  // (two threads, after the untimed first step) doubles from 1 step while it lasts < 0.05 s: 8 steps are 0.048 s, so
-  // 16; the one-thread block has the same length.
-  EXPECT_EQ(one[1], 16);
-  EXPECT_GT(one[0], one[1] + 5 * 16);
+  // Idle: the first block of one thread only, against every probe's blocks otherwise. Its length: the steps that
+  // bring it to 0.05 s of one-thread stepping, 5 of 0.011 s (4 are 0.044 s), not the 8 steps of the first block of
+  // two threads (0.0528 s after the untimed first step).
+  EXPECT_EQ(one[1], 5);
+  EXPECT_GT(one[0], one[1] + 5 * 5);
 }
 
 TEST(AdaptiveThreads, AnIdleReadingDoesNotHideAContendedMachine) {
