@@ -5,13 +5,13 @@ machine and beside a competing CPU-bound process; two threads as the program run
 policy, adaptive thread count) and on every step under three wait policies; and the machine's own two-process
 throughput in the same run.
 
-    python3 benchmarks/threads_report.py BIN_DIR OUT_DIR [--reps 3]
+    python3 benchmarks/threads_report.py BIN_DIR OUT_DIR [--reps 5]
     python3 benchmarks/threads_report.py --summary-only OUT_DIR
 
 Writes OUT_DIR/runs.csv (one row per process run), OUT_DIR/run.json (program, repetitions, cases) and
 OUT_DIR/summary.json (the values studies/threads-speed/summary.md.in renders, computed from the two files only;
 --summary-only recomputes it). Each configuration is run --reps times, interleaved with the others (1 thread, then 2 in
-each mode, then again), and taken at its fastest run: the machine is shared, and a slower repetition measures the other
+each mode, idle then busy, then again), and taken at its fastest run: the machine is shared, and a slower repetition measures the other
 users. Wall time of the whole process (set-up included: what a user waits for); CPU time from wait4.
 """
 import argparse
@@ -108,7 +108,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("bin")
     ap.add_argument("out")
-    ap.add_argument("--reps", type=int, default=3)
+    ap.add_argument("--reps", type=int, default=5)
     ap.add_argument("--cases", default="rings,lattice")
     a = ap.parse_args()
     if a.reps < 1:
@@ -126,8 +126,10 @@ def main():
     t_start = time.time()
     for case in cases:
         configs = [(1, "adaptive")] + [(2, m) for m in MODES]
-        for condition in ("idle", "busy"):
-            for rep in range(a.reps):
+        # Repetitions outermost, the conditions and the side-by-side pair inside: each condition's runs spread over
+        # the case's whole time, so that a slow spell of the shared host falls on one repetition of each, not on all.
+        for rep in range(a.reps):
+            for condition in ("idle", "busy"):
                 for threads, mode in configs:
                     if condition == "busy":
                         with Competitor():
@@ -137,7 +139,6 @@ def main():
                     rows.append(dict(case=case, condition=condition, threads=threads, mode=mode, rep=rep, **r))
                     print(f"threads_report: {case} {condition} {threads} thread(s) {mode}: {r['wall']:.2f} s "
                           f"(load {r['load']:.2f})", flush=True)
-        for rep in range(a.reps):
             for k, r in enumerate(run_pair(cli, case)):
                 rows.append(dict(case=case, condition="two-processes", threads=1, mode="adaptive", rep=rep, copy=k,
                                  **r))
