@@ -11,8 +11,8 @@ throughput in the same run.
 Writes OUT_DIR/runs.csv (one row per process run), OUT_DIR/run.json (program, repetitions, cases) and
 OUT_DIR/summary.json (the values studies/threads-speed/summary.md.in renders, computed from the two files only;
 --summary-only recomputes it). Each configuration is run --reps times, interleaved with the others (1 thread, then 2 in
-each mode, idle then busy, then again), and taken at its fastest run: the machine is shared, and a slower repetition measures the other
-users. Wall time of the whole process (set-up included: what a user waits for); CPU time from wait4.
+each mode, idle then busy, then again), and taken at its fastest run: the machine is shared, and a slower repetition
+measures the other users. Wall time of the whole process (set-up included: what a user waits for); CPU time from wait4.
 """
 import argparse
 import csv

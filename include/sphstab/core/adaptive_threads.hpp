@@ -11,17 +11,17 @@
 ///
 /// How: steps are taken in blocks of one count, each block ending with the step that brings it to kMinBlockSeconds of
 /// stepping, however many steps that takes with its count (the run's first step, which pays for first touches, is not
-/// timed). So a block of the slower count is no longer than a measurement needs: with the block length in steps
-/// carried over from the faster count (doubling until 0.05 s), the SI rings on two threads measured one thread for
-/// 16 steps (12 two-thread steps made 0.05 s: the next doubling) where 8 measure 0.075 s, in a run of 300 steps. The first two
-/// blocks measure both counts; then the faster count runs (the other must be kMargin faster to replace the chosen
-/// one, `most` at first), and one block of the other is measured after `interval` blocks of it: 4 after a change of
-/// choice, doubling up to 64 while the choice holds. Worst case, when the other count is k times slower: one block in interval + 1 at k times the cost
-/// (e.g. 2x slower: 1/65 = 1.5 % extra once settled). A probe of one thread while `most` is chosen is skipped (and
-/// counts as a confirmation) when the other processes used less than kBusyCores of the machine since the last probe
-/// (/proc/stat): on an idle machine only the first measurement of one thread is paid (results/threads-speed measured
-/// the probes' cost at 0.1-0.15 of the idle speed-up in runs of 2-3 s); a slower `most` block than the last
-/// one-thread measurement still switches at once.
+/// timed). So a block of the slower count is no longer than a measurement needs: with the block length in steps carried
+/// over from the faster count (doubling until 0.05 s), the SI rings on two threads measured one thread for 16 steps (12
+/// two-thread steps made 0.05 s: the next doubling) where 8 measure 0.075 s, in a run of 300 steps. The first two
+/// blocks measure both counts; then the faster count runs (the other must be kMargin faster to replace the chosen one,
+/// `most` at first), and one block of the other is measured after `interval` blocks of it: 4 after a change of choice,
+/// doubling up to 64 while the choice holds. Worst case, when the other count is k times slower: one block in interval
+/// + 1 at k times the cost (e.g. 2x slower: 1/65 = 1.5 % extra once settled). A probe of one thread while `most` is
+/// chosen is skipped (and counts as a confirmation) when the other processes used less than kBusyCores of the machine
+/// since the last probe (/proc/stat): on an idle machine only the first measurement of one thread is paid
+/// (results/threads-speed measured the probes' cost at 0.1-0.15 of the idle speed-up in runs of 2-3 s); a slower `most`
+/// block than the last one-thread measurement still switches at once.
 /// \code{.cpp}
 /// AdaptiveThreads threads;               // max_threads() now; nothing to choose with one
 /// while (more()) {
